@@ -1,0 +1,231 @@
+//! Report records and the per-crate sweep that collects them.
+
+use serde::{Deserialize, Serialize};
+use serde_json::{Map, Value};
+use std::path::PathBuf;
+
+/// Where a sweep writes its part of the report (a JSON file). Unset: the part is printed.
+pub const ENV_OUT: &str = "GI_SWEEP_OUT";
+/// `1`: run the reduced sweep (about a minute per crate on 2 cores).
+pub const ENV_QUICK: &str = "GI_SWEEP_QUICK";
+
+/// An error figure with the name of its metric (`rel_rms`, `max_rel`, `mean_rel_luminance`,
+/// `abs`, ... each defined where it is computed).
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct ErrorValue {
+    pub metric: String,
+    pub value: f64,
+}
+
+/// One measured point: a technique at one setting, its time and its error against a reference.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct Entry {
+    /// Stable name, `crate/what`, e.g. `sky_volume/brute_force_32x16x32_100`.
+    pub name: String,
+    /// The crate it belongs to (filled by [`Sweep::entry`]).
+    #[serde(rename = "crate")]
+    pub crate_name: String,
+    /// The technique; the report draws one chart per (crate, technique).
+    pub technique: String,
+    /// The knobs of this point.
+    pub settings: Map<String, Value>,
+    /// Median time of the unit the name says (one call, one volume, one frame), in ms.
+    pub time_ms: f64,
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub error: Option<ErrorValue>,
+    /// What the error was measured against.
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub reference: Option<String>,
+    /// Worker threads the measurement used.
+    pub threads: usize,
+    /// A remark a reader needs (a target, the thesis's figure beside ours, ...).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub note: Option<String>,
+}
+
+impl Entry {
+    /// A point with `threads` set to the current rayon-free default of 1; use
+    /// [`Entry::threads`] to say otherwise.
+    pub fn new(name: impl Into<String>, technique: impl Into<String>, time_ms: f64) -> Self {
+        Self {
+            name: name.into(),
+            crate_name: String::new(),
+            technique: technique.into(),
+            settings: Map::new(),
+            time_ms,
+            error: None,
+            reference: None,
+            threads: 1,
+            note: None,
+        }
+    }
+
+    /// Adds one setting (any JSON-serialisable value).
+    pub fn setting(mut self, key: &str, value: impl Serialize) -> Self {
+        let v = serde_json::to_value(value).unwrap_or(Value::Null);
+        self.settings.insert(key.to_owned(), v);
+        self
+    }
+
+    /// Sets the error figure and what it was measured against.
+    pub fn error(mut self, metric: &str, value: f64, reference: &str) -> Self {
+        self.error = Some(ErrorValue { metric: metric.to_owned(), value });
+        self.reference = Some(reference.to_owned());
+        self
+    }
+
+    pub fn threads(mut self, threads: usize) -> Self {
+        self.threads = threads;
+        self
+    }
+
+    pub fn note(mut self, note: impl Into<String>) -> Self {
+        self.note = Some(note.into());
+        self
+    }
+}
+
+/// A side-by-side race with a peer, measured in the same process, interleaved.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct Comparison {
+    pub name: String,
+    pub ours: f64,
+    pub theirs: f64,
+    pub unit: String,
+    /// Greater than 1 means we are better (computed from `higher_is_better`).
+    pub ratio: f64,
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub note: Option<String>,
+}
+
+impl Comparison {
+    /// `higher_is_better`: true for throughputs (Mrays/s), false for times (ms).
+    pub fn new(
+        name: impl Into<String>,
+        ours: f64,
+        theirs: f64,
+        unit: &str,
+        higher_is_better: bool,
+    ) -> Self {
+        let ratio = if higher_is_better { ours / theirs } else { theirs / ours };
+        Self { name: name.into(), ours, theirs, unit: unit.to_owned(), ratio, note: None }
+    }
+
+    pub fn note(mut self, note: impl Into<String>) -> Self {
+        self.note = Some(note.into());
+        self
+    }
+}
+
+/// One crate's share of the report, as its sweep writes it.
+#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+pub struct Part {
+    pub entries: Vec<Entry>,
+    pub comparisons: Vec<Comparison>,
+}
+
+/// Collects a crate's entries; knows whether this is the quick sweep; shows progress.
+pub struct Sweep {
+    crate_name: String,
+    quick: bool,
+    out: Option<PathBuf>,
+    part: Part,
+    progress: indicatif::ProgressBar,
+}
+
+impl Sweep {
+    /// Reads [`ENV_QUICK`] and [`ENV_OUT`].
+    pub fn from_env(crate_name: &str) -> Self {
+        let quick = std::env::var(ENV_QUICK).is_ok_and(|v| v == "1");
+        let out = std::env::var_os(ENV_OUT).map(PathBuf::from);
+        let progress = indicatif::ProgressBar::new_spinner().with_message(crate_name.to_owned());
+        progress.set_style(
+            indicatif::ProgressStyle::with_template(
+                "{spinner} {elapsed:>4} {msg} [{pos} points] {wide_msg}",
+            )
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
+        );
+        progress.enable_steady_tick(std::time::Duration::from_millis(200));
+        Self { crate_name: crate_name.to_owned(), quick, out, part: Part::default(), progress }
+    }
+
+    /// True for the reduced sweep.
+    pub fn quick(&self) -> bool {
+        self.quick
+    }
+
+    /// `full` repetitions normally, a fifth of them (at least 3) in the quick sweep.
+    pub fn reps(&self, full: usize) -> usize {
+        if self.quick { (full / 5).max(3) } else { full }
+    }
+
+    /// Shows what is being measured now.
+    pub fn stage(&self, what: &str) {
+        self.progress.set_message(format!("{}: {what}", self.crate_name));
+    }
+
+    pub fn entry(&mut self, mut entry: Entry) {
+        entry.crate_name = self.crate_name.clone();
+        self.progress.inc(1);
+        self.progress.println(format!(
+            "  {:<48} {:>12.4} ms  {}",
+            entry.name,
+            entry.time_ms,
+            entry.error.as_ref().map_or(String::new(), |e| format!("{} {:.3e}", e.metric, e.value))
+        ));
+        self.part.entries.push(entry);
+    }
+
+    pub fn comparison(&mut self, c: Comparison) {
+        self.progress.inc(1);
+        self.progress.println(format!(
+            "  {:<48} ours {:.3} vs theirs {:.3} {} (ratio {:.2})",
+            c.name, c.ours, c.theirs, c.unit, c.ratio
+        ));
+        self.part.comparisons.push(c);
+    }
+
+    /// Writes the part to [`ENV_OUT`] (or prints it as JSON when unset).
+    pub fn finish(self) -> std::io::Result<Part> {
+        self.progress.finish_and_clear();
+        let json = serde_json::to_string_pretty(&self.part).map_err(std::io::Error::other)?;
+        match &self.out {
+            Some(path) => {
+                if let Some(dir) = path.parent() {
+                    std::fs::create_dir_all(dir)?;
+                }
+                std::fs::write(path, json)?;
+            }
+            None => println!("{json}"),
+        }
+        Ok(self.part)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn entry_serialises_in_the_design_format() {
+        let mut e = Entry::new("sky_volume/brute_force_32x16x32_100", "brute_force", 12.3)
+            .setting("samples", 100)
+            .error("rel_rms", 0.012, "brute_force_samples_4096")
+            .threads(2);
+        e.crate_name = "sky_volume".into();
+        let v: Value = serde_json::to_value(&e).unwrap();
+        assert_eq!(v["crate"], "sky_volume");
+        assert_eq!(v["settings"]["samples"], 100);
+        assert_eq!(v["error"]["metric"], "rel_rms");
+        assert_eq!(v["reference"], "brute_force_samples_4096");
+        assert!(v.get("note").is_none());
+        let back: Entry = serde_json::from_value(v).unwrap();
+        assert_eq!(back, e);
+    }
+
+    #[test]
+    fn comparison_ratio_is_above_one_when_we_win() {
+        assert!(Comparison::new("x", 12.0, 10.0, "Mrays/s", true).ratio > 1.0);
+        assert!(Comparison::new("x", 8.0, 10.0, "ms", false).ratio > 1.0);
+    }
+}

@@ -1,0 +1,86 @@
+//! Workspace tasks. `cargo xtask` lists them.
+//!
+//! - `cargo xtask test`: rustfmt check, clippy (warnings denied), WGSL validation, and the
+//!   whole workspace's tests with all features (GPU tests included).
+//! - `cargo xtask bench [--quick] [--json PATH] [--only CRATE]`: every crate's accuracy-vs-time
+//!   sweep, merged into `target/gi-report/` (report.json, report.md, one SVG per technique).
+//! - `cargo xtask report`: redraws report.md and the charts from an existing report.json.
+
+mod bench;
+mod report;
+mod shaders;
+mod test;
+
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+
+#[derive(Parser)]
+#[command(
+    name = "cargo xtask",
+    about = "Tasks of the serein workspace",
+    arg_required_else_help = true
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Format check, clippy -D warnings, WGSL validation, then `cargo test --workspace --all-features`.
+    Test {
+        /// Extra arguments passed to `cargo test` after `--` (e.g. a test name filter).
+        #[arg(last = true)]
+        test_args: Vec<String>,
+    },
+    /// Run every crate's accuracy-vs-time sweep and write target/gi-report/.
+    Bench {
+        /// Reduced sweep (under ten minutes on 2 cores once built).
+        #[arg(long)]
+        quick: bool,
+        /// Also write the merged report.json to this path.
+        #[arg(long)]
+        json: Option<PathBuf>,
+        /// Only these crates (repeatable); the others keep their previous parts.
+        #[arg(long)]
+        only: Vec<String>,
+    },
+    /// Redraw report.md and the SVG charts from target/gi-report/report.json.
+    Report,
+    /// Validate every top-level WGSL file under shaders/ with naga.
+    Shaders,
+}
+
+fn main() -> anyhow::Result<()> {
+    let root = workspace_root();
+    match Cli::parse().command {
+        Command::Test { test_args } => test::run(&root, &test_args),
+        Command::Bench { quick, json, only } => bench::run(&root, quick, json, &only),
+        Command::Report => report::redraw(&root.join("target/gi-report")),
+        Command::Shaders => shaders::validate_all(&root).map(|n| println!("{n} shaders valid")),
+    }
+}
+
+/// The workspace root: the parent of this crate's manifest directory.
+fn workspace_root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("xtask lives one level below the workspace root")
+        .to_path_buf()
+}
+
+/// Runs a command, echoing it; errors if it fails.
+fn run_cmd(cmd: &mut std::process::Command) -> anyhow::Result<()> {
+    eprintln!("$ {}", format_cmd(cmd));
+    let status = cmd.status()?;
+    anyhow::ensure!(status.success(), "`{}` failed with {status}", format_cmd(cmd));
+    Ok(())
+}
+
+fn format_cmd(cmd: &std::process::Command) -> String {
+    std::iter::once(cmd.get_program())
+        .chain(cmd.get_args())
+        .map(|s| s.to_string_lossy().into_owned())
+        .collect::<Vec<_>>()
+        .join(" ")
+}

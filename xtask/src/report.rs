@@ -1,0 +1,192 @@
+//! The merged report: report.json, report.md and one error-vs-time SVG per technique.
+
+use anyhow::Context;
+use gi_report::{Comparison, Entry, Part};
+use plotters::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::path::Path;
+
+#[derive(Serialize, Deserialize)]
+pub struct Machine {
+    pub cores: usize,
+    /// `none`, or the adapter's name (a software rasteriser is named as such: its timings are
+    /// not GPU timings).
+    pub gpu: String,
+}
+
+#[derive(Serialize, Deserialize)]
+pub struct Report {
+    pub machine: Machine,
+    pub quick: bool,
+    pub entries: Vec<Entry>,
+    pub comparisons: Vec<Comparison>,
+}
+
+fn gpu_name() -> String {
+    match gpu_harness::GpuContext::new() {
+        Ok(ctx) if ctx.is_software() => {
+            format!("{} (software rasteriser: not a GPU)", ctx.describe())
+        }
+        Ok(ctx) => ctx.describe(),
+        Err(_) => "none".into(),
+    }
+}
+
+/// Merges the parts of `crates` found in `parts_dir` (missing parts are skipped).
+pub fn merge(parts_dir: &Path, crates: &[String], quick: bool) -> anyhow::Result<Report> {
+    let mut report = Report {
+        machine: Machine {
+            cores: std::thread::available_parallelism().map_or(1, |n| n.get()),
+            gpu: gpu_name(),
+        },
+        quick,
+        entries: Vec::new(),
+        comparisons: Vec::new(),
+    };
+    for name in crates {
+        let path = parts_dir.join(format!("{name}.json"));
+        if !path.exists() {
+            continue;
+        }
+        let part: Part = serde_json::from_str(&std::fs::read_to_string(&path)?)
+            .with_context(|| format!("parsing {}", path.display()))?;
+        report.entries.extend(part.entries);
+        report.comparisons.extend(part.comparisons);
+    }
+    Ok(report)
+}
+
+/// Writes report.md and the charts from `dir/report.json`.
+pub fn redraw(dir: &Path) -> anyhow::Result<()> {
+    let path = dir.join("report.json");
+    let report: Report = serde_json::from_str(
+        &std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?,
+    )?;
+    let charts = charts(dir, &report)?;
+    std::fs::write(dir.join("report.md"), markdown(&report, &charts))?;
+    eprintln!("wrote {}/report.json, report.md and {} charts", dir.display(), charts.len());
+    Ok(())
+}
+
+fn fmt_settings(e: &Entry) -> String {
+    e.settings.iter().map(|(k, v)| format!("{k}={v}")).collect::<Vec<_>>().join(", ")
+}
+
+fn markdown(report: &Report, charts: &[String]) -> String {
+    let mut md = String::from("# Accuracy costs time\n\n");
+    md += &format!(
+        "Machine: {} cores, GPU: {}. Sweep: {}.\n\n\
+         Times are medians of repeated runs of the unit each name says. Errors name their metric: \
+         `rel_rms` = sqrt(sum (a-r)^2 / sum r^2); `max_rel` = max |a-r|/|r| where r is bounded away \
+         from 0; `mean_rel_luminance` = sum |Y(a)-Y(r)| / sum Y(r); others are defined in the entry's note.\n",
+        report.machine.cores,
+        report.machine.gpu,
+        if report.quick { "quick" } else { "full" }
+    );
+    let mut by_crate: BTreeMap<&str, Vec<&Entry>> = BTreeMap::new();
+    for e in &report.entries {
+        by_crate.entry(&e.crate_name).or_default().push(e);
+    }
+    for (krate, entries) in by_crate {
+        md += &format!(
+            "\n## {krate}\n\n| name | technique | settings | time (ms) | error | reference | threads | note |\n|---|---|---|---:|---|---|---:|---|\n"
+        );
+        for e in entries {
+            let err =
+                e.error.as_ref().map_or("".into(), |x| format!("{} {:.3e}", x.metric, x.value));
+            md += &format!(
+                "| `{}` | {} | {} | {:.4} | {} | {} | {} | {} |\n",
+                e.name,
+                e.technique,
+                fmt_settings(e),
+                e.time_ms,
+                err,
+                e.reference.as_deref().unwrap_or(""),
+                e.threads,
+                e.note.as_deref().unwrap_or("")
+            );
+        }
+        for c in charts.iter().filter(|c| c.starts_with(&format!("{krate}__"))) {
+            md += &format!("\n![{c}]({c})\n");
+        }
+    }
+    if !report.comparisons.is_empty() {
+        md += "\n## Side-by-side comparisons (same process, interleaved; ratio > 1: we are better)\n\n| name | ours | theirs | unit | ratio | note |\n|---|---:|---:|---|---:|---|\n";
+        for c in &report.comparisons {
+            md += &format!(
+                "| `{}` | {:.3} | {:.3} | {} | {:.2} | {} |\n",
+                c.name,
+                c.ours,
+                c.theirs,
+                c.unit,
+                c.ratio,
+                c.note.as_deref().unwrap_or("")
+            );
+        }
+    }
+    md
+}
+
+/// One log-log chart (error vs ms) per (crate, technique) with at least one error figure.
+/// Returns the file names written.
+fn charts(dir: &Path, report: &Report) -> anyhow::Result<Vec<String>> {
+    let mut groups: BTreeMap<(String, String), Vec<(f64, f64, String)>> = BTreeMap::new();
+    for e in &report.entries {
+        if let Some(err) = &e.error {
+            if err.value > 0.0 && err.value.is_finite() && e.time_ms > 0.0 {
+                groups.entry((e.crate_name.clone(), e.technique.clone())).or_default().push((
+                    err.value,
+                    e.time_ms,
+                    e.name.rsplit('/').next().unwrap_or("").to_owned(),
+                ));
+            }
+        }
+    }
+    let mut written = Vec::new();
+    for ((krate, technique), points) in groups {
+        let file = format!("{krate}__{}.svg", technique.replace(['/', ' '], "_"));
+        draw_chart(&dir.join(&file), &format!("{krate}: {technique}"), &points)
+            .with_context(|| format!("drawing {file}"))?;
+        written.push(file);
+    }
+    Ok(written)
+}
+
+fn draw_chart(path: &Path, title: &str, points: &[(f64, f64, String)]) -> anyhow::Result<()> {
+    let (mut xmin, mut xmax, mut ymin, mut ymax) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+    for (x, y, _) in points {
+        xmin = xmin.min(*x);
+        xmax = xmax.max(*x);
+        ymin = ymin.min(*y);
+        ymax = ymax.max(*y);
+    }
+    let pad = |lo: f64, hi: f64| (lo / 2.0, hi * 2.0);
+    let (xmin, xmax) = pad(xmin, xmax);
+    let (ymin, ymax) = pad(ymin, ymax);
+    let root = SVGBackend::new(path, (720, 480)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| anyhow::anyhow!("{e}"))?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 20))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .build_cartesian_2d((xmin..xmax).log_scale(), (ymin..ymax).log_scale())
+        .map_err(|e| anyhow::anyhow!("{e}"))?;
+    chart
+        .configure_mesh()
+        .x_desc("error against the reference")
+        .y_desc("time (ms)")
+        .draw()
+        .map_err(|e| anyhow::anyhow!("{e}"))?;
+    chart
+        .draw_series(points.iter().map(|(x, y, _)| Circle::new((*x, *y), 4, BLUE.filled())))
+        .map_err(|e| anyhow::anyhow!("{e}"))?;
+    chart
+        .draw_series(points.iter().map(|(x, y, label)| {
+            Text::new(label.clone(), (*x, *y), ("sans-serif", 11).into_font())
+        }))
+        .map_err(|e| anyhow::anyhow!("{e}"))?;
+    root.present().map_err(|e| anyhow::anyhow!("{e}"))?;
+    Ok(())
+}

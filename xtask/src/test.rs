@@ -1,0 +1,28 @@
+//! `cargo xtask test`: the checks CI runs, in the order that fails fastest.
+
+use crate::{run_cmd, shaders};
+use std::path::Path;
+use std::process::Command;
+
+pub fn run(root: &Path, test_args: &[String]) -> anyhow::Result<()> {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    run_cmd(Command::new(&cargo).current_dir(root).args(["fmt", "--all", "--check"]))?;
+    run_cmd(Command::new(&cargo).current_dir(root).args([
+        "clippy",
+        "--workspace",
+        "--all-targets",
+        "--all-features",
+        "--",
+        "-D",
+        "warnings",
+    ]))?;
+    let n = shaders::validate_all(root)?;
+    eprintln!("naga: {n} top-level WGSL shaders valid");
+    // Last, so the run ends with the test runner's own summary.
+    run_cmd(
+        Command::new(&cargo)
+            .current_dir(root)
+            .args(["test", "--workspace", "--all-features", "--"])
+            .args(test_args),
+    )
+}
