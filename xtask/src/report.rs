@@ -131,16 +131,16 @@ fn markdown(report: &Report, charts: &[String]) -> String {
 /// One log-log chart (error vs ms) per (crate, technique) with at least one error figure.
 /// Returns the file names written.
 fn charts(dir: &Path, report: &Report) -> anyhow::Result<Vec<String>> {
-    let mut groups: BTreeMap<(String, String), Vec<(f64, f64, String)>> = BTreeMap::new();
+    type Points = Vec<(f64, f64, String)>;
+    let mut groups: BTreeMap<(String, String), Points> = BTreeMap::new();
     for e in &report.entries {
-        if let Some(err) = &e.error {
-            if err.value > 0.0 && err.value.is_finite() && e.time_ms > 0.0 {
-                groups.entry((e.crate_name.clone(), e.technique.clone())).or_default().push((
-                    err.value,
-                    e.time_ms,
-                    e.name.rsplit('/').next().unwrap_or("").to_owned(),
-                ));
-            }
+        let Some(err) = &e.error else { continue };
+        if err.value > 0.0 && err.value.is_finite() && e.time_ms > 0.0 {
+            let label = e.name.rsplit('/').next().unwrap_or("").to_owned();
+            groups
+                .entry((e.crate_name.clone(), e.technique.clone()))
+                .or_default()
+                .push((err.value, e.time_ms, label));
         }
     }
     let mut written = Vec::new();

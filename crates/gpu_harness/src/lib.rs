@@ -23,7 +23,7 @@
 //! let out = ctx
 //!     .run_compute(wgsl, "main", &[Binding::ReadWrite(bytemuck::cast_slice(&input))], [1, 1, 1])
 //!     .unwrap();
-//! let doubled: &[f32] = bytemuck::cast_slice(&out[0]);
+//! let doubled: Vec<f32> = gpu_harness::cast_vec(&out[0]);
 //! assert_eq!(doubled, &[2.0, 4.0, 6.0]);
 //! ```
 
@@ -292,6 +292,12 @@ fn init_buffer(
         contents: &padded,
         usage,
     })
+}
+
+/// Copies read-back bytes into a vector of `T` (read-back `Vec<u8>`s are not guaranteed to be
+/// aligned for `T`, so `bytemuck::cast_slice` on them may fail; this never does).
+pub fn cast_vec<T: bytemuck::Pod>(bytes: &[u8]) -> Vec<T> {
+    bytemuck::pod_collect_to_vec(bytes)
 }
 
 /// True when the developer asked to skip GPU tests (`SEREIN_SKIP_GPU=1`) and this is not CI.

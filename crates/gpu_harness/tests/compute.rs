@@ -22,7 +22,7 @@ fn doubles_a_buffer_and_writes_an_output() {
         )
         .unwrap();
     assert!(out[0].is_empty());
-    let got: &[f32] = bytemuck::cast_slice(&out[1]);
+    let got: Vec<f32> = gpu_harness::cast_vec(&out[1]);
     for (i, (g, x)) in got.iter().zip(&input).enumerate() {
         assert_eq!(*g, x * 2.0 + 1.0, "element {i}");
     }
