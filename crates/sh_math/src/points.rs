@@ -49,17 +49,15 @@ fn spherical(cos_theta: f32, phi: f32) -> Vec3 {
     Vec3::new(s * phi.cos(), s * phi.sin(), cos_theta)
 }
 
-/// Saff & Kuijlaars (1997) spiral points on the sphere: near-uniform, deterministic.
+/// Saff & Kuijlaars (1997) spiral points on the sphere: near-uniform, deterministic. Heights
+/// sit at the centres of `n` equal-area bands (`h_k = -1 + (2k + 1) / n`) instead of on the
+/// poles as in the original, so equal weights integrate low-order polynomials far better.
 pub fn saff_kuijlaars_sphere(n: usize) -> PointSet {
     let mut dirs = Vec::with_capacity(n);
     let mut phi = 0.0f32;
     for k in 0..n {
-        let h = if n == 1 { 0.0 } else { -1.0 + 2.0 * k as f32 / (n - 1) as f32 };
-        if k == 0 || k + 1 == n {
-            phi = 0.0;
-        } else {
-            phi = (phi + 3.6 / ((n as f32) * (1.0 - h * h)).sqrt()) % TAU;
-        }
+        let h = -1.0 + (2 * k + 1) as f32 / n as f32;
+        phi = (phi + 3.6 / ((n as f32) * (1.0 - h * h)).sqrt()) % TAU;
         dirs.push(spherical(h, phi));
     }
     PointSet::equal_weight(dirs, 4.0 * PI)
