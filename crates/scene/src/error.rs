@@ -1,0 +1,83 @@
+//! Typed errors: every failure names the file (or `<memory>`) and the element it concerns.
+
+use std::fmt;
+
+/// What went wrong while loading a file, without the file/element context.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum LoadErrorKind {
+    /// The file could not be read.
+    #[error("cannot read: {0}")]
+    Io(String),
+    /// The file is not well-formed in its format (JSON, GLB container, OBJ line, TOML).
+    #[error("malformed: {0}")]
+    Parse(String),
+    /// A referenced file or texture does not exist or cannot be decoded.
+    #[error("missing or unreadable texture `{0}`")]
+    MissingTexture(String),
+    /// An image that could not be decoded.
+    #[error("cannot decode image: {0}")]
+    Image(String),
+    /// A triangle index that points past the end of the vertex list.
+    #[error("index {index} out of range ({vertex_count} vertices)")]
+    IndexOutOfRange { index: u64, vertex_count: usize },
+    /// A vertex attribute that is NaN or infinite.
+    #[error("non-finite {attribute} at vertex {vertex}")]
+    NonFinite { attribute: &'static str, vertex: usize },
+    /// Attribute arrays of different lengths, wrong component counts, bad byte ranges.
+    #[error("inconsistent data: {0}")]
+    Inconsistent(String),
+    /// A feature of the format this loader does not handle.
+    #[error("unsupported: {0}")]
+    Unsupported(String),
+    /// A value outside its allowed range (negative radius, zero-length axis, ...).
+    #[error("invalid value: {0}")]
+    InvalidValue(String),
+}
+
+/// A loading failure: which file, which element in it, and what.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadError {
+    /// The file (path as given) or `<memory>` for in-memory loads.
+    pub file: String,
+    /// The element: `mesh 3 "Door" primitive 0`, `material "glass"`, `line 12`, `[[occlusion_quad]] 4`.
+    pub element: String,
+    pub kind: LoadErrorKind,
+}
+
+impl fmt::Display for LoadError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.element.is_empty() {
+            write!(f, "{}: {}", self.file, self.kind)
+        } else {
+            write!(f, "{}: {}: {}", self.file, self.element, self.kind)
+        }
+    }
+}
+
+impl std::error::Error for LoadError {}
+
+impl LoadError {
+    pub fn new(file: impl Into<String>, element: impl Into<String>, kind: LoadErrorKind) -> Self {
+        Self { file: file.into(), element: element.into(), kind }
+    }
+}
+
+/// Every error of this crate.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SceneError {
+    /// A file could not be loaded.
+    #[error(transparent)]
+    Load(#[from] LoadError),
+    /// A scene, mesh, material, texture or light whose invariants do not hold.
+    #[error("invalid {element}: {reason}")]
+    Invalid { element: String, reason: String },
+    /// The sun's date, time or place is not usable.
+    #[error("sun position: {0}")]
+    Solar(#[from] atmosphere::AtmosphereError),
+}
+
+impl SceneError {
+    pub(crate) fn invalid(element: impl Into<String>, reason: impl Into<String>) -> Self {
+        Self::Invalid { element: element.into(), reason: reason.into() }
+    }
+}

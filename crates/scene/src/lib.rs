@@ -1,0 +1,85 @@
+//! # scene
+//!
+//! The scene description every renderer of the workspace reads: triangle meshes with
+//! tangent frames, mip-mapped linear textures, the material model of the Serenity engine's
+//! G-buffer (Jorge, *Serenity: a hybrid GPU/CPU real-time global illumination engine*,
+//! master's thesis, Table 3.1: albedo, glossiness, Phong specular power, normal maps) extended
+//! with what its ray tracer needs (mirror reflectivity, transparency with an index of
+//! refraction, alpha testing), the sun (a direction, or a date, time and place through
+//! [`atmosphere::solar_position`]), point lights, occlusion quads (thesis 5.3.3, with the
+//! opacity and tint its future work proposes), and where the sky volume and LPV cascades go.
+//!
+//! It loads glTF 2.0 ([`load_gltf`]; the metallic-roughness mapping is documented there), OBJ
+//! with MTL ([`load_obj`]) and a TOML scene file ([`load_scene_file`]); textures are decoded from
+//! sRGB to linear at load and mip-mapped (thesis 3.5 and 6.2.3). It generates five test scenes
+//! from a seed ([`Generated`]: the reference `city`, `cornell_window`, `two_rooms`,
+//! `plane_box`, `furnace`), and answers the engine's per-frame question of which effects the
+//! scene calls for, and why ([`SceneNeeds`]), and what changed since the last frame
+//! ([`SceneChange`]).
+//!
+//! World frame: +Y up, +X east, -Z north, metres.
+//!
+//! ```
+//! use scene::{Generated, SceneChange};
+//!
+//! let mut city = Generated::City.build(1);
+//! city.validate().unwrap();
+//! let stats = city.stats();
+//! assert!(stats.triangles > 17_000 && stats.occlusion_quads >= 32);
+//!
+//! let needs = city.needs();
+//! assert!(needs.sun_lighting.needed && needs.reflections.needed);
+//! println!("{needs}");
+//!
+//! // Plain world-space triangles for an acceleration structure.
+//! let tris = city.triangles();
+//! assert_eq!(tris.indices.len(), stats.triangles);
+//!
+//! // What changed: move the sun by an hour.
+//! let before = city.state();
+//! if let Some(scene::Sun { position: scene::SunPosition::Time { utc_hours, .. }, .. }) = &mut city.sun {
+//!     *utc_hours += 1.0;
+//! }
+//! let change = SceneChange::between(&before, &city.state());
+//! assert!(change.sun_moved_deg > 5.0 && !change.geometry_changed());
+//! ```
+
+mod bounds;
+mod camera;
+mod change;
+mod error;
+mod generate;
+mod light;
+mod load;
+mod material;
+mod mesh;
+mod needs;
+mod quad;
+mod scene;
+mod texture;
+mod volumes;
+
+pub use atmosphere::CivilDate;
+pub use bounds::Aabb;
+pub use camera::{Camera, Frustum};
+pub use change::{SceneChange, SceneState};
+pub use error::{LoadError, LoadErrorKind, SceneError};
+pub use generate::{
+    FURNACE_ALBEDO, FURNACE_EMISSION, Generated, city, cornell_window, furnace, furnace_radiance,
+    plane_box, two_rooms,
+};
+pub use light::{PointLight, SUN_ANGULAR_RADIUS, Sun, SunPosition};
+pub use load::gltf::{load_gltf, load_gltf_slice};
+pub use load::load;
+pub use load::obj::{load_obj, load_obj_slice};
+pub use load::scene_file::{load_scene_file, load_scene_str};
+pub use material::{AlphaMask, Material, MaterialId, RAY_TRACE_THRESHOLD};
+pub use mesh::{Cleanup, Mesh, MeshData};
+pub use needs::{Need, SKY_DARK_ELEVATION_DEG, SceneNeeds};
+pub use quad::OcclusionQuad;
+pub use scene::{Scene, SceneStats, SceneTriangles};
+pub use texture::{
+    ColorSpace, MAX_TEXTURE_SIZE, Texture, TextureId, TextureLevel, Wrap, linear_to_srgb,
+    srgb_to_linear,
+};
+pub use volumes::{LpvPlacement, SkyVolumePlacement};

@@ -1,0 +1,568 @@
+//! glTF 2.0 loading (the `gltf` crate parses and validates the document; buffers, images and
+//! accessors are resolved here with every byte range checked, so corrupt files give errors).
+//!
+//! # Metallic-roughness mapping
+//!
+//! glTF describes surfaces with the metallic-roughness model; this crate's material model is the
+//! thesis's (albedo, glossiness = specular intensity, Phong power, mirror reflectivity,
+//! transparency + IOR). The mapping, with `c` the base colour, `m` metallic, `r` roughness:
+//!
+//! - albedo = `c.rgb * (1 - m)` (metals have no diffuse term); albedo texture = base-colour
+//!   texture, decoded from sRGB to linear;
+//! - glossiness = `mix(0.04, max(c.rgb), m)`: the specular reflectance at normal incidence
+//!   (4% for dielectrics);
+//! - specular power = `2 / a^2 - 2` with `a = r^2` (the usual Blinn-Phong <-> GGX
+//!   correspondence), clamped to [1, 8192];
+//! - mirror reflectivity = `m * max(c.rgb) * max(0, 1 - r / 0.2)`: only smooth metals become
+//!   ray-traced mirrors, fading out by roughness 0.2;
+//! - transparency = `KHR_materials_transmission` factor if present, else `1 - c.a` for
+//!   `alphaMode: BLEND`; IOR from `KHR_materials_ior` (default 1.5); reflectivity is capped at
+//!   `1 - transparency`;
+//! - `alphaMode: MASK` = alpha test on the base-colour texture's alpha with `alphaCutoff`;
+//! - emission = `emissiveFactor * KHR_materials_emissive_strength`;
+//! - normal texture = tangent-space normal map (linear); `doubleSided` kept.
+//!
+//! Node transforms are composed down the hierarchy; each (node, primitive) becomes a mesh.
+//! The first perspective camera, if any, becomes the scene's camera. Non-triangle primitives
+//! are skipped; sparse accessors are not supported (typed error).
+
+use super::image::decode;
+use crate::{
+    AlphaMask, Camera, ColorSpace, LoadError, LoadErrorKind, Material, MaterialId, Mesh, MeshData,
+    Scene, SceneError, Texture, TextureId,
+};
+use glam::{Affine3A, Mat4, Vec2, Vec3};
+use gltf::accessor::{DataType, Dimensions};
+use std::collections::HashMap;
+use std::path::Path;
+
+/// Most elements one accessor may hold (protects against absurd counts in corrupt files).
+const MAX_ELEMENTS: usize = 1 << 26;
+/// Deepest node hierarchy followed (a cycle in a corrupt file stops here).
+const MAX_DEPTH: usize = 64;
+
+/// Loads a `.gltf` (with external or embedded buffers) or `.glb` file.
+pub fn load_gltf(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
+    let path = path.as_ref();
+    let bytes = super::read_file(path)?;
+    load_gltf_slice(&bytes, path.parent(), &path.display().to_string())
+}
+
+/// Loads glTF from bytes. `base_dir` resolves relative URIs (`None`: only embedded data is
+/// allowed); `file` names the source in errors.
+pub fn load_gltf_slice(
+    bytes: &[u8],
+    base_dir: Option<&Path>,
+    file: &str,
+) -> Result<Scene, SceneError> {
+    let err = |element: String, kind| SceneError::from(LoadError::new(file, element, kind));
+    let doc = gltf::Gltf::from_slice_without_validation(bytes)
+        .map_err(|e| err("document".into(), LoadErrorKind::Parse(e.to_string())))?;
+    validate(doc.as_json()).map_err(|(el, k)| err(el, k))?;
+    let mut blob = doc.blob.clone();
+    let mut buffers = Vec::new();
+    for b in doc.buffers() {
+        let el = format!("buffer {}", b.index());
+        let data = match b.source() {
+            gltf::buffer::Source::Bin => blob.take().ok_or_else(|| {
+                err(el.clone(), LoadErrorKind::Inconsistent("GLB binary chunk missing".into()))
+            })?,
+            gltf::buffer::Source::Uri(uri) => {
+                read_uri(uri, base_dir).map_err(|k| err(el.clone(), k))?
+            }
+        };
+        if data.len() < b.length() {
+            return Err(err(
+                el,
+                LoadErrorKind::Inconsistent(format!(
+                    "{} bytes, declared {}",
+                    data.len(),
+                    b.length()
+                )),
+            ));
+        }
+        buffers.push(data);
+    }
+    let mut loader = Loader {
+        file,
+        base_dir,
+        buffers: &buffers,
+        scene: Scene::new(file),
+        images: HashMap::new(),
+    };
+    let mut material_ids = Vec::new();
+    for m in doc.materials() {
+        let id = loader.material(&m)?;
+        material_ids.push(id);
+    }
+    let mut default_material = None;
+
+    // Traverse the scene graph from the roots.
+    let roots: Vec<gltf::Node> = match doc.default_scene().or_else(|| doc.scenes().next()) {
+        Some(s) => s.nodes().collect(),
+        None => {
+            let mut child = vec![false; doc.nodes().len()];
+            for n in doc.nodes() {
+                for c in n.children() {
+                    child[c.index()] = true;
+                }
+            }
+            doc.nodes().filter(|n| !child[n.index()]).collect()
+        }
+    };
+    let mut stack: Vec<(gltf::Node, Mat4, usize)> =
+        roots.into_iter().map(|n| (n, Mat4::IDENTITY, 0)).collect();
+    let mut camera_set = false;
+    while let Some((node, parent, depth)) = stack.pop() {
+        let el = || format!("node {} \"{}\"", node.index(), node.name().unwrap_or(""));
+        if depth > MAX_DEPTH {
+            return Err(err(
+                el(),
+                LoadErrorKind::Inconsistent(format!("hierarchy deeper than {MAX_DEPTH} (cycle?)")),
+            ));
+        }
+        let local = Mat4::from_cols_array_2d(&node.transform().matrix());
+        let world = parent * local;
+        if !world.is_finite() {
+            return Err(err(el(), LoadErrorKind::NonFinite { attribute: "transform", vertex: 0 }));
+        }
+        if let (Some(cam), false) = (node.camera(), camera_set)
+            && let gltf::camera::Projection::Perspective(p) = cam.projection()
+        {
+            let eye = world.transform_point3(Vec3::ZERO);
+            let fwd = world.transform_vector3(-Vec3::Z).normalize_or(-Vec3::Z);
+            let fov = p.yfov().to_degrees();
+            let mut c = Camera::look_at(
+                eye,
+                eye + fwd,
+                if fov > 0.0 && fov < 180.0 { fov } else { 60.0 },
+                p.aspect_ratio().filter(|a| *a > 0.0).unwrap_or(16.0 / 9.0),
+            );
+            c.up = world.transform_vector3(Vec3::Y).normalize_or(Vec3::Y);
+            if p.znear() > 0.0 {
+                c.near = p.znear();
+            }
+            if let Some(f) = p.zfar().filter(|f| *f > c.near) {
+                c.far = f;
+            }
+            if c.validate().is_ok() {
+                loader.scene.camera = c;
+                camera_set = true;
+            }
+        }
+        if let Some(mesh) = node.mesh() {
+            let transform = Affine3A::from_mat4(world);
+            if transform.matrix3.determinant().abs() < 1e-12 {
+                return Err(err(el(), LoadErrorKind::InvalidValue("transform is singular".into())));
+            }
+            for prim in mesh.primitives() {
+                let pel = || {
+                    format!(
+                        "mesh {} \"{}\" primitive {}",
+                        mesh.index(),
+                        mesh.name().unwrap_or(""),
+                        prim.index()
+                    )
+                };
+                if prim.mode() != gltf::mesh::Mode::Triangles {
+                    continue;
+                }
+                let material = match prim.material().index() {
+                    Some(i) => material_ids[i],
+                    None => *default_material
+                        .get_or_insert_with(|| loader.scene.add_material(Material::default())),
+                };
+                let data = loader.primitive(&prim).map_err(|k| err(pel(), k))?;
+                let (mut m, c) = Mesh::build(pel(), data, material).map_err(|k| err(pel(), k))?;
+                m.name = mesh.name().map_or_else(
+                    || format!("mesh_{}_{}", mesh.index(), prim.index()),
+                    |n| format!("{n}_{}", prim.index()),
+                );
+                m.transform = transform;
+                loader.scene.cleanup += c;
+                loader.scene.meshes.push(m);
+            }
+        }
+        for c in node.children() {
+            stack.push((c, world, depth + 1));
+        }
+    }
+    let mut scene = loader.scene;
+    scene.fit_volumes();
+    Ok(scene)
+}
+
+/// The `gltf` crate's validation, preceded by the checks whose absence makes it (or the
+/// `gltf` wrappers) panic: gltf-json 1.4 reads the POSITION accessor before checking that it
+/// exists, and `Image::source` unwraps `uri` / `mimeType`.
+fn validate(root: &gltf::json::Root) -> Result<(), (String, LoadErrorKind)> {
+    use gltf::json::validation::Validate;
+    for (i, m) in root.meshes.iter().enumerate() {
+        for (j, p) in m.primitives.iter().enumerate() {
+            if let Some((_, a)) =
+                p.attributes.iter().find(|(_, a)| a.value() >= root.accessors.len())
+            {
+                return Err((
+                    format!("mesh {i} primitive {j}"),
+                    LoadErrorKind::Inconsistent(format!(
+                        "attribute accessor {} does not exist",
+                        a.value()
+                    )),
+                ));
+            }
+        }
+    }
+    for (i, t) in root.textures.iter().enumerate() {
+        if t.source.value() >= root.images.len() {
+            return Err((
+                format!("texture {i}"),
+                LoadErrorKind::Inconsistent("its image does not exist".into()),
+            ));
+        }
+    }
+    for (i, img) in root.images.iter().enumerate() {
+        let ok = match (&img.buffer_view, &img.uri) {
+            (Some(_), None) => img.mime_type.is_some(),
+            (None, Some(_)) => true,
+            _ => false,
+        };
+        if !ok {
+            return Err((
+                format!("image {i}"),
+                LoadErrorKind::Inconsistent(
+                    "needs a `uri`, or a `bufferView` with a `mimeType`".into(),
+                ),
+            ));
+        }
+    }
+    let mut errors = Vec::new();
+    root.validate(root, gltf::json::Path::new, &mut |path, e| {
+        errors.push(format!("{}: {e}", path()))
+    });
+    match errors.first() {
+        None => Ok(()),
+        Some(first) => Err((
+            "document".into(),
+            LoadErrorKind::Parse(format!(
+                "invalid glTF ({} problems), first: {first}",
+                errors.len()
+            )),
+        )),
+    }
+}
+
+struct Loader<'a> {
+    file: &'a str,
+    base_dir: Option<&'a Path>,
+    buffers: &'a [Vec<u8>],
+    scene: Scene,
+    images: HashMap<(usize, bool), TextureId>,
+}
+
+impl Loader<'_> {
+    fn err(&self, element: String, kind: LoadErrorKind) -> SceneError {
+        LoadError::new(self.file, element, kind).into()
+    }
+
+    fn texture(
+        &mut self,
+        tex: gltf::Texture,
+        space: ColorSpace,
+        user: &str,
+    ) -> Result<TextureId, SceneError> {
+        let img = tex.source();
+        let key = (img.index(), space == ColorSpace::Srgb);
+        if let Some(&id) = self.images.get(&key) {
+            return Ok(id);
+        }
+        let name = img.name().map_or_else(|| format!("image_{}", img.index()), str::to_owned);
+        let el = format!("{user}: image {} \"{name}\"", img.index());
+        let bytes = match img.source() {
+            gltf::image::Source::View { view, .. } => {
+                let buf = &self.buffers[view.buffer().index()];
+                let end = view.offset().checked_add(view.length());
+                match end.and_then(|e| buf.get(view.offset()..e)) {
+                    Some(b) => b.to_vec(),
+                    None => {
+                        return Err(self.err(
+                            el,
+                            LoadErrorKind::Inconsistent(
+                                "buffer view past the end of its buffer".into(),
+                            ),
+                        ));
+                    }
+                }
+            }
+            gltf::image::Source::Uri { uri, .. } => read_uri(uri, self.base_dir)
+                .map_err(|k| match k {
+                    LoadErrorKind::Io(_) => LoadErrorKind::MissingTexture(uri.to_owned()),
+                    k => k,
+                })
+                .map_err(|k| self.err(el.clone(), k))?,
+        };
+        let t = decode(&name, &bytes, space).map_err(|k| self.err(el, k))?;
+        let id = self.scene.add_texture(t);
+        self.images.insert(key, id);
+        Ok(id)
+    }
+
+    fn material(&mut self, m: &gltf::Material) -> Result<MaterialId, SceneError> {
+        let name =
+            m.name().map_or_else(|| format!("material_{}", m.index().unwrap_or(0)), str::to_owned);
+        let user = format!("material \"{name}\"");
+        let pbr = m.pbr_metallic_roughness();
+        let c =
+            pbr.base_color_factor().map(|v| if v.is_finite() { v.clamp(0.0, 1.0) } else { 1.0 });
+        let metal = pbr.metallic_factor().clamp(0.0, 1.0);
+        let rough = pbr.roughness_factor().clamp(0.0, 1.0);
+        let rgb = Vec3::new(c[0], c[1], c[2]);
+        let albedo_texture = match pbr.base_color_texture() {
+            Some(info) => Some(self.texture(info.texture(), ColorSpace::Srgb, &user)?),
+            None => None,
+        };
+        let normal_texture = match m.normal_texture() {
+            Some(n) => Some(self.texture(n.texture(), ColorSpace::Linear, &user)?),
+            None => None,
+        };
+        let glossiness = 0.04 + (rgb.max_element() - 0.04) * metal;
+        let a = (rough * rough).max(1e-4);
+        let specular_power = (2.0 / (a * a) - 2.0).clamp(1.0, 8192.0);
+        let mut transparency = match m.transmission() {
+            Some(t) => t.transmission_factor().clamp(0.0, 1.0),
+            None if m.alpha_mode() == gltf::material::AlphaMode::Blend => 1.0 - c[3],
+            None => 0.0,
+        };
+        if !transparency.is_finite() {
+            transparency = 0.0;
+        }
+        let reflectivity =
+            (metal * rgb.max_element() * (1.0 - rough / 0.2).max(0.0)).min(1.0 - transparency);
+        let ior = m.ior().filter(|i| i.is_finite() && *i >= 1.0).unwrap_or(1.5);
+        let alpha_mask = if m.alpha_mode() == gltf::material::AlphaMode::Mask {
+            let cutoff = m.alpha_cutoff().filter(|c| *c > 0.0 && *c <= 1.0).unwrap_or(0.5);
+            let texture = match albedo_texture {
+                Some(t) => t,
+                None => {
+                    let t = Texture::solid(
+                        format!("{name}_alpha"),
+                        glam::Vec4::new(1.0, 1.0, 1.0, c[3]),
+                    )?;
+                    self.scene.add_texture(t)
+                }
+            };
+            Some(AlphaMask { texture, cutoff })
+        } else {
+            None
+        };
+        let strength = m.emissive_strength().filter(|s| s.is_finite() && *s >= 0.0).unwrap_or(1.0);
+        let emission = Vec3::from(m.emissive_factor()).max(Vec3::ZERO) * strength;
+        let mat = Material {
+            name,
+            albedo: rgb * (1.0 - metal),
+            albedo_texture,
+            glossiness,
+            specular_power,
+            normal_texture,
+            reflectivity,
+            transparency,
+            ior,
+            alpha_mask,
+            emission: if emission.is_finite() { emission } else { Vec3::ZERO },
+            double_sided: m.double_sided(),
+        };
+        mat.validate(self.scene.textures.len())
+            .map_err(|e| self.err(user, LoadErrorKind::InvalidValue(e.to_string())))?;
+        Ok(self.scene.add_material(mat))
+    }
+
+    fn primitive(&self, prim: &gltf::Primitive) -> Result<MeshData, LoadErrorKind> {
+        let pos = prim
+            .get(&gltf::Semantic::Positions)
+            .ok_or_else(|| LoadErrorKind::Inconsistent("no POSITION attribute".into()))?;
+        let positions: Vec<Vec3> = vec3s(&read(&pos, self.buffers, "POSITION")?, &pos, "POSITION")?;
+        let normals = match prim.get(&gltf::Semantic::Normals) {
+            Some(a) => Some(vec3s(&read(&a, self.buffers, "NORMAL")?, &a, "NORMAL")?),
+            None => None,
+        };
+        let uvs = match prim.get(&gltf::Semantic::TexCoords(0)) {
+            Some(a) => {
+                if a.dimensions() != Dimensions::Vec2 {
+                    return Err(LoadErrorKind::Inconsistent("TEXCOORD_0 is not VEC2".into()));
+                }
+                let v = read(&a, self.buffers, "TEXCOORD_0")?;
+                Some(v.chunks_exact(2).map(|c| Vec2::new(c[0] as f32, c[1] as f32)).collect())
+            }
+            None => None,
+        };
+        let indices = match prim.indices() {
+            Some(a) => {
+                if a.dimensions() != Dimensions::Scalar || a.data_type() == DataType::F32 {
+                    return Err(LoadErrorKind::Inconsistent(
+                        "indices are not unsigned integer scalars".into(),
+                    ));
+                }
+                read(&a, self.buffers, "indices")?.into_iter().map(|i| i as u32).collect()
+            }
+            None => (0..positions.len() as u32).collect(),
+        };
+        Ok(MeshData { positions, normals, uvs, indices })
+    }
+}
+
+fn vec3s(v: &[f64], a: &gltf::Accessor, what: &str) -> Result<Vec<Vec3>, LoadErrorKind> {
+    if a.dimensions() != Dimensions::Vec3 {
+        return Err(LoadErrorKind::Inconsistent(format!("{what} is not VEC3")));
+    }
+    Ok(v.chunks_exact(3).map(|c| Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32)).collect())
+}
+
+/// Reads an accessor's components (as f64, normalised integers mapped to [0, 1] / [-1, 1])
+/// with every byte range checked.
+fn read(a: &gltf::Accessor, buffers: &[Vec<u8>], what: &str) -> Result<Vec<f64>, LoadErrorKind> {
+    if a.sparse().is_some() {
+        return Err(LoadErrorKind::Unsupported(format!("sparse accessor for {what}")));
+    }
+    let count = a.count();
+    let dims = a.dimensions().multiplicity();
+    if count > MAX_ELEMENTS {
+        return Err(LoadErrorKind::Inconsistent(format!("{what}: {count} elements")));
+    }
+    let Some(view) = a.view() else {
+        return Ok(vec![0.0; count * dims]); // no buffer view: all zeros (glTF 5.1.1)
+    };
+    let comp = a.data_type().size();
+    let elem = comp * dims;
+    let stride = view.stride().unwrap_or(elem);
+    if stride < elem {
+        return Err(LoadErrorKind::Inconsistent(format!(
+            "{what}: stride {stride} < element size {elem}"
+        )));
+    }
+    let buf = buffers
+        .get(view.buffer().index())
+        .ok_or_else(|| LoadErrorKind::Inconsistent("missing buffer".into()))?;
+    let view_end = view.offset().checked_add(view.length()).filter(|&e| e <= buf.len());
+    let start = view.offset().checked_add(a.offset());
+    let end = start
+        .zip(count.checked_sub(1))
+        .and_then(|(s, c)| s.checked_add(stride.checked_mul(c)?)?.checked_add(elem));
+    let bad = || {
+        LoadErrorKind::Inconsistent(format!(
+            "{what}: accessor reads past the end of its buffer view"
+        ))
+    };
+    let (Some(view_end), Some(start)) = (view_end, start) else { return Err(bad()) };
+    if count == 0 {
+        return Ok(Vec::new());
+    }
+    if end.is_none_or(|e| e > view_end) {
+        return Err(bad());
+    }
+    let norm = a.normalized();
+    let dt = a.data_type();
+    let mut out = Vec::with_capacity(count * dims);
+    for i in 0..count {
+        let e = start + i * stride;
+        for k in 0..dims {
+            let b = &buf[e + k * comp..e + (k + 1) * comp];
+            let v = match dt {
+                DataType::F32 => f32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64,
+                DataType::U8 => b[0] as f64 / if norm { 255.0 } else { 1.0 },
+                DataType::I8 => snorm(b[0] as i8 as f64, 127.0, norm),
+                DataType::U16 => {
+                    u16::from_le_bytes([b[0], b[1]]) as f64 / if norm { 65535.0 } else { 1.0 }
+                }
+                DataType::I16 => snorm(i16::from_le_bytes([b[0], b[1]]) as f64, 32767.0, norm),
+                DataType::U32 => u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64,
+            };
+            out.push(v);
+        }
+    }
+    Ok(out)
+}
+
+fn snorm(v: f64, max: f64, normalized: bool) -> f64 {
+    if normalized { (v / max).max(-1.0) } else { v }
+}
+
+/// Reads a `data:` URI (base64) or a file relative to `base`.
+fn read_uri(uri: &str, base: Option<&Path>) -> Result<Vec<u8>, LoadErrorKind> {
+    if let Some(rest) = uri.strip_prefix("data:") {
+        let payload = rest
+            .split_once(";base64,")
+            .map(|(_, d)| d)
+            .ok_or_else(|| LoadErrorKind::Unsupported("data URI that is not base64".into()))?;
+        return base64(payload)
+            .ok_or_else(|| LoadErrorKind::Parse("invalid base64 in data URI".into()));
+    }
+    if uri.contains("://") {
+        return Err(LoadErrorKind::Unsupported(format!("URI scheme of `{uri}`")));
+    }
+    let base = base.ok_or_else(|| {
+        LoadErrorKind::Unsupported(format!("external file `{uri}` in an in-memory load"))
+    })?;
+    let path = base.join(percent_decode(uri));
+    std::fs::read(&path).map_err(|e| LoadErrorKind::Io(format!("{}: {e}", path.display())))
+}
+
+fn percent_decode(s: &str) -> String {
+    let b = s.as_bytes();
+    let mut out = Vec::with_capacity(b.len());
+    let mut i = 0;
+    while i < b.len() {
+        let hex = |c: u8| (c as char).to_digit(16);
+        if b[i] == b'%'
+            && i + 2 < b.len()
+            && let (Some(h), Some(l)) = (hex(b[i + 1]), hex(b[i + 2]))
+        {
+            out.push((h * 16 + l) as u8);
+            i += 3;
+            continue;
+        }
+        out.push(b[i]);
+        i += 1;
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+/// Standard base64 (RFC 4648) with optional padding; `None` on any other character.
+fn base64(s: &str) -> Option<Vec<u8>> {
+    let val = |c: u8| match c {
+        b'A'..=b'Z' => Some(c - b'A'),
+        b'a'..=b'z' => Some(c - b'a' + 26),
+        b'0'..=b'9' => Some(c - b'0' + 52),
+        b'+' | b'-' => Some(62),
+        b'/' | b'_' => Some(63),
+        _ => None,
+    };
+    let s = s.trim_end_matches('=');
+    let mut out = Vec::with_capacity(s.len() * 3 / 4);
+    let (mut acc, mut bits) = (0u32, 0);
+    for c in s.bytes() {
+        acc = (acc << 6) | val(c)? as u32;
+        bits += 6;
+        if bits >= 8 {
+            bits -= 8;
+            out.push((acc >> bits) as u8);
+            acc &= (1 << bits) - 1;
+        }
+    }
+    Some(out)
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn base64_round_trips_known_values() {
+        assert_eq!(super::base64("aGVsbG8=").unwrap(), b"hello");
+        assert_eq!(super::base64("AAECAw").unwrap(), [0, 1, 2, 3]);
+        assert!(super::base64("a*b").is_none());
+    }
+
+    #[test]
+    fn percent_decoding_survives_bad_escapes() {
+        assert_eq!(super::percent_decode("a%20b"), "a b");
+        assert_eq!(super::percent_decode("a%zz%"), "a%zz%");
+        assert_eq!(super::percent_decode("%FF"), "\u{fffd}");
+    }
+}

@@ -1,0 +1,26 @@
+//! Image decoding into [`Texture`]s (PNG, and JPEG where the `image` crate has it).
+
+use crate::{ColorSpace, LoadErrorKind, Texture};
+
+/// Largest decoded image accepted, in bytes (corrupt headers must not allocate gigabytes).
+const MAX_ALLOC: u64 = 256 << 20;
+
+/// Decodes encoded image bytes into a mip-mapped linear texture.
+pub(crate) fn decode(
+    name: &str,
+    bytes: &[u8],
+    space: ColorSpace,
+) -> Result<Texture, LoadErrorKind> {
+    let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
+        .with_guessed_format()
+        .map_err(|e| LoadErrorKind::Image(e.to_string()))?;
+    let mut limits = image::Limits::default();
+    limits.max_alloc = Some(MAX_ALLOC);
+    limits.max_image_width = Some(crate::texture::MAX_TEXTURE_SIZE);
+    limits.max_image_height = Some(crate::texture::MAX_TEXTURE_SIZE);
+    reader.limits(limits);
+    let img = reader.decode().map_err(|e| LoadErrorKind::Image(e.to_string()))?.to_rgba8();
+    let (w, h) = img.dimensions();
+    Texture::from_rgba8(name, w, h, img.as_raw(), space)
+        .map_err(|e| LoadErrorKind::Image(e.to_string()))
+}

@@ -1,0 +1,183 @@
+//! The material model of the thesis's G-buffer (Table 3.1) plus what its ray tracer needs:
+//! albedo (colour x texture), glossiness (specular intensity), Phong specular power, a
+//! tangent-space normal map, mirror reflectivity, transparency with an index of refraction,
+//! an alpha-test mask, and emission (for the furnace test and area lights).
+
+use crate::{SceneError, TextureId};
+use glam::Vec3;
+
+/// Index of a material in [`crate::Scene::materials`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct MaterialId(pub u32);
+
+impl MaterialId {
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+/// Alpha testing: texels whose alpha is below `cutoff` are cut away (leaves, fences).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AlphaMask {
+    /// The texture whose alpha channel is tested (usually the albedo texture).
+    pub texture: TextureId,
+    /// In (0, 1].
+    pub cutoff: f32,
+}
+
+/// A surface material.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    pub name: String,
+    /// Diffuse reflectivity, linear RGB in [0, 1].
+    pub albedo: Vec3,
+    /// Multiplies `albedo` (linear RGB after sRGB decoding).
+    pub albedo_texture: Option<TextureId>,
+    /// Specular intensity in [0, 1] (G-buffer alpha of the colour target).
+    pub glossiness: f32,
+    /// Phong exponent, >= 1.
+    pub specular_power: f32,
+    /// Tangent-space normal map (stored linear, `rgb * 2 - 1`).
+    pub normal_texture: Option<TextureId>,
+    /// Fraction of light reflected as a sharp mirror reflection, [0, 1] (ray traced).
+    pub reflectivity: f32,
+    /// Fraction of light transmitted (refracted), [0, 1] (ray traced).
+    pub transparency: f32,
+    /// Index of refraction of the transmitting medium, >= 1.
+    pub ior: f32,
+    pub alpha_mask: Option<AlphaMask>,
+    /// Emitted radiance, linear RGB, >= 0.
+    pub emission: Vec3,
+    /// Rendered from both sides (tree cards, thin panes).
+    pub double_sided: bool,
+}
+
+impl Default for Material {
+    fn default() -> Self {
+        Self::diffuse("default", Vec3::splat(0.5))
+    }
+}
+
+/// Reflectivity or transparency at or below this is treated as none when deciding what the
+/// scene needs (a 1% mirror is not worth ray tracing).
+pub const RAY_TRACE_THRESHOLD: f32 = 0.01;
+
+impl Material {
+    /// A matte material.
+    pub fn diffuse(name: impl Into<String>, albedo: Vec3) -> Self {
+        Self {
+            name: name.into(),
+            albedo,
+            albedo_texture: None,
+            glossiness: 0.0,
+            specular_power: 1.0,
+            normal_texture: None,
+            reflectivity: 0.0,
+            transparency: 0.0,
+            ior: 1.5,
+            alpha_mask: None,
+            emission: Vec3::ZERO,
+            double_sided: false,
+        }
+    }
+
+    /// A glossy material with a Phong lobe.
+    pub fn glossy(name: impl Into<String>, albedo: Vec3, glossiness: f32, power: f32) -> Self {
+        Self { glossiness, specular_power: power, ..Self::diffuse(name, albedo) }
+    }
+
+    /// A mirror with the given reflectivity.
+    pub fn mirror(name: impl Into<String>, reflectivity: f32) -> Self {
+        Self {
+            reflectivity,
+            glossiness: 1.0,
+            specular_power: 2048.0,
+            ..Self::diffuse(name, Vec3::splat(0.02))
+        }
+    }
+
+    /// Clear glass: mostly transmitted, some reflected.
+    pub fn glass(name: impl Into<String>, transparency: f32, ior: f32) -> Self {
+        Self {
+            transparency,
+            ior,
+            reflectivity: 0.08,
+            glossiness: 1.0,
+            specular_power: 1024.0,
+            double_sided: true,
+            ..Self::diffuse(name, Vec3::splat(0.02))
+        }
+    }
+
+    /// A pure emitter that also reflects diffusely.
+    pub fn emissive(name: impl Into<String>, albedo: Vec3, emission: Vec3) -> Self {
+        Self { emission, ..Self::diffuse(name, albedo) }
+    }
+
+    pub fn is_mirror(&self) -> bool {
+        self.reflectivity > RAY_TRACE_THRESHOLD
+    }
+
+    pub fn is_transparent(&self) -> bool {
+        self.transparency > RAY_TRACE_THRESHOLD
+    }
+
+    pub fn is_emissive(&self) -> bool {
+        self.emission.max_element() > 0.0
+    }
+
+    /// Checks ranges and texture references (`texture_count` textures exist).
+    pub fn validate(&self, texture_count: usize) -> Result<(), SceneError> {
+        let el = || format!("material \"{}\"", self.name);
+        let unit = |v: f32, what: &str| {
+            if (0.0..=1.0).contains(&v) {
+                Ok(())
+            } else {
+                Err(SceneError::invalid(el(), format!("{what} {v} outside [0, 1]")))
+            }
+        };
+        if !self.albedo.is_finite()
+            || self.albedo.min_element() < 0.0
+            || self.albedo.max_element() > 1.0
+        {
+            return Err(SceneError::invalid(
+                el(),
+                format!("albedo {} outside [0, 1]", self.albedo),
+            ));
+        }
+        unit(self.glossiness, "glossiness")?;
+        unit(self.reflectivity, "reflectivity")?;
+        unit(self.transparency, "transparency")?;
+        if self.reflectivity + self.transparency > 1.0 + 1e-5 {
+            return Err(SceneError::invalid(el(), "reflectivity + transparency exceeds 1"));
+        }
+        if !(self.specular_power >= 1.0 && self.specular_power.is_finite()) {
+            return Err(SceneError::invalid(
+                el(),
+                format!("specular power {}", self.specular_power),
+            ));
+        }
+        if !(self.ior >= 1.0 && self.ior.is_finite()) {
+            return Err(SceneError::invalid(el(), format!("index of refraction {}", self.ior)));
+        }
+        if !self.emission.is_finite() || self.emission.min_element() < 0.0 {
+            return Err(SceneError::invalid(el(), format!("emission {}", self.emission)));
+        }
+        let tex = |t: Option<TextureId>, what: &str| match t {
+            Some(t) if t.index() >= texture_count => Err(SceneError::invalid(
+                el(),
+                format!("{what} texture {} does not exist ({texture_count} textures)", t.0),
+            )),
+            _ => Ok(()),
+        };
+        tex(self.albedo_texture, "albedo")?;
+        tex(self.normal_texture, "normal")?;
+        if let Some(m) = self.alpha_mask {
+            tex(Some(m.texture), "alpha mask")?;
+            if !(m.cutoff > 0.0 && m.cutoff <= 1.0) {
+                return Err(SceneError::invalid(el(), format!("alpha cutoff {}", m.cutoff)));
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,268 @@
+//! Triangle meshes and the clean-up every loader runs: validation, degenerate-triangle removal,
+//! normal recomputation and tangent generation.
+
+use crate::{Aabb, LoadErrorKind, MaterialId, SceneError};
+use glam::{Affine3A, Mat3, Vec2, Vec3, Vec4};
+
+/// A triangle mesh with one material. Vertex attributes are in object space; `transform` takes
+/// them to the world (+Y up, +X east, -Z north, metres).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mesh {
+    pub name: String,
+    pub positions: Vec<Vec3>,
+    /// Unit normals, one per vertex.
+    pub normals: Vec<Vec3>,
+    /// Unit tangents along +U with the bitangent sign in `w` (`B = w * N x T`).
+    pub tangents: Vec<Vec4>,
+    pub uvs: Vec<Vec2>,
+    pub indices: Vec<[u32; 3]>,
+    pub material: MaterialId,
+    pub transform: Affine3A,
+}
+
+/// What [`Mesh::build`] repaired.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Cleanup {
+    /// Triangles with repeated indices or zero area, removed.
+    pub degenerate_dropped: usize,
+    /// Vertices whose normal was missing, zero-length or non-finite, recomputed from faces.
+    pub normals_recomputed: usize,
+}
+
+impl std::ops::AddAssign for Cleanup {
+    fn add_assign(&mut self, o: Self) {
+        self.degenerate_dropped += o.degenerate_dropped;
+        self.normals_recomputed += o.normals_recomputed;
+    }
+}
+
+/// Raw vertex data as a loader reads it.
+#[derive(Clone, Debug, Default)]
+pub struct MeshData {
+    pub positions: Vec<Vec3>,
+    /// Absent: computed from faces.
+    pub normals: Option<Vec<Vec3>>,
+    /// Absent: all zero.
+    pub uvs: Option<Vec<Vec2>>,
+    /// Flat triangle list.
+    pub indices: Vec<u32>,
+}
+
+impl Mesh {
+    /// Validates and cleans raw data: non-finite positions/UVs and out-of-range indices are
+    /// errors; degenerate triangles are dropped and counted; missing or zero-length normals are
+    /// recomputed (area-weighted face normals); tangents are generated from the UVs.
+    pub fn build(
+        name: impl Into<String>,
+        data: MeshData,
+        material: MaterialId,
+    ) -> Result<(Self, Cleanup), LoadErrorKind> {
+        let MeshData { positions, normals, uvs, indices } = data;
+        let n = positions.len();
+        if let Some(v) = positions.iter().position(|p| !p.is_finite()) {
+            return Err(LoadErrorKind::NonFinite { attribute: "position", vertex: v });
+        }
+        if indices.len() % 3 != 0 {
+            return Err(LoadErrorKind::Inconsistent(format!(
+                "{} indices is not a multiple of 3",
+                indices.len()
+            )));
+        }
+        if let Some(&i) = indices.iter().find(|&&i| i as usize >= n) {
+            return Err(LoadErrorKind::IndexOutOfRange { index: i as u64, vertex_count: n });
+        }
+        let uvs = match uvs {
+            Some(u) if u.len() != n => {
+                return Err(LoadErrorKind::Inconsistent(format!(
+                    "{} UVs for {n} vertices",
+                    u.len()
+                )));
+            }
+            Some(u) => {
+                if let Some(v) = u.iter().position(|t| !t.is_finite()) {
+                    return Err(LoadErrorKind::NonFinite { attribute: "uv", vertex: v });
+                }
+                u
+            }
+            None => vec![Vec2::ZERO; n],
+        };
+        let mut normals = match normals {
+            Some(m) if m.len() != n => {
+                return Err(LoadErrorKind::Inconsistent(format!(
+                    "{} normals for {n} vertices",
+                    m.len()
+                )));
+            }
+            Some(m) => m,
+            None => vec![Vec3::ZERO; n],
+        };
+        let mut cleanup = Cleanup::default();
+        let mut tris = Vec::with_capacity(indices.len() / 3);
+        for t in indices.chunks_exact(3) {
+            let [a, b, c] = [t[0], t[1], t[2]];
+            let (pa, pb, pc) =
+                (positions[a as usize], positions[b as usize], positions[c as usize]);
+            if a == b || b == c || a == c || is_degenerate(pa, pb, pc) {
+                cleanup.degenerate_dropped += 1;
+            } else {
+                tris.push([a, b, c]);
+            }
+        }
+        // Normals: keep good ones (normalised), recompute the rest from faces.
+        // Zero, denormal, huge (length overflows) or non-finite normals cannot be normalised.
+        let bad: Vec<bool> =
+            normals.iter().map(|m| !(m.length() > 1e-6 && m.length().is_finite())).collect();
+        if bad.iter().any(|&b| b) {
+            let mut acc = vec![Vec3::ZERO; n];
+            for &[a, b, c] in &tris {
+                let (pa, pb, pc) =
+                    (positions[a as usize], positions[b as usize], positions[c as usize]);
+                let f = (pb - pa).cross(pc - pa); // length = 2 x area: area weighting
+                for i in [a, b, c] {
+                    acc[i as usize] += f;
+                }
+            }
+            for (i, m) in normals.iter_mut().enumerate() {
+                if bad[i] {
+                    *m = acc[i].try_normalize().unwrap_or(Vec3::Y);
+                    cleanup.normals_recomputed += 1;
+                }
+            }
+        }
+        for m in &mut normals {
+            *m = m.try_normalize().unwrap_or(Vec3::Y);
+        }
+        let tangents = tangents(&positions, &normals, &uvs, &tris);
+        let mesh = Self {
+            name: name.into(),
+            positions,
+            normals,
+            tangents,
+            uvs,
+            indices: tris,
+            material,
+            transform: Affine3A::IDENTITY,
+        };
+        Ok((mesh, cleanup))
+    }
+
+    pub fn triangle_count(&self) -> usize {
+        self.indices.len()
+    }
+
+    pub fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// Bounds of the object-space positions.
+    pub fn local_bounds(&self) -> Aabb {
+        Aabb::from_points(self.positions.iter().copied())
+    }
+
+    /// Bounds in world space (the transformed local box: conservative).
+    pub fn world_bounds(&self) -> Aabb {
+        self.local_bounds().transformed(&self.transform)
+    }
+
+    /// The matrix that takes object-space normals to world space (inverse transpose).
+    pub fn normal_matrix(&self) -> Mat3 {
+        Mat3::from(self.transform.matrix3).inverse().transpose()
+    }
+
+    /// Total world-space surface area.
+    pub fn world_area(&self) -> f32 {
+        self.indices
+            .iter()
+            .map(|&[a, b, c]| {
+                let p = |i: u32| self.transform.transform_point3(self.positions[i as usize]);
+                0.5 * (p(b) - p(a)).cross(p(c) - p(a)).length()
+            })
+            .sum()
+    }
+
+    /// Checks attribute lengths, index ranges, finiteness, unit normals/tangents and that the
+    /// material exists (`material_count` materials).
+    pub fn validate(&self, material_count: usize) -> Result<(), SceneError> {
+        let el = || format!("mesh \"{}\"", self.name);
+        let n = self.positions.len();
+        if self.normals.len() != n || self.tangents.len() != n || self.uvs.len() != n {
+            return Err(SceneError::invalid(el(), "attribute arrays differ in length"));
+        }
+        if let Some(t) = self.indices.iter().find(|t| t.iter().any(|&i| i as usize >= n)) {
+            return Err(SceneError::invalid(
+                el(),
+                format!("triangle {t:?} indexes past {n} vertices"),
+            ));
+        }
+        if self.positions.iter().any(|p| !p.is_finite()) || self.uvs.iter().any(|u| !u.is_finite())
+        {
+            return Err(SceneError::invalid(el(), "non-finite position or UV"));
+        }
+        if self.normals.iter().any(|m| !m.is_finite() || (m.length() - 1.0).abs() > 1e-3) {
+            return Err(SceneError::invalid(el(), "normal not of unit length"));
+        }
+        if self.tangents.iter().any(|t| {
+            !t.is_finite() || (t.truncate().length() - 1.0).abs() > 1e-3 || t.w.abs() != 1.0
+        }) {
+            return Err(SceneError::invalid(el(), "tangent not unit or sign not +-1"));
+        }
+        if self.material.index() >= material_count {
+            return Err(SceneError::invalid(
+                el(),
+                format!("material {} does not exist ({material_count} materials)", self.material.0),
+            ));
+        }
+        if !self.transform.is_finite() || self.transform.matrix3.determinant().abs() < 1e-12 {
+            return Err(SceneError::invalid(el(), "transform is not finite and invertible"));
+        }
+        Ok(())
+    }
+}
+
+/// Zero (or numerically zero) area relative to the triangle's size.
+pub(crate) fn is_degenerate(a: Vec3, b: Vec3, c: Vec3) -> bool {
+    let cross = (b - a).cross(c - a).length();
+    let longest =
+        (b - a).length_squared().max((c - a).length_squared()).max((c - b).length_squared());
+    cross.is_nan() || cross <= 1e-7 * longest || !cross.is_finite()
+}
+
+/// Any unit vector perpendicular to `n`.
+fn perpendicular(n: Vec3) -> Vec3 {
+    n.any_orthonormal_vector()
+}
+
+/// Per-vertex tangents from UV gradients (Lengyel 2001), orthogonalised against the normal;
+/// vertices without usable UVs get an arbitrary perpendicular with `w = 1`.
+fn tangents(p: &[Vec3], n: &[Vec3], uv: &[Vec2], tris: &[[u32; 3]]) -> Vec<Vec4> {
+    let mut tan = vec![Vec3::ZERO; p.len()];
+    let mut bit = vec![Vec3::ZERO; p.len()];
+    for &[a, b, c] in tris {
+        let (a, b, c) = (a as usize, b as usize, c as usize);
+        let (e1, e2) = (p[b] - p[a], p[c] - p[a]);
+        let (d1, d2) = (uv[b] - uv[a], uv[c] - uv[a]);
+        let det = d1.x * d2.y - d2.x * d1.y;
+        if det.abs() < 1e-12 || !det.is_finite() {
+            continue;
+        }
+        let r = 1.0 / det;
+        let t = (e1 * d2.y - e2 * d1.y) * r;
+        let s = (e2 * d1.x - e1 * d2.x) * r;
+        if !t.is_finite() || !s.is_finite() {
+            continue;
+        }
+        for i in [a, b, c] {
+            tan[i] += t;
+            bit[i] += s;
+        }
+    }
+    (0..p.len())
+        .map(|i| {
+            let t = (tan[i] - n[i] * n[i].dot(tan[i]))
+                .try_normalize()
+                .unwrap_or_else(|| perpendicular(n[i]));
+            let w = if n[i].cross(t).dot(bit[i]) < 0.0 { -1.0 } else { 1.0 };
+            t.extend(w)
+        })
+        .collect()
+}

@@ -1,0 +1,199 @@
+//! The loaders on small valid files (glTF, GLB, OBJ + MTL, scene file, files on disk), and
+//! their typed errors on invalid ones.
+
+mod common;
+
+use common::*;
+use glam::Vec3;
+use scene::{LoadErrorKind, SceneError};
+
+fn load_kind(r: Result<scene::Scene, SceneError>) -> (String, String, LoadErrorKind) {
+    match r {
+        Err(SceneError::Load(e)) => (e.file, e.element, e.kind),
+        other => panic!("expected a load error, got {other:?}"),
+    }
+}
+
+#[test]
+fn gltf_quad_loads_with_transforms_cleanup_and_material_mapping() {
+    let s = scene::load_gltf_slice(&tiny_gltf(false), None, "tiny.gltf").unwrap();
+    s.validate().unwrap();
+    assert_eq!(s.meshes.len(), 1);
+    // Two real triangles; the one with a repeated index is dropped and counted.
+    assert_eq!(s.triangle_count(), 2);
+    assert_eq!(s.cleanup.degenerate_dropped, 1);
+    // The zero-length normal was recomputed from the faces: +Z.
+    assert_eq!(s.cleanup.normals_recomputed, 1);
+    assert!((s.meshes[0].normals[2] - Vec3::Z).length() < 1e-6);
+    // Node transforms compose: translate 10 x scale 2.
+    let tris = s.triangles();
+    let b = scene::Aabb::from_points(tris.positions.iter().copied());
+    assert!((b.min - Vec3::new(10.0, 0.0, 0.0)).length() < 1e-5);
+    assert!((b.max - Vec3::new(12.0, 2.0, 0.0)).length() < 1e-5);
+    // Smooth white metal: no diffuse, a strong mirror, maximal Phong power.
+    let m = &s.materials[0];
+    assert_eq!(m.name, "chrome");
+    assert!(m.albedo.max_element() < 1e-6);
+    assert!((m.reflectivity - 0.9).abs() < 1e-6);
+    assert!((m.glossiness - 0.9).abs() < 1e-6);
+    assert_eq!(m.specular_power, 8192.0);
+}
+
+#[test]
+fn glb_gives_the_same_scene_as_gltf() {
+    let a = scene::load_gltf_slice(&tiny_gltf(false), None, "a.gltf").unwrap();
+    let b = scene::load_gltf_slice(&tiny_glb(), None, "a.glb").unwrap();
+    assert_eq!(a.triangles(), b.triangles());
+    assert_eq!(a.materials, b.materials);
+}
+
+#[test]
+fn gltf_index_out_of_range_is_a_typed_error_naming_file_and_mesh() {
+    let (file, element, kind) =
+        load_kind(scene::load_gltf_slice(&tiny_gltf(true), None, "bad.gltf"));
+    assert_eq!(file, "bad.gltf");
+    assert!(element.contains("mesh 0") && element.contains("primitive 0"), "{element}");
+    assert_eq!(kind, LoadErrorKind::IndexOutOfRange { index: 7, vertex_count: 4 });
+}
+
+#[test]
+fn gltf_texture_is_decoded_from_srgb_with_a_non_power_of_two_mip_chain_and_alpha_mask() {
+    let s = scene::load_gltf_slice(&textured_gltf(), None, "tex.gltf").unwrap();
+    s.validate().unwrap();
+    let m = &s.materials[0];
+    let t = &s.textures[m.albedo_texture.unwrap().index()];
+    assert_eq!((t.width(), t.height()), (3, 5));
+    let sizes: Vec<_> = t.levels.iter().map(|l| (l.width, l.height)).collect();
+    assert_eq!(sizes, [(3, 5), (1, 2), (1, 1)]);
+    // sRGB 128 -> linear 0.2158605.
+    assert!((t.levels[0].texels[0].x - 0.215_860_5).abs() < 1e-5);
+    let mask = m.alpha_mask.unwrap();
+    assert_eq!(mask.texture, m.albedo_texture.unwrap());
+    assert!((mask.cutoff - 0.4).abs() < 1e-6);
+}
+
+#[test]
+fn gltf_external_buffer_in_memory_is_an_error_and_from_disk_a_missing_file_is_named() {
+    let json = String::from_utf8(tiny_gltf(false)).unwrap();
+    let start = json.find("data:").unwrap();
+    let end = json[start..].find('"').unwrap() + start;
+    let external = format!("{}{}{}", &json[..start], "quad.bin", &json[end..]);
+    let (_, element, kind) = load_kind(scene::load_gltf_slice(external.as_bytes(), None, "x.gltf"));
+    assert_eq!(element, "buffer 0");
+    assert!(matches!(kind, LoadErrorKind::Unsupported(_)));
+
+    let dir = std::env::temp_dir().join(format!("scene_test_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("external.gltf");
+    std::fs::write(&path, &external).unwrap();
+    let (file, element, kind) = load_kind(scene::load(&path));
+    assert!(file.ends_with("external.gltf"));
+    assert_eq!(element, "buffer 0");
+    assert!(matches!(kind, LoadErrorKind::Io(m) if m.contains("quad.bin")));
+    // Now provide the buffer: it loads.
+    std::fs::write(dir.join("quad.bin"), quad_buffer(false).0).unwrap();
+    assert_eq!(scene::load(&path).unwrap().triangle_count(), 2);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn obj_with_mtl_maps_materials_and_drops_degenerate_faces() {
+    let s = scene::load_obj_slice(OBJ.as_bytes(), Some(MTL.as_bytes()), "box.obj").unwrap();
+    s.validate().unwrap();
+    assert_eq!(s.triangle_count(), 2); // the quad, triangulated
+    assert_eq!(s.cleanup.degenerate_dropped, 1);
+    let m = &s.materials[s.meshes[0].material.index()];
+    assert_eq!(m.name, "shiny");
+    assert!((m.albedo - Vec3::new(0.5, 0.4, 0.3)).length() < 1e-6);
+    assert!((m.reflectivity - 0.9).abs() < 1e-6 && m.specular_power == 200.0);
+    assert!((m.ior - 1.33).abs() < 1e-6 && m.transparency == 0.0);
+}
+
+#[test]
+fn obj_from_disk_with_texture_and_missing_texture_error() {
+    let dir = std::env::temp_dir().join(format!("scene_obj_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("box.obj"), OBJ).unwrap();
+    std::fs::write(dir.join("box.mtl"), format!("{MTL}map_Kd wood.png\n")).unwrap();
+    let (file, element, kind) = load_kind(scene::load(dir.join("box.obj")));
+    assert!(file.ends_with("box.obj"));
+    assert!(element.contains("shiny") && element.contains("wood.png"), "{element}");
+    assert_eq!(kind, LoadErrorKind::MissingTexture("wood.png".into()));
+    std::fs::write(dir.join("wood.png"), png(1, 1, |_, _| [255, 255, 255, 255])).unwrap();
+    let s = scene::load(dir.join("box.obj")).unwrap();
+    s.validate().unwrap();
+    assert_eq!(s.textures.len(), 1);
+    assert_eq!(s.textures[0].levels.len(), 1); // 1x1: a chain of one level
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn obj_face_index_out_of_range_is_an_error() {
+    let r = scene::load_obj_slice(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", None, "bad.obj");
+    let (file, _, _) = load_kind(r);
+    assert_eq!(file, "bad.obj");
+}
+
+#[test]
+fn obj_nan_vertex_is_an_error_naming_the_object() {
+    let r =
+        scene::load_obj_slice(b"o thing\nv 0 0 0\nv NaN 0 0\nv 0 1 0\nf 1 2 3\n", None, "nan.obj");
+    let (_, element, kind) = load_kind(r);
+    assert!(element.contains("thing"), "{element}");
+    assert_eq!(kind, LoadErrorKind::NonFinite { attribute: "position", vertex: 1 });
+}
+
+#[test]
+fn scene_file_adds_sun_lights_quads_overrides_and_camera() {
+    let s = scene::load_scene_str(SCENE_TOML, None, "test.toml").unwrap();
+    s.validate().unwrap();
+    assert_eq!(s.name, "test");
+    assert!(s.sky);
+    // Lisbon at noon UTC in June: the sun is high in the south.
+    let d = s.sun.unwrap().direction().unwrap();
+    assert!(d.y > 0.9 && d.z > 0.0, "{d}");
+    assert_eq!(s.point_lights.len(), 1);
+    let q = s.occlusion_quads.last().unwrap();
+    assert_eq!((q.opacity, q.tint), (0.5, Vec3::new(0.3, 0.6, 0.2)));
+    let b = s.material_by_name("box").unwrap();
+    assert_eq!(s.materials[b.index()].reflectivity, 0.9);
+    // The generated mesh was translated by +1 in x.
+    let reference = scene::plane_box(2);
+    let moved = s.bounds();
+    assert!((moved.min - (reference.bounds().min + Vec3::X)).length() < 1e-4);
+    assert!(s.needs().reflections.needed);
+}
+
+#[test]
+fn scene_file_errors_name_the_element() {
+    let cases = [
+        ("[sun]\ndirection = [0.0, 0.0, 0.0]\n", "[sun]"),
+        (
+            "[sun]\ndate = \"2024-13-01\"\nutc_hours = 1.0\nlatitude = 0.0\nlongitude = 0.0\n",
+            "[sun]",
+        ),
+        (
+            "[[occlusion_quad]]\ncenter = [0.0,0.0,0.0]\naxis_u = [1.0,0.0,0.0]\naxis_v = [1.0,0.0,0.0]\nhalf_u = 1.0\nhalf_v = 1.0\n",
+            "[[occlusion_quad]] 0",
+        ),
+        (
+            "[[point_light]]\nposition = [0.0,0.0,0.0]\ncolor = [1.0,1.0,1.0]\nradius = -1.0\n",
+            "[[point_light]] 0",
+        ),
+        ("[[material_override]]\nname = \"nothing\"\n", "[[material_override]] 0 \"nothing\""),
+        ("[[mesh]]\ngenerated = \"castle\"\n", "[[mesh]] 0"),
+        ("[[mesh]]\nfile = \"x.obj\"\n", "[[mesh]] 0"),
+        ("sky = true\nbogus = 1\n", "line 2"),
+    ];
+    for (text, element) in cases {
+        let (file, el, _) = load_kind(scene::load_scene_str(text, None, "s.toml"));
+        assert_eq!(file, "s.toml");
+        assert_eq!(el, element, "for {text:?}");
+    }
+}
+
+#[test]
+fn unknown_extension_is_unsupported() {
+    let (_, _, kind) = load_kind(scene::load("scene.fbx"));
+    assert!(matches!(kind, LoadErrorKind::Unsupported(_)));
+}
