@@ -1,0 +1,65 @@
+//! Shadow techniques for real-time global illumination, on the CPU and (feature `gpu`) on wgpu.
+//!
+//! What the Serenity engine (thesis chapter 4 and section 6.3.1) uses for direct light:
+//!
+//! - **Stabilised cascaded shadow maps** for the sun ([`CascadedShadowMap`]): split distances
+//!   blending uniform and logarithmic splits; each cascade fit to the *tightest bounding
+//!   sphere* of its frustum slice (its size does not change when the camera rotates), and its
+//!   light-space translation snapped to whole texels (Valient, "Stable cascaded shadow maps",
+//!   ShaderX6, 2008), so the texel lattice stays put and shadows do not shimmer. Fits are made
+//!   in `f64`, exact at 1e5 m from the origin.
+//! - **Overlapped shadow maps** ([`OverlappedShadowMaps`], thesis 6.3.1): three 512x512 maps
+//!   centred on the camera with growing extents, for points seen only in reflections.
+//! - **Cube shadow maps** for point lights ([`cube_face_view_proj`]).
+//! - **PCF and PCSS** ([`Pcss`]; Fernando, "Percentage-closer soft shadows", SIGGRAPH 2005
+//!   sketch): blocker search, penumbra `w = (d_r - d_b) * light_size / d_b`, PCF over `w`,
+//!   8..64 Poisson or spiral taps, slope-scaled and receiver-plane depth bias. The same
+//!   filter is written in WGSL (`shaders/shadows/pcss.inc.wgsl`, [`gpu`] module).
+//! - **Reflective shadow maps** ([`Rsm`]; Dachsbacher & Stamminger, "Reflective shadow
+//!   maps", I3D 2005) and [`Vpl`] extraction for light propagation volumes.
+//! - A CPU triangle rasteriser ([`rasterize`]) so all of the above runs without a GPU, and
+//!   wgpu depth/RSM passes behind feature `gpu`.
+//!
+//! ```
+//! use shadows::{PcssSettings, Pcss, plane_box::PlaneBox};
+//! // The `plane_box` scene: a box on a plane under the sun (angular radius 0.004675 rad).
+//! let scene = PlaneBox::DEFAULT;
+//! let view = scene.shadow_view(512);
+//! let map = scene.depth_map(&view);
+//! let pcss = Pcss::directional(&view, scene.sun_angular_radius, &PcssSettings::DEFAULT).unwrap();
+//! let points = scene.receivers(16);
+//! let lit: Vec<f32> = scene
+//!     .map_receivers(&view, &points)
+//!     .iter()
+//!     .map(|r| pcss.pcss(&map, r))
+//!     .collect();
+//! let truth = scene.reference_image(16, 256);
+//! let mae = lit.iter().zip(&truth).map(|(a, b)| (a - b).abs()).sum::<f32>() / lit.len() as f32;
+//! assert!(mae < 0.05, "mean visibility error {mae}");
+//! ```
+
+mod csm;
+mod cube;
+mod depth_map;
+mod error;
+mod light_space;
+mod osm;
+mod pcss;
+pub mod plane_box;
+mod raster;
+mod rsm;
+mod taps;
+
+#[cfg(feature = "gpu")]
+pub mod gpu;
+
+pub use csm::{Camera, Cascade, CascadedShadowMap, CsmSettings, split_distances};
+pub use cube::{CUBE_FACES, cube_face_of, cube_face_view_proj};
+pub use depth_map::DepthMap;
+pub use error::ShadowError;
+pub use light_space::{LightBasis, ShadowView};
+pub use osm::{OsmSettings, OverlappedShadowMaps};
+pub use pcss::{LightModel, Pcss, PcssParams, PcssSettings, Receiver};
+pub use raster::{NO_TRIANGLE, rasterize};
+pub use rsm::{Rsm, Vpl};
+pub use taps::{TapPattern, taps};
