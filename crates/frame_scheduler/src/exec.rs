@@ -8,6 +8,7 @@ use crate::pass::Lane;
 use crate::report::{ExecMode, Span};
 use crate::scheduler::{Action, BodySlot, ExecRecord, Scheduler, Shared};
 use crate::timer::GpuTimer;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Condvar, Mutex, MutexGuard};
 use std::time::Instant;
 
@@ -27,6 +28,7 @@ pub(crate) struct BoardState {
 pub(crate) struct Board {
     state: Mutex<BoardState>,
     cv: Condvar,
+    failed: AtomicBool,
 }
 
 impl Board {
@@ -37,7 +39,7 @@ impl Board {
             records: vec![ExecRecord::default(); n],
             failure: None,
         };
-        Self { state: Mutex::new(state), cv: Condvar::new() }
+        Self { state: Mutex::new(state), cv: Condvar::new(), failed: AtomicBool::new(false) }
     }
 
     fn lock(&self) -> MutexGuard<'_, BoardState> {
@@ -65,12 +67,16 @@ impl<C> Env<'_, C> {
     }
 
     /// Runs pass `i` (all its planned units) on the current thread.
+    ///
+    /// `since` is the end of the previous pass on this thread when nothing but bookkeeping
+    /// happened in between: it saves a clock read (about 0.1 µs here) per pass.
     fn run_pass(
         &self,
         i: usize,
         on_worker: bool,
         timer: Option<&mut dyn GpuTimer>,
-    ) -> (ExecRecord, Option<BoxError>) {
+        since: Option<Instant>,
+    ) -> (ExecRecord, Option<BoxError>, Instant) {
         let mut slot = self.bodies[i].lock().unwrap_or_else(|e| e.into_inner());
         let BodySlot { body, values } = &mut *slot;
         let reads = &self.shared.reads[i];
@@ -96,7 +102,7 @@ impl<C> Env<'_, C> {
         if let Some(t) = timer.as_deref_mut() {
             t.begin_pass(id, &self.names.passes[i]);
         }
-        let start = Instant::now();
+        let start = since.unwrap_or_else(Instant::now);
         let mut units = 0;
         let result: PassResult = match self.actions[i] {
             Action::Amortise { start: first, max, total, budget_ms } => {
@@ -131,11 +137,11 @@ impl<C> Env<'_, C> {
             units,
             aborted: false,
         };
-        (rec, result.err())
+        (rec, result.err(), end)
     }
 
     fn failed(&self) -> bool {
-        self.board.lock().failure.is_some()
+        self.board.failed.load(Ordering::Relaxed)
     }
 
     /// Records a finished pass; returns the CPU jobs it released.
@@ -145,6 +151,7 @@ impl<C> Env<'_, C> {
         b.done[i] = true;
         if let Some(e) = err {
             b.failure.get_or_insert((i, e));
+            self.board.failed.store(true, Ordering::Relaxed);
         }
         let mut released = Vec::new();
         let from_job = self.shared.lanes[i] == Lane::Cpu;
@@ -158,8 +165,36 @@ impl<C> Env<'_, C> {
             }
         }
         drop(b);
-        self.board.cv.notify_all();
+        if rec.on_worker {
+            // Only the scheduling thread ever waits, and only for CPU jobs.
+            self.board.cv.notify_all();
+        }
         released
+    }
+
+    /// Waits until every running CPU job among `deps` has finished. On a rayon worker thread
+    /// (the caller ran the frame inside a pool) it executes pending jobs instead of blocking,
+    /// so that even a one-thread pool cannot deadlock.
+    /// Returns whether it had to wait.
+    fn join(&self, deps: &[u32]) -> bool {
+        let pending = |b: &BoardState| {
+            deps.iter().any(|&d| self.actions[d as usize].executes() && !b.done[d as usize])
+        };
+        let on_worker = rayon::current_thread_index().is_some();
+        let mut b = self.board.lock();
+        let waited = pending(&b);
+        while pending(&b) {
+            if on_worker {
+                drop(b);
+                if !matches!(rayon::yield_now(), Some(rayon::Yield::Executed)) {
+                    std::thread::yield_now();
+                }
+                b = self.board.lock();
+            } else {
+                b = self.board.cv.wait(b).unwrap_or_else(|e| e.into_inner());
+            }
+        }
+        waited
     }
 
     /// Runs pass `i` here, unless an earlier pass failed.
@@ -168,19 +203,20 @@ impl<C> Env<'_, C> {
         i: usize,
         on_worker: bool,
         timer: Option<&mut dyn GpuTimer>,
-    ) -> Vec<usize> {
+        since: Option<Instant>,
+    ) -> (Vec<usize>, Option<Instant>) {
         if self.failed() {
-            let rec = ExecRecord { aborted: true, ..Default::default() };
-            return self.finish(i, rec, None);
+            let rec = ExecRecord { aborted: true, on_worker, ..Default::default() };
+            return (self.finish(i, rec, None), None);
         }
-        let (rec, err) = self.run_pass(i, on_worker, timer);
-        self.finish(i, rec, err)
+        let (rec, err, end) = self.run_pass(i, on_worker, timer, since);
+        (self.finish(i, rec, err), Some(end))
     }
 }
 
 fn spawn_job<'s, C: Sync>(scope: &rayon::Scope<'s>, env: &'s Env<'s, C>, i: usize) {
     scope.spawn(move |scope| {
-        for j in env.run_or_abort(i, true, None) {
+        for j in env.run_or_abort(i, true, None, None).0 {
             spawn_job(scope, env, j);
         }
     });
@@ -199,6 +235,7 @@ impl<C: Sync> Scheduler<C> {
         {
             let mut b = self.board.lock();
             b.failure = None;
+            self.board.failed.store(false, Ordering::Relaxed);
             for i in 0..n {
                 b.done[i] = false;
                 b.records[i] = ExecRecord::default();
@@ -229,18 +266,20 @@ impl<C: Sync> Scheduler<C> {
         let order = &self.shared.topo.order;
         match self.mode {
             ExecMode::Serial => {
+                let mut last = None;
                 for &p in order {
                     let i = p as usize;
                     if !env.actions[i].executes() {
                         continue;
                     }
                     let gpu = env.shared.lanes[i] == Lane::Gpu;
-                    env.run_or_abort(i, false, gpu.then_some(&mut *timer));
+                    last = env.run_or_abort(i, false, gpu.then_some(&mut *timer), last).1;
                 }
             }
             ExecMode::Overlapped => {
                 let env = &env;
                 rayon::in_place_scope(|scope| {
+                    let mut last = None;
                     for &p in order {
                         let i = p as usize;
                         if !env.actions[i].executes() {
@@ -255,20 +294,16 @@ impl<C: Sync> Scheduler<C> {
                                 if go {
                                     spawn_job(scope, env, i);
                                 }
+                                last = None;
                             }
                             lane => {
                                 // Join the CPU jobs this pass reads (a sync point).
-                                let deps = &env.shared.topo.deps[i];
-                                let mut b = env.board.lock();
-                                while deps.iter().any(|&d| {
-                                    let d = d as usize;
-                                    env.actions[d].executes() && !b.done[d]
-                                }) {
-                                    b = env.board.cv.wait(b).unwrap_or_else(|e| e.into_inner());
+                                if env.join(&env.shared.topo.deps[i]) {
+                                    last = None;
                                 }
-                                drop(b);
                                 let gpu = lane == Lane::Gpu;
-                                env.run_or_abort(i, false, gpu.then_some(&mut *timer));
+                                last =
+                                    env.run_or_abort(i, false, gpu.then_some(&mut *timer), last).1;
                             }
                         }
                     }
