@@ -204,8 +204,8 @@ impl<C> Scheduler<C> {
     }
 
     /// The current value of any resource (an output after a frame, typically). Holding the
-    /// returned `Arc` across a frame makes the writer's [`PassIo::take_previous`]
-    /// (crate::PassIo::take_previous) return `None`.
+    /// returned `Arc` across a frame makes the writer's
+    /// [`PassIo::take_previous`](crate::PassIo::take_previous) return `None`.
     pub fn get<T: Any + Send + Sync>(&self, res: Res<T>) -> Option<Arc<T>> {
         if res.graph != self.shared.graph {
             return None;

@@ -260,3 +260,35 @@ fn a_culled_pass_takes_what_only_it_feeds_with_it() {
     assert_eq!(r.pass("trace").unwrap().reason, Reason::NoReader);
     assert_eq!(r.pass("ray casting").unwrap().reason, Reason::NoReader);
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(common::cases(64)))]
+
+    /// Unchanged keys mean no re-run; each change means exactly one run.
+    #[test]
+    fn a_keyed_pass_runs_once_per_key_change(keys in prop::collection::vec(0u8..3, 1..30), cpu in any::<bool>()) {
+        let runs = Arc::new(AtomicUsize::new(0));
+        let counter = Arc::clone(&runs);
+        let mut g = FrameGraph::<u8>::new();
+        let out = g.resource::<u8>("sky map");
+        g.output(out);
+        let lane = if cpu { Lane::Cpu } else { Lane::Gpu };
+        g.pass("sky map", lane).writes(out).key("sun", |k: &u8| *k).run(move |io| {
+            counter.fetch_add(1, Ordering::SeqCst);
+            let k = *io.ctx();
+            io.put(out, k)?;
+            Ok(())
+        });
+        let mut s = g.build().unwrap();
+        let mut expected = 0;
+        for (f, &k) in keys.iter().enumerate() {
+            let r = s.run_frame(&k).unwrap();
+            let changed = f == 0 || keys[f - 1] != k;
+            expected += usize::from(changed);
+            prop_assert_eq!(runs.load(Ordering::SeqCst), expected);
+            let rec = r.pass("sky map").unwrap();
+            prop_assert_eq!(rec.outcome, if changed { Outcome::Ran } else { Outcome::Reused });
+            prop_assert_eq!(*s.get(out).unwrap(), k, "the reused value is the one computed for this key");
+        }
+    }
+}
