@@ -115,6 +115,12 @@ impl<C> Env<'_, C> {
                     }
                     units += 1;
                     if let Some(budget) = budget_ms {
+                        // A GPU unit's cost shows only in the GPU timer's report, after the
+                        // frame: until one arrives, run a single unit to measure it.
+                        let gpu = self.shared.lanes[i] == Lane::Gpu;
+                        if gpu && self.ms_per_unit[i] <= 0.0 {
+                            break;
+                        }
                         let spent = start.elapsed().as_secs_f64() * 1e3;
                         let per_unit = (spent / f64::from(units)).max(self.ms_per_unit[i]);
                         if per_unit * f64::from(units + 1) > budget {

@@ -40,7 +40,9 @@ pub enum Budget {
     /// Exactly this many units per frame (the last frame of a cycle may run fewer).
     Units(u32),
     /// Units until this many milliseconds are spent (at least one unit per frame). The cost of
-    /// a unit is the larger of its CPU wall time and, where the timer reports it, its GPU time.
+    /// a unit is the larger of its CPU wall time and, where the timer reports it, its GPU time
+    /// (averaged over frames). A GPU pass runs one unit per frame until the timer has reported
+    /// one; without a GPU timer it stays at one unit per frame.
     Millis(f64),
 }
 

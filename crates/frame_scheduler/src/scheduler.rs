@@ -306,9 +306,14 @@ impl<C: Sync> Scheduler<C> {
             if let (Action::Amortise { .. }, false) = (action, rec.aborted) {
                 let st = &mut self.state[i];
                 st.done += rec.units;
-                if rec.units > 0 {
-                    let cpu = rec.cpu.map_or(0.0, Span::ms);
-                    let unit = cpu.max(gpu_ms[i].unwrap_or(0.0)) / f64::from(rec.units);
+                // A GPU pass's cost is its GPU time (unknown without a timer report); other
+                // lanes' is their wall time.
+                let cost = match self.shared.lanes[i] {
+                    Lane::Gpu => gpu_ms[i],
+                    _ => rec.cpu.map(Span::ms),
+                };
+                if let (Some(cost), true) = (cost, rec.units > 0) {
+                    let unit = cost.max(1e-6) / f64::from(rec.units);
                     st.ms_per_unit =
                         if st.ms_per_unit > 0.0 { 0.5 * (st.ms_per_unit + unit) } else { unit };
                 }

@@ -166,3 +166,65 @@ fn a_skipped_amortised_pass_resumes_where_it_was() {
     assert_eq!(r.pass("volume").unwrap().outcome, Outcome::Amortised { from: 1, to: 2, total: 4 });
     assert_eq!(s.progress(id).unwrap().done, 2);
 }
+
+/// A timer that reports `ms_per_unit` of GPU time for every unit the pass ran.
+struct UnitTimer {
+    units: Units,
+    ms_per_unit: f64,
+    pass: Option<frame_scheduler::PassId>,
+}
+
+impl frame_scheduler::GpuTimer for UnitTimer {
+    fn support(&self) -> frame_scheduler::GpuTimingSupport {
+        frame_scheduler::GpuTimingSupport::Supported { method: "test".into() }
+    }
+    fn begin_frame(&mut self, _: u64) {
+        self.units.lock().unwrap().clear();
+    }
+    fn begin_pass(&mut self, pass: frame_scheduler::PassId, _: &str) {
+        self.pass = Some(pass);
+    }
+    fn end_pass(&mut self, _: frame_scheduler::PassId) {}
+    fn end_frame(&mut self) -> Vec<frame_scheduler::GpuSample> {
+        let n = self.units.lock().unwrap().len();
+        self.pass
+            .map(|pass| frame_scheduler::GpuSample {
+                pass,
+                ms: self.ms_per_unit * n as f64,
+                start_ms: None,
+            })
+            .into_iter()
+            .collect()
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(common::cases(32)))]
+
+    /// With a millisecond budget, a GPU pass measures one unit first, then runs as many units
+    /// as fit: floor(budget / unit cost), at least one.
+    #[test]
+    fn a_gpu_time_budget_fits_units_by_their_measured_cost(total in 1u32..40, unit_ms in 0.5f64..6.0, budget in 1.0f64..20.0) {
+        let (mut s, vol, id, log) = graph(total, Budget::Millis(budget), Lane::Gpu, true);
+        let mut timer = UnitTimer { units: Arc::clone(&log), ms_per_unit: unit_ms, pass: None };
+        let fit = ((budget / unit_ms).floor() as u32).max(1);
+        let mut done = 0;
+        let mut frame = 0;
+        while done < total {
+            let r = s.run_frame_timed(&Ctx { sun: 0 }, &mut timer).unwrap();
+            let want = if frame == 0 { 1 } else { fit.min(total - done) };
+            prop_assert_eq!(r.pass("volume").unwrap().outcome, Outcome::Amortised { from: done, to: done + want, total });
+            prop_assert!(r.pass("volume").unwrap().gpu_ms.unwrap() <= budget.max(unit_ms) + 1e-9);
+            done += want;
+            frame += 1;
+        }
+        prop_assert!(s.progress(id).unwrap().complete());
+        prop_assert_eq!(s.get(vol).unwrap().len(), total as usize);
+        // Without a timer the cost stays unknown: one unit per frame.
+        let (mut s, _, id, _) = graph(total.min(5), Budget::Millis(budget), Lane::Gpu, true);
+        for f in 0..total.min(5) {
+            s.run_frame(&Ctx { sun: 0 }).unwrap();
+            prop_assert_eq!(s.progress(id).unwrap().done, f + 1);
+        }
+    }
+}
