@@ -1,1 +1,207 @@
-fn main() {}
+//! kdbench: builds the kd-tree and obvhs BVHs over an OBJ file (or a generated scene) and
+//! reports build time, memory, and Mrays/s for primary, incoherent and shadow rays, plus hit
+//! mismatches against brute force on a sample of rays.
+//!
+//! cargo run --release -p kdtree_tracer --example kdbench -- MESH.obj [--rays N] [--json]
+//! cargo run --release -p kdtree_tracer --example kdbench -- --scene city|sphere|soup|cornell
+
+use std::time::Instant;
+
+use anyhow::{Context, Result, bail};
+use glam::Vec3;
+use kdtree_tracer::test_util::{self, Camera, Rng};
+use kdtree_tracer::{
+    BruteForce, BvhAccel, BvhKind, BvhPreset, KdTree, Mesh, Ray, RayQuery, Settings,
+};
+use rayon::prelude::*;
+
+fn load_obj(path: &str) -> Result<Mesh> {
+    let opts = tobj::LoadOptions { triangulate: true, single_index: true, ..Default::default() };
+    let (models, _) = tobj::load_obj(path, &opts).with_context(|| format!("reading {path}"))?;
+    let mut mesh = Mesh::new();
+    for m in models {
+        let p: Vec<Vec3> =
+            m.mesh.positions.chunks_exact(3).map(|c| Vec3::new(c[0], c[1], c[2])).collect();
+        let idx: Vec<[u32; 3]> =
+            m.mesh.indices.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+        mesh.push(&p, &idx).with_context(|| format!("model {}", m.name))?;
+    }
+    Ok(mesh)
+}
+
+/// Mrays/s of closest-hit (or any-hit) queries over all rays, on all threads (best of 3).
+fn mrays(accel: &(impl RayQuery + ?Sized), rays: &[(Ray, f32)], any: bool) -> f64 {
+    let mut best = f64::INFINITY;
+    for _ in 0..3 {
+        let t = Instant::now();
+        let hits: usize = rays
+            .par_chunks(256)
+            .map(|c| {
+                c.iter()
+                    .filter(|(r, tm)| {
+                        if any { accel.occluded(r, *tm) } else { accel.intersect(r, *tm).is_some() }
+                    })
+                    .count()
+            })
+            .sum();
+        std::hint::black_box(hits);
+        best = best.min(t.elapsed().as_secs_f64());
+    }
+    rays.len() as f64 / best / 1e6
+}
+
+fn mismatches(accel: &impl RayQuery, brute: &BruteForce, rays: &[(Ray, f32)], any: bool) -> usize {
+    rays.par_iter()
+        .filter(|(r, tm)| {
+            let b = brute.intersect(r, *tm);
+            if any {
+                return accel.occluded(r, *tm) != b.is_some();
+            }
+            match (accel.intersect(r, *tm), b) {
+                (None, None) => false,
+                (Some(a), Some(b)) => {
+                    let tol = 1e-5 * a.t.abs().max(b.t.abs()) + 1e-6;
+                    (a.t - b.t).abs() > tol
+                }
+                _ => true,
+            }
+        })
+        .count()
+}
+
+fn main() -> Result<()> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut path = None;
+    let mut scene = None;
+    let mut n_rays = 1_000_000usize;
+    let mut json = false;
+    let mut i = 0;
+    while i < args.len() {
+        match args[i].as_str() {
+            "--rays" => {
+                i += 1;
+                n_rays = args.get(i).context("--rays needs a number")?.parse()?;
+            }
+            "--scene" => {
+                i += 1;
+                scene = Some(args.get(i).context("--scene needs a name")?.clone());
+            }
+            "--json" => json = true,
+            "-h" | "--help" => {
+                println!("kdbench MESH.obj [--rays N] [--json] | --scene city|sphere|soup|cornell");
+                return Ok(());
+            }
+            a if a.starts_with('-') => bail!("unknown option {a}"),
+            a => path = Some(a.to_owned()),
+        }
+        i += 1;
+    }
+    let (name, mesh) = match (path, scene.as_deref()) {
+        (Some(p), _) => (p.clone(), load_obj(&p)?),
+        (None, Some("city") | None) => ("city_block_20k".into(), test_util::city_block(1, 20_000)),
+        (None, Some("sphere")) => ("uv_sphere_1m".into(), test_util::uv_sphere(500, 1000)),
+        (None, Some("soup")) => {
+            ("random_soup_1m".into(), test_util::random_soup(1, 1_000_000, 0.01))
+        }
+        (None, Some("cornell")) => ("cornell_box".into(), test_util::cornell_box()),
+        (None, Some(s)) => bail!("unknown scene {s}"),
+    };
+    let n_tris = mesh.triangle_count();
+    if n_tris == 0 {
+        bail!("{name}: no triangles");
+    }
+
+    let t = Instant::now();
+    let kd = KdTree::build(&mesh, &Settings::DEFAULT)?;
+    let kd_build = t.elapsed().as_secs_f64() * 1e3;
+    let st = kd.stats();
+    let t = Instant::now();
+    let cw = BvhAccel::build(&mesh, BvhKind::Cwbvh, BvhPreset::MediumBuild)?;
+    let cw_build = t.elapsed().as_secs_f64() * 1e3;
+    let t = Instant::now();
+    let b2 = BvhAccel::build(&mesh, BvhKind::Bvh2, BvhPreset::MediumBuild)?;
+    let b2_build = t.elapsed().as_secs_f64() * 1e3;
+
+    let (lo, hi) = mesh.bounds().context("empty bounds")?;
+    let c = (lo + hi) * 0.5;
+    let ext = (hi - lo).length().max(1e-6);
+    let cam = Camera {
+        eye: c + Vec3::new(0.3, 0.4, 1.0).normalize() * ext,
+        target: c,
+        up: Vec3::Y,
+        fov_y: 0.8,
+    };
+    let side = (n_rays as f64).sqrt().ceil() as u32;
+    let primary: Vec<(Ray, f32)> = test_util::camera_rays(&cam, side, side)
+        .into_iter()
+        .take(n_rays)
+        .map(|r| (r, f32::INFINITY))
+        .collect();
+    let incoherent: Vec<(Ray, f32)> =
+        test_util::surface_rays(&mesh, n_rays, 7).into_iter().map(|r| (r, f32::INFINITY)).collect();
+    let light = c + Vec3::new(0.2, 1.0, 0.3) * ext;
+    let mut rng = Rng::new(3);
+    let shadow: Vec<(Ray, f32)> = test_util::surface_rays(&mesh, n_rays, 11)
+        .into_iter()
+        .map(|r| {
+            let jitter = Vec3::new(rng.f32(), rng.f32(), rng.f32()) * 0.01 * ext;
+            (Ray::new(r.origin, light + jitter - r.origin), 1.0)
+        })
+        .collect();
+
+    let sets = [
+        ("primary", &primary, false),
+        ("incoherent", &incoherent, false),
+        ("shadow", &shadow, true),
+    ];
+    let sample = (2e8 / n_tris as f64).clamp(50.0, 2000.0) as usize;
+    let brute = BruteForce::new(&mesh)?;
+    let mut rows = Vec::new();
+    for (label, rays, any) in sets {
+        let s = &rays[..sample.min(rays.len())];
+        rows.push(serde_json::json!({
+            "rays": label,
+            "kdtree_mrays": mrays(&kd, rays, any),
+            "cwbvh_mrays": mrays(&cw, rays, any),
+            "bvh2_mrays": mrays(&b2, rays, any),
+            "kdtree_mismatches": mismatches(&kd, &brute, s, any),
+            "cwbvh_mismatches": mismatches(&cw, &brute, s, any),
+            "checked": s.len(),
+        }));
+    }
+    let out = serde_json::json!({
+        "mesh": name,
+        "triangles": n_tris,
+        "threads": rayon::current_num_threads(),
+        "kdtree": {"build_ms": kd_build, "bytes_per_triangle": st.bytes_per_triangle, "nodes": st.nodes,
+                   "leaves": st.leaves, "references": st.references, "max_depth": st.max_depth},
+        "cwbvh_medium": {"build_ms": cw_build, "bytes_per_triangle": cw.bytes() as f64 / n_tris as f64},
+        "bvh2_medium": {"build_ms": b2_build, "bytes_per_triangle": b2.bytes() as f64 / n_tris as f64},
+        "queries": rows,
+    });
+    if json {
+        println!("{out}");
+        return Ok(());
+    }
+    println!("{name}: {n_tris} triangles, {} threads", rayon::current_num_threads());
+    println!(
+        "build   kd-tree {kd_build:8.1} ms ({:.1} B/tri, {} refs, depth {})   CWBVH {cw_build:8.1} ms ({:.1} B/tri)   BVH2 {b2_build:8.1} ms",
+        st.bytes_per_triangle,
+        st.references,
+        st.max_depth,
+        cw.bytes() as f64 / n_tris as f64
+    );
+    for r in &out["queries"].as_array().cloned().unwrap_or_default() {
+        println!(
+            "{:<10} kd-tree {:7.2}  CWBVH {:7.2}  BVH2 {:7.2} Mrays/s   mismatches kd {} cw {} of {}",
+            r["rays"].as_str().unwrap_or(""),
+            r["kdtree_mrays"].as_f64().unwrap_or(0.0),
+            r["cwbvh_mrays"].as_f64().unwrap_or(0.0),
+            r["bvh2_mrays"].as_f64().unwrap_or(0.0),
+            r["kdtree_mismatches"],
+            r["cwbvh_mismatches"],
+            r["checked"],
+        );
+    }
+    Ok(())
+}
