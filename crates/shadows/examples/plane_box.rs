@@ -17,7 +17,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let view = full.shadow_view(res);
     let map = full.depth_map(&view);
     let zoom =
-        PlaneBox { region_min: Vec2::new(3.0, 0.3), region_max: Vec2::new(4.6, 1.9), ..full };
+        PlaneBox { region_min: Vec2::new(3.0, 0.5), region_max: Vec2::new(4.8, 2.3), ..full };
     let n = 256u32;
     let points = zoom.receivers(n);
     let recv = zoom.map_receivers(&view, &points);

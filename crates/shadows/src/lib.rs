@@ -14,7 +14,7 @@
 //! - **PCF and PCSS** ([`Pcss`]; Fernando, "Percentage-closer soft shadows", SIGGRAPH 2005
 //!   sketch): blocker search, penumbra `w = (d_r - d_b) * light_size / d_b`, PCF over `w`,
 //!   8..64 Poisson or spiral taps, slope-scaled and receiver-plane depth bias. The same
-//!   filter is written in WGSL (`shaders/shadows/pcss.inc.wgsl`, [`gpu`] module).
+//!   filter is written in WGSL (`shaders/shadows/pcss.inc.wgsl`, module `gpu`).
 //! - **Reflective shadow maps** ([`Rsm`]; Dachsbacher & Stamminger, "Reflective shadow
 //!   maps", I3D 2005) and [`Vpl`] extraction for light propagation volumes.
 //! - A CPU triangle rasteriser ([`rasterize`]) so all of the above runs without a GPU, and

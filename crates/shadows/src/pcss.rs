@@ -19,7 +19,7 @@ use crate::depth_map::DepthMap;
 use crate::error::ShadowError;
 use crate::light_space::ShadowView;
 use crate::taps::{TapPattern, taps};
-use glam::{Vec2, Vec3};
+use glam::{IVec4, Vec2, Vec3, Vec4};
 
 /// Tap counts, pattern and biases (the user-facing knobs).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -132,8 +132,8 @@ const _: () = assert!(std::mem::size_of::<PcssParams>() == 48);
 /// the layout the GPU buffer uses).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Pcss {
-    pub params: PcssParams,
-    pub taps: Vec<Vec2>,
+    params: PcssParams,
+    taps: Vec<Vec2>,
 }
 
 /// One receiver: map coordinates (texels), stored depth, and the receiver plane's depth
@@ -202,6 +202,16 @@ impl Pcss {
             },
             taps: t,
         })
+    }
+
+    /// The parameter block to upload as the `PcssParams` uniform.
+    pub fn params(&self) -> &PcssParams {
+        &self.params
+    }
+
+    /// The tap table to upload (`array<vec2<f32>>`): blocker taps, then PCF taps.
+    pub fn taps(&self) -> &[Vec2] {
+        &self.taps
     }
 
     /// PCSS for a sun of angular radius `angular_radius` (radians) over an orthographic
@@ -293,16 +303,55 @@ impl Pcss {
         map.width() == self.params.width && map.height() == self.params.height
     }
 
+    /// Four taps at once (the in-bounds fast path): the same operations in the same order
+    /// as the scalar loop, so results are bit-identical to it. Returns, per lane, the
+    /// stored and the reference depth.
+    #[inline(always)]
+    fn fetch4(
+        &self,
+        depth: &[f32],
+        o: &[Vec2],
+        r: &Receiver,
+        radius: f32,
+        plane: (f32, f32, f32),
+    ) -> (Vec4, Vec4) {
+        let ox = Vec4::new(o[0].x, o[1].x, o[2].x, o[3].x);
+        let oy = Vec4::new(o[0].y, o[1].y, o[2].y, o[3].y);
+        let x = Vec4::splat(r.x) + ox * radius;
+        let y = Vec4::splat(r.y) + oy * radius;
+        let (tx, ty) = (x.as_ivec4(), y.as_ivec4());
+        let idx = ty * IVec4::splat(self.params.width as i32) + tx;
+        let z = Vec4::new(
+            depth[idx.x as usize],
+            depth[idx.y as usize],
+            depth[idx.z as usize],
+            depth[idx.w as usize],
+        );
+        let zr = Vec4::splat(plane.0)
+            + Vec4::splat(plane.1) * tx.as_vec4()
+            + Vec4::splat(plane.2) * ty.as_vec4();
+        (z, zr)
+    }
+
     fn pcf_loop<const FAST: bool>(&self, depth: &[f32], r: &Receiver, radius: f32) -> f32 {
         let plane = self.plane(r);
         let start = self.params.blocker_taps as usize;
         let taps = &self.taps[start..start + self.params.pcf_taps as usize];
         let mut lit = 0u32;
+        let mut taps = taps;
+        if FAST {
+            let mut chunks = taps.chunks_exact(4);
+            for c in &mut chunks {
+                let (z, zr) = self.fetch4(depth, c, r, radius, plane);
+                lit += z.cmpge(zr).bitmask().count_ones();
+            }
+            taps = chunks.remainder();
+        }
         for o in taps {
             let (z, zr) = self.fetch::<FAST>(depth, r.x + o.x * radius, r.y + o.y * radius, plane);
             lit += (z >= zr) as u32;
         }
-        lit as f32 / taps.len() as f32
+        lit as f32 / self.params.pcf_taps as f32
     }
 
     /// PCF over the PCF taps scaled to `radius` texels: the lit fraction in `[0, 1]`.
@@ -326,7 +375,24 @@ impl Pcss {
         let plane = self.plane(r);
         let mut sum = 0.0f32;
         let mut count = 0u32;
-        for o in &self.taps[..self.params.blocker_taps as usize] {
+        let mut taps = &self.taps[..self.params.blocker_taps as usize];
+        if FAST {
+            let mut chunks = taps.chunks_exact(4);
+            for c in &mut chunks {
+                let (z, zr) = self.fetch4(depth, c, r, radius, plane);
+                let closer = z.cmplt(zr);
+                let m = closer.bitmask();
+                // Sequential sum, as the scalar loop (adding 0.0 leaves a sum unchanged).
+                let zs = Vec4::select(closer, z, Vec4::ZERO);
+                sum += zs.x;
+                sum += zs.y;
+                sum += zs.z;
+                sum += zs.w;
+                count += m.count_ones();
+            }
+            taps = chunks.remainder();
+        }
+        for o in taps {
             let (z, zr) = self.fetch::<FAST>(depth, r.x + o.x * radius, r.y + o.y * radius, plane);
             let blocker = z < zr;
             sum += if blocker { z } else { 0.0 };

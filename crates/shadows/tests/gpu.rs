@@ -66,10 +66,10 @@ fn pcss_cpu_gpu_parity() {
                 PCSS_EVAL_WGSL,
                 "main",
                 &[
-                    Binding::Uniform(bytemuck::bytes_of(&pcss.params)),
+                    Binding::Uniform(bytemuck::bytes_of(pcss.params())),
                     Binding::Uniform(bytemuck::bytes_of(&eval)),
                     Binding::Read(bytemuck::cast_slice(map.as_slice())),
-                    Binding::Read(bytemuck::cast_slice(&pcss.taps)),
+                    Binding::Read(bytemuck::cast_slice(pcss.taps())),
                     Binding::Read(bytemuck::cast_slice(&recv)),
                     Binding::Output((recv.len() * 16) as u64),
                 ],

@@ -137,6 +137,70 @@ fn tilted_plane_without_bias_has_acne() {
     assert!(shadowed > 50, "expected acne without bias, got {shadowed} of 400 shadowed");
 }
 
+/// A plain reading of the algorithm (floor, clamp, receiver plane at the texel centre) for
+/// comparison with the optimised paths.
+fn naive(p: &Pcss, map: &DepthMap, r: &Receiver) -> [f32; 2] {
+    let q = p.params();
+    let b = q.constant_bias + q.slope_bias * r.gradient.length();
+    let (gx, gy) = if q.receiver_plane != 0 { (r.gradient.x, r.gradient.y) } else { (0.0, 0.0) };
+    let c0 = if q.receiver_plane != 0 {
+        r.depth - b + gx * (0.5 - r.x) + gy * (0.5 - r.y)
+    } else {
+        r.depth - b
+    };
+    let tap = |o: Vec2, rad: f32| {
+        let tx = ((r.x + o.x * rad).floor() as i32).clamp(0, q.width as i32 - 1);
+        let ty = ((r.y + o.y * rad).floor() as i32).clamp(0, q.height as i32 - 1);
+        (map.at(tx, ty), c0 + gx * tx as f32 + gy * ty as f32)
+    };
+    let pcf = |rad: f32| {
+        let t = &p.taps()[q.blocker_taps as usize..];
+        t.iter()
+            .filter(|o| {
+                let (z, zr) = tap(**o, rad);
+                z >= zr
+            })
+            .count() as f32
+            / t.len() as f32
+    };
+    let search = (q.light_size * r.depth.max(0.0)).clamp(q.min_filter, q.max_filter);
+    let (mut sum, mut n) = (0.0f32, 0u32);
+    for o in &p.taps()[..q.blocker_taps as usize] {
+        let (z, zr) = tap(*o, search);
+        if z < zr {
+            sum += z;
+            n += 1;
+        }
+    }
+    let soft = if n == 0 { 1.0 } else { pcf(p.penumbra(r.depth, sum / n as f32)) };
+    [pcf(2.5), soft]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(common::cases()))]
+
+    /// The optimised paths (4-wide in-bounds taps, scalar clamped taps) give exactly the
+    /// plain algorithm's result, for any tap count.
+    #[test]
+    fn optimised_paths_equal_the_plain_algorithm(
+        x in -3.0f32..67.0, y in -3.0f32..67.0, d in 0.0f32..1.0,
+        gx in -0.02f32..0.02, gy in -0.02f32..0.02,
+        bt in 1u32..40, pt in 1u32..40, size in 0.5f32..40.0, plane in proptest::bool::ANY,
+    ) {
+        let mut map = flat_map(1.0);
+        for (i, v) in map.as_mut_slice().iter_mut().enumerate() {
+            let (u, w) = ((i % 64) as f32, (i / 64) as f32);
+            *v = 0.5 + 0.45 * ((u * 0.37).sin() * (w * 0.23).cos());
+        }
+        let s = PcssSettings { blocker_taps: bt, pcf_taps: pt, receiver_plane: plane, ..PcssSettings::DEFAULT };
+        let p = pcss_for(&s, LightModel::Directional { light_size: size });
+        let r = Receiver { x, y, depth: d, gradient: Vec2::new(gx, gy) };
+        let [pcf, soft] = naive(&p, &map, &r);
+        prop_assert_eq!(p.pcf(&map, &r, 2.5), pcf);
+        prop_assert_eq!(p.pcss(&map, &r), soft);
+    }
+}
+
 #[test]
 fn near_equals_far_reduces_to_the_plain_test() {
     // A perspective light whose receiver sits on its near plane: the search disk and the
