@@ -45,6 +45,7 @@ pub struct SceneNeeds {
 
 /// Per-mesh visibility and material facts computed once per query.
 struct Survey {
+    bounds: Vec<crate::Aabb>,
     visible_mesh: Vec<bool>,
     triangles: usize,
     visible_triangles: usize,
@@ -54,13 +55,16 @@ struct Survey {
 fn survey(scene: &Scene, camera: &Camera) -> Survey {
     let frustum = camera.frustum();
     let mut s = Survey {
+        bounds: Vec::with_capacity(scene.meshes.len()),
         visible_mesh: Vec::with_capacity(scene.meshes.len()),
         triangles: 0,
         visible_triangles: 0,
         diffuse_triangles: 0,
     };
     for m in &scene.meshes {
-        let visible = frustum.intersects_aabb(&m.world_bounds());
+        let bounds = m.world_bounds();
+        let visible = frustum.intersects_aabb(&bounds);
+        s.bounds.push(bounds);
         let n = m.triangle_count();
         s.visible_mesh.push(visible);
         s.triangles += n;
@@ -189,8 +193,7 @@ impl SceneNeeds {
             .iter()
             .filter(|l| {
                 frustum.intersects_sphere(l.position, l.radius)
-                    && scene.meshes.iter().any(|m| {
-                        let b = m.world_bounds();
+                    && s.bounds.iter().any(|b| {
                         !b.is_empty()
                             && (l.position.clamp(b.min, b.max) - l.position).length() < l.radius
                     })

@@ -197,3 +197,22 @@ fn unknown_extension_is_unsupported() {
     let (_, _, kind) = load_kind(scene::load("scene.fbx"));
     assert!(matches!(kind, LoadErrorKind::Unsupported(_)));
 }
+
+#[test]
+fn gltf_rough_translucent_dielectric_maps_as_documented() {
+    let json = String::from_utf8(tiny_gltf(false)).unwrap().replace(
+        r#""baseColorFactor": [0.9, 0.9, 0.9, 1.0], "metallicFactor": 1.0, "roughnessFactor": 0.0}"#,
+        r#""baseColorFactor": [0.5, 0.25, 0.1, 0.4], "metallicFactor": 0.0, "roughnessFactor": 0.5}, "alphaMode": "BLEND", "emissiveFactor": [1.0, 0.5, 0.0], "doubleSided": true"#,
+    );
+    let s = scene::load_gltf_slice(json.as_bytes(), None, "d.gltf").unwrap();
+    let m = &s.materials[0];
+    assert!((m.albedo - Vec3::new(0.5, 0.25, 0.1)).length() < 1e-6);
+    assert!((m.glossiness - 0.04).abs() < 1e-6);
+    assert!((m.specular_power - 30.0).abs() < 1e-3); // a = 0.25: 2 / a^2 - 2
+    assert_eq!(m.reflectivity, 0.0);
+    assert!((m.transparency - 0.6).abs() < 1e-6 && m.ior == 1.5);
+    assert_eq!(m.emission, Vec3::new(1.0, 0.5, 0.0));
+    assert!(m.double_sided);
+    let n = s.needs();
+    assert!(!n.reflections.needed);
+}

@@ -189,6 +189,10 @@ pub fn load_gltf_slice(
     }
     let mut scene = loader.scene;
     scene.fit_volumes();
+    // Catches what only shows in world space (transforms that overflow the positions).
+    scene
+        .validate()
+        .map_err(|e| err("scene".into(), LoadErrorKind::InvalidValue(e.to_string())))?;
     Ok(scene)
 }
 

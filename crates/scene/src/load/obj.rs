@@ -8,8 +8,8 @@
 
 use super::image::decode;
 use crate::{
-    AlphaMask, ColorSpace, LoadError, LoadErrorKind, Material, MaterialId, Mesh, MeshData, Scene,
-    SceneError, TextureId,
+    AlphaMask, ColorSpace, LoadError, LoadErrorKind, Material, Mesh, MeshData, Scene, SceneError,
+    TextureId,
 };
 use glam::{Vec2, Vec3};
 use std::cell::RefCell;
@@ -208,7 +208,9 @@ fn finish(result: tobj::LoadResult, file: &str, base: Option<&Path>) -> Result<S
         scene.cleanup += c;
         scene.meshes.push(m);
     }
-    let _: Option<MaterialId> = default;
     scene.fit_volumes();
+    scene
+        .validate()
+        .map_err(|e| err("scene".into(), LoadErrorKind::InvalidValue(e.to_string())))?;
     Ok(scene)
 }
