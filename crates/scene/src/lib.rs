@@ -2,8 +2,8 @@
 //!
 //! The scene description every renderer of the workspace reads: triangle meshes with
 //! tangent frames, mip-mapped linear textures, the material model of the Serenity engine's
-//! G-buffer (Jorge, *Serenity: a hybrid GPU/CPU real-time global illumination engine*,
-//! master's thesis, Table 3.1: albedo, glossiness, Phong specular power, normal maps) extended
+//! G-buffer (the Serenity master's thesis, a hybrid GPU rasterization + CPU ray tracing
+//! real-time GI engine, Table 3.1: albedo, glossiness, Phong specular power, normal maps) extended
 //! with what its ray tracer needs (mirror reflectivity, transparency with an index of
 //! refraction, alpha testing), the sun (a direction, or a date, time and place through
 //! [`atmosphere::solar_position`]), point lights, occlusion quads (thesis 5.3.3, with the
@@ -18,6 +18,12 @@
 //! ([`SceneChange`]).
 //!
 //! World frame: +Y up, +X east, -Z north, metres.
+//!
+//! References: the Serenity thesis (`seeds/serenity-thesis.txt`: 3.5 linear-space lighting,
+//! 5.3.3 occlusion quads, 6.2.3 textures for the ray tracer, Chapter 7 reference scene);
+//! IEC 61966-2-1 (sRGB transfer function); Khronos glTF 2.0 specification; Lengyel,
+//! "Computing tangent space basis vectors for an arbitrary mesh" (2001); Gribb & Hartmann,
+//! "Fast extraction of viewing frustum planes" (2001).
 //!
 //! ```
 //! use scene::{Generated, SceneChange};
