@@ -1,0 +1,122 @@
+//! GPU path (feature `gpu`): the WGSL compute shader that fills a sky map, and the inputs it
+//! needs, built from the same [`Sky`] as the CPU path.
+//!
+//! The shader (`shaders/atmosphere/skymap.wgsl`, workgroup 8 x 8) integrates one view ray
+//! per texel exactly like [`SkyMapMethod::PerTexel`] with [`LightTransmittance::Lut`]; the
+//! tables are computed once on the CPU and uploaded. Bindings of `@group(0)`:
+//! 0 = [`SkyMapGpuParams`] (uniform), 1 = transmittance LUT, 2 = multiple-scattering LUT
+//! (storage, read; RGB `f32` triples, row-major), 3 = the output map (storage, read-write,
+//! RGB triples, `size * size * 3` floats).
+
+use crate::{AtmosphereError, LightTransmittance, Sky, SkyMap, SkyMapMethod, SkyMapSettings};
+use bytemuck::{Pod, Zeroable};
+use glam::Vec3;
+
+/// The WGSL source, exactly as the GPU receives it.
+pub const SKYMAP_WGSL: &str = include_str!("../../../shaders/atmosphere/skymap.wgsl");
+/// Entry point of [`SKYMAP_WGSL`].
+pub const SKYMAP_ENTRY: &str = "main";
+/// Workgroup size of [`SKYMAP_WGSL`] (x and y).
+pub const SKYMAP_WORKGROUP: u32 = 8;
+
+/// The shader's uniform block (`struct Params` in the WGSL).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct SkyMapGpuParams {
+    pub rayleigh: [f32; 4],
+    pub mie_scat: [f32; 4],
+    pub mie_ext: [f32; 4],
+    pub ozone: [f32; 4],
+    pub irradiance: [f32; 4],
+    pub sun: [f32; 4],
+    pub radii: [f32; 4],
+    pub sizes: [u32; 4],
+    pub sizes2: [u32; 4],
+}
+
+const _: () = assert!(std::mem::size_of::<SkyMapGpuParams>() == 144);
+
+/// Everything one dispatch needs: the uniform block, the two tables as flat RGB triples,
+/// the output size in bytes and the workgroup counts.
+#[derive(Clone, Debug)]
+pub struct SkyMapGpuInputs {
+    pub params: SkyMapGpuParams,
+    pub transmittance: Vec<f32>,
+    /// Never empty (a 2 x 2 zero table when multiple scattering is off).
+    pub multiple_scattering: Vec<f32>,
+    pub output_bytes: u64,
+    pub workgroups: [u32; 3],
+}
+
+fn flatten(v: &[Vec3]) -> Vec<f32> {
+    v.iter().flat_map(|t| t.to_array()).collect()
+}
+
+impl SkyMapGpuInputs {
+    /// The inputs for a map of `settings.size` with the sun towards `sun`. The GPU always
+    /// integrates per texel with the transmittance LUT (`settings.method` and `sky`'s
+    /// `light` setting are not used).
+    pub fn new(sky: &Sky, settings: &SkyMapSettings, sun: Vec3) -> Result<Self, AtmosphereError> {
+        settings.validate()?;
+        let sun = sun.try_normalize().filter(|s| s.is_finite()).ok_or(
+            AtmosphereError::InvalidVector { name: "sun", reason: "must be finite and non-zero" },
+        )?;
+        let a = sky.atmosphere();
+        let t = sky.transmittance_lut();
+        let (ms_size, ms_on, ms) = match sky.multiple_scattering_lut() {
+            Some(m) => (m.size(), 1, flatten(m.data())),
+            None => (2, 0, vec![0.0; 12]),
+        };
+        let params = SkyMapGpuParams {
+            rayleigh: a.rayleigh_scattering.extend(a.rayleigh_scale_height_km).to_array(),
+            mie_scat: a.mie_scattering.extend(a.mie_scale_height_km).to_array(),
+            mie_ext: a.mie_extinction.extend(a.mie_g).to_array(),
+            ozone: a.ozone_absorption.extend(a.ozone_center_km).to_array(),
+            irradiance: a.sun_irradiance.extend(a.ozone_half_width_km).to_array(),
+            sun: sun.extend(a.sun_angular_radius).to_array(),
+            radii: [
+                a.bottom_radius_km,
+                a.top_radius_km,
+                a.radius_at_altitude(settings.altitude_km),
+                0.0,
+            ],
+            sizes: [settings.size, sky.settings().view_samples, t.width(), t.height()],
+            sizes2: [ms_size, ms_on, 0, 0],
+        };
+        let g = settings.size.div_ceil(SKYMAP_WORKGROUP);
+        Ok(Self {
+            params,
+            transmittance: flatten(t.data()),
+            multiple_scattering: ms,
+            output_bytes: settings.size as u64 * settings.size as u64 * 12,
+            workgroups: [g, g, 1],
+        })
+    }
+
+    /// The CPU map the shader reproduces (per-texel integration, LUT light) for parity
+    /// checks.
+    pub fn cpu_equivalent(
+        sky: &Sky,
+        settings: &SkyMapSettings,
+        sun: Vec3,
+    ) -> Result<SkyMap, AtmosphereError> {
+        let mut s = *sky.settings();
+        s.light = LightTransmittance::Lut;
+        let sky = if s == *sky.settings() { sky.clone() } else { Sky::new(*sky.atmosphere(), s)? };
+        let m = SkyMapSettings { method: SkyMapMethod::PerTexel, ..*settings };
+        SkyMap::new(&sky, m, sun)
+    }
+}
+
+/// Wraps a read-back output buffer (RGB triples) as a [`SkyMap`].
+pub fn sky_map_from_gpu(
+    settings: &SkyMapSettings,
+    sun: Vec3,
+    rgb: &[f32],
+) -> Result<SkyMap, AtmosphereError> {
+    SkyMap::from_texels(
+        *settings,
+        sun,
+        rgb.chunks_exact(3).map(|c| Vec3::new(c[0], c[1], c[2])).collect(),
+    )
+}
