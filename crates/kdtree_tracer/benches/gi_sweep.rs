@@ -1,1 +1,221 @@
-fn main() {}
+//! `cargo xtask bench --only kdtree_tracer`: the kd-tree against obvhs (interleaved, same
+//! triangles, same rays, same triangle test), the thesis's worst-case reflection buffer, the
+//! 1M-triangle build, and the SAH settings sweep.
+
+use std::time::Instant;
+
+use gi_report::{Comparison, Entry, Sweep, interleaved, time_ms};
+use kdtree_tracer::test_util::{self, Camera};
+use kdtree_tracer::{
+    BvhAccel, BvhKind, BvhPreset, DEFAULT_TILE, KdTree, Ray, RayQuery, Settings, trace_tiles,
+};
+use rayon::prelude::*;
+
+fn pool(threads: usize) -> rayon::ThreadPool {
+    rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("thread pool")
+}
+
+/// Closest-hit queries over all rays on the current pool; returns the hit count.
+fn trace_all(accel: &(impl RayQuery + ?Sized), rays: &[Ray]) -> usize {
+    rays.par_chunks(1024)
+        .map(|c| c.iter().filter(|r| accel.intersect(r, f32::INFINITY).is_some()).count())
+        .sum()
+}
+
+/// Mrays/s of ours vs theirs, raced interleaved on a pool of `threads`.
+fn race(
+    threads: usize,
+    rounds: usize,
+    rays: &[Ray],
+    ours: &(impl RayQuery + ?Sized),
+    theirs: &(impl RayQuery + ?Sized),
+) -> (f64, f64) {
+    let (a, b) = pool(threads).install(|| {
+        interleaved(
+            rounds,
+            || {
+                std::hint::black_box(trace_all(ours, rays));
+            },
+            || {
+                std::hint::black_box(trace_all(theirs, rays));
+            },
+        )
+    });
+    let n = rays.len() as f64;
+    (n / a / 1e3, n / b / 1e3)
+}
+
+fn main() -> std::io::Result<()> {
+    let mut sweep = Sweep::from_env("kdtree_tracer");
+    let quick = sweep.quick();
+
+    sweep.stage("city block scene");
+    let city = test_util::city_block(1, 20_000);
+    let kd = KdTree::build(&city, &Settings::DEFAULT).expect("build");
+    let cam = Camera::over_city(&city);
+    let (w, h) = (800u32, 450u32);
+    let screen = test_util::screen_incoherent_rays(&kd, &city, &cam, w, h, 17);
+    let all: Vec<Ray> = screen.iter().flatten().copied().collect();
+    let n_race = if quick { 40_000 } else { all.len() };
+    let rays = &all[..n_race.min(all.len())];
+    let rounds = sweep.reps(15);
+
+    // Best obvhs preset for traversal (full sweep); medium_build in the quick sweep.
+    sweep.stage("obvhs builds");
+    let presets: Vec<BvhPreset> =
+        if quick { vec![BvhPreset::MediumBuild] } else { BvhPreset::ALL.to_vec() };
+    let best_of = |kind: BvhKind| {
+        let mut best: Option<(f64, BvhPreset, BvhAccel)> = None;
+        for &p in &presets {
+            let b = BvhAccel::build(&city, kind, p).expect("obvhs build");
+            let (ms, _) = pool(1).install(|| time_ms(3, || trace_all(&b, rays)));
+            if best.as_ref().is_none_or(|(m, _, _)| ms < *m) {
+                best = Some((ms, p, b));
+            }
+        }
+        best.expect("at least one preset")
+    };
+    let (_, cw_preset, cw) = best_of(BvhKind::Cwbvh);
+    let (_, b2_preset, b2) = best_of(BvhKind::Bvh2);
+    let note = |p: BvhPreset| {
+        format!(
+            "{} incoherent rays (random hemisphere from the visible surface points of an 800x450 \
+             view) on the 20k-triangle city block; obvhs {} with this crate's watertight \
+             triangle test in its leaves; interleaved, median of {rounds}",
+            rays.len(),
+            p.name()
+        )
+    };
+    for threads in [1usize, 2] {
+        sweep.stage(&format!("race vs CWBVH, {threads} thread(s)"));
+        let (ours, theirs) = race(threads, rounds, rays, &kd, &cw);
+        sweep.comparison(
+            Comparison::new(
+                format!("kdtree_tracer/vs_obvhs_cwbvh_incoherent_{threads}t"),
+                ours,
+                theirs,
+                "Mrays/s",
+                true,
+            )
+            .note(note(cw_preset)),
+        );
+        sweep.stage(&format!("race vs BVH2, {threads} thread(s)"));
+        let (ours, theirs) = race(threads, rounds, rays, &kd, &b2);
+        sweep.comparison(
+            Comparison::new(
+                format!("kdtree_tracer/vs_obvhs_bvh2_incoherent_{threads}t"),
+                ours,
+                theirs,
+                "Mrays/s",
+                true,
+            )
+            .note(note(b2_preset)),
+        );
+    }
+
+    sweep.stage("reflections 800x450");
+    let filled = screen.iter().filter(|r| r.is_some()).count();
+    let (ms, _) = pool(2).install(|| {
+        time_ms(sweep.reps(10), || trace_tiles(&kd, w, h, &screen, f32::INFINITY, DEFAULT_TILE))
+    });
+    sweep.entry(
+        Entry::new("kdtree_tracer/reflections_800x450_2t", "kdtree_tiles_40", ms)
+            .setting("rays", filled)
+            .setting("tile", DEFAULT_TILE)
+            .setting("triangles", city.triangle_count())
+            .threads(2)
+            .note("whole buffer, incoherent hemisphere rays from every visible pixel (thesis worst case: 78 ms on 4 cores)"),
+    );
+
+    sweep.stage("1M-triangle build");
+    let sphere = test_util::uv_sphere(500, 1000);
+    let reps = if quick { 1 } else { 5 };
+    let mut times = Vec::new();
+    let mut stats = None;
+    pool(2).install(|| {
+        for _ in 0..reps {
+            let t = Instant::now();
+            let tree = KdTree::build(&sphere, &Settings::DEFAULT).expect("build");
+            times.push(t.elapsed().as_secs_f64() * 1e3);
+            stats = Some(tree.stats());
+        }
+    });
+    times.sort_by(f64::total_cmp);
+    let st = stats.expect("built");
+    sweep.entry(
+        Entry::new("kdtree_tracer/build_1m_2t", "sah_event_lists", times[times.len() / 2])
+            .setting("triangles", sphere.triangle_count())
+            .setting("bytes_per_triangle", st.bytes_per_triangle)
+            .setting("references", st.references)
+            .threads(2)
+            .note("UV sphere, Settings::DEFAULT, one build"),
+    );
+    if !quick {
+        for p in [BvhPreset::FastestBuild, BvhPreset::MediumBuild, BvhPreset::VerySlowBuild] {
+            sweep.stage(&format!("1M obvhs {}", p.name()));
+            let (ms, _) = pool(2).install(|| {
+                time_ms(3, || BvhAccel::build(&sphere, BvhKind::Cwbvh, p).expect("build"))
+            });
+            sweep.entry(
+                Entry::new(
+                    format!("kdtree_tracer/build_1m_obvhs_cwbvh_{}_2t", p.name()),
+                    "obvhs_cwbvh",
+                    ms,
+                )
+                .setting("triangles", sphere.triangle_count())
+                .threads(2),
+            );
+        }
+    }
+    drop(sphere);
+
+    // SAH settings: build time and traversal speed (every setting is exact: no error axis).
+    let sah_rays = &all[..(if quick { 20_000 } else { 100_000 }).min(all.len())];
+    let mut settings: Vec<(String, Settings)> = vec![
+        ("low".into(), Settings::low()),
+        ("default".into(), Settings::DEFAULT),
+        ("high".into(), Settings::high()),
+        ("reference".into(), Settings::reference()),
+    ];
+    if !quick {
+        for leaf in [1u32, 2, 4, 8] {
+            for bonus in [0.0f32, 0.2, 0.5] {
+                for perfect in [false, true] {
+                    settings.push((
+                        format!(
+                            "leaf{leaf}_bonus{bonus}_{}",
+                            if perfect { "perfect" } else { "box" }
+                        ),
+                        Settings {
+                            leaf_size: leaf,
+                            empty_bonus: bonus,
+                            perfect_splits: perfect,
+                            ..Settings::DEFAULT
+                        },
+                    ));
+                }
+            }
+        }
+    }
+    for (name, s) in settings {
+        sweep.stage(&format!("SAH {name}"));
+        let t = Instant::now();
+        let tree = pool(2).install(|| KdTree::build(&city, &s).expect("build"));
+        let build_ms = t.elapsed().as_secs_f64() * 1e3;
+        let (ms, _) = pool(2).install(|| time_ms(sweep.reps(10), || trace_all(&tree, sah_rays)));
+        let st = tree.stats();
+        sweep.entry(
+            Entry::new(format!("kdtree_tracer/sah_{name}_2t"), "sah_settings", ms)
+                .setting("rays", sah_rays.len())
+                .setting("mrays_per_s", sah_rays.len() as f64 / ms / 1e3)
+                .setting("build_ms", build_ms)
+                .setting("leaf_size", s.leaf_size)
+                .setting("empty_bonus", s.empty_bonus)
+                .setting("intersection_cost", s.intersection_cost)
+                .setting("perfect_splits", s.perfect_splits)
+                .setting("bytes_per_triangle", st.bytes_per_triangle)
+                .threads(2),
+        );
+    }
+    sweep.finish().map(|_| ())
+}

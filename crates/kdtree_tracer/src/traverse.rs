@@ -81,9 +81,25 @@ impl KdTree {
             return None;
         }
         let r = PreparedRay::new(ray);
+        match r.kz {
+            0 => self.traverse_k::<ANY, 0>(ray, &r, t_min, t_max),
+            1 => self.traverse_k::<ANY, 1>(ray, &r, t_min, t_max),
+            _ => self.traverse_k::<ANY, 2>(ray, &r, t_min, t_max),
+        }
+    }
+
+    /// The traversal for rays whose major axis is `KZ`.
+    #[inline(always)]
+    fn traverse_k<const ANY: bool, const KZ: usize>(
+        &self,
+        ray: &Ray,
+        r: &PreparedRay,
+        t_min: f32,
+        t_max: f32,
+    ) -> Option<Hit> {
         let eps =
             2e-6 * (self.scale + ray.origin.abs().max_element()) / ray.dir.abs().max_element();
-        let (mut t0, mut t1) = clip_box(self, &r, t_min, t_max, eps)?;
+        let (mut t0, mut t1) = clip_box(self, r, t_min, t_max, eps)?;
         let nodes: &[Node] = &self.nodes;
         let tris = &self.tris;
         let mut stack = [Entry::default(); STACK];
@@ -101,7 +117,7 @@ impl KdTree {
                 // "Near" is the side the ray is on just before the plane.
                 let below_first = o < split || (o == split && d > 0.0);
                 let (near, far) = if below_first { (first, first + 1) } else { (first + 1, first) };
-                if ts.is_nan() {
+                if !(ts.abs() < f32::INFINITY) && ts.is_nan() {
                     // The ray lies in the plane: both sides, whole interval.
                     if sp < STACK {
                         stack[sp] = Entry { node: far, t0, t1 };
@@ -143,7 +159,7 @@ impl KdTree {
             let start = node.offset() as usize;
             let end = start + node.count() as usize;
             for (k, tri) in tris[start..end].iter().enumerate() {
-                if let Some((t, u, v)) = r.intersect(tri, t_min, best_t) {
+                if let Some((t, u, v)) = r.intersect_k::<KZ>(tri, t_min, best_t) {
                     if ANY {
                         return Some(Hit {
                             t,

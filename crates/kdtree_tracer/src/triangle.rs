@@ -52,16 +52,19 @@ pub(crate) fn is_degenerate(a: Vec3, b: Vec3, c: Vec3) -> bool {
 }
 
 /// Per-ray constants: origin, direction, inverse direction (for the kd-tree planes) and the
-/// shear/permutation of the watertight test. Arrays of 4 so `axis & 3` indexing needs no
-/// bounds check.
+/// shear of the watertight test. Arrays of 4 so `axis & 3` indexing needs no bounds check.
+///
+/// The paper swaps the two minor axes when the major direction component is negative, to keep
+/// the winding (and the sign of the determinant) of front faces; we do not cull back faces, and
+/// the swap only negates U, V, W and the determinant together, so it is left out. That leaves
+/// three cases, one per major axis `kz`, which [`PreparedRay::intersect_k`] takes as a const
+/// parameter so that the permutation costs nothing in the leaf loop.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct PreparedRay {
     pub o: [f32; 4],
     pub d: [f32; 4],
     pub inv: [f32; 4],
-    kx: usize,
-    ky: usize,
-    kz: usize,
+    pub kz: usize,
     sx: f32,
     sy: f32,
     sz: f32,
@@ -73,17 +76,11 @@ impl PreparedRay {
     pub fn new(ray: &Ray) -> Self {
         let d = ray.dir;
         let kz = d.abs().max_position();
-        let mut kx = (kz + 1) % 3;
-        let mut ky = (kx + 1) % 3;
-        if d[kz] < 0.0 {
-            std::mem::swap(&mut kx, &mut ky);
-        }
+        let (kx, ky) = ((kz + 1) % 3, (kz + 2) % 3);
         Self {
             o: [ray.origin.x, ray.origin.y, ray.origin.z, 0.0],
             d: [d.x, d.y, d.z, 0.0],
             inv: [1.0 / d.x, 1.0 / d.y, 1.0 / d.z, 0.0],
-            kx,
-            ky,
             kz,
             sx: d[kx] / d[kz],
             sy: d[ky] / d[kz],
@@ -91,14 +88,30 @@ impl PreparedRay {
         }
     }
 
-    /// The watertight test against `[t_lo, t_hi]` (inclusive). Returns `(t, u, v)` with the hit
-    /// at `(1-u-v) v0 + u v1 + v v2`; degenerate (zero projected area) triangles never hit.
-    #[inline(always)]
+    /// [`Self::intersect_k`] for this ray's major axis.
+    #[inline]
     pub fn intersect(&self, tri: &LeafTri, t_lo: f32, t_hi: f32) -> Option<(f32, f32, f32)> {
-        let (kx, ky, kz) = (self.kx & 3, self.ky & 3, self.kz & 3);
+        match self.kz {
+            0 => self.intersect_k::<0>(tri, t_lo, t_hi),
+            1 => self.intersect_k::<1>(tri, t_lo, t_hi),
+            _ => self.intersect_k::<2>(tri, t_lo, t_hi),
+        }
+    }
+
+    /// The watertight test against `[t_lo, t_hi]` (inclusive) for a ray whose major axis is
+    /// `KZ` (must equal `self.kz`). Returns `(t, u, v)` with the hit at
+    /// `(1-u-v) v0 + u v1 + v v2`; triangles with zero projected area never hit.
+    #[inline(always)]
+    pub fn intersect_k<const KZ: usize>(
+        &self,
+        tri: &LeafTri,
+        t_lo: f32,
+        t_hi: f32,
+    ) -> Option<(f32, f32, f32)> {
+        let (kx, ky) = ((KZ + 1) % 3, (KZ + 2) % 3);
         let rel = |v: &[f32; 4]| {
-            let a = [v[0] - self.o[0], v[1] - self.o[1], v[2] - self.o[2], 0.0];
-            (a[kx] - self.sx * a[kz], a[ky] - self.sy * a[kz], a[kz])
+            let (x, y, z) = (v[kx] - self.o[kx], v[ky] - self.o[ky], v[KZ] - self.o[KZ]);
+            (x - self.sx * z, y - self.sy * z, z)
         };
         let (ax, ay, az) = rel(&tri.v0);
         let (bx, by, bz) = rel(&tri.v1);
