@@ -63,6 +63,17 @@ fn main() -> std::io::Result<()> {
             .note("declaring, validating and ordering the graph (once, not per frame)"),
     );
 
+    let mut s = graph50::graph50();
+    s.set_mode(ExecMode::Serial);
+    let ns = time_ns_per_call(batches, calls / 10, |_| {
+        s.rebuild(graph50::graph50_decl()).map(|_| s.run_frame(&graph50::CTX).is_ok()).is_ok()
+    });
+    sweep.entry(
+        Entry::new("frame_scheduler/rebuild_and_run_50_passes", "scheduling", ns * 1e-6)
+            .setting("passes", 50)
+            .note("a graph declared anew every frame: declare, validate, carry state over, run"),
+    );
+
     sweep.stage("thesis frame, overlapped vs in series");
     let gpu = SimGpu::new();
     let mut over = thesis::thesis_frame(&gpu, false);

@@ -6,7 +6,7 @@ use crate::pass::{Budget, Lane, PassBuilder, PassDecl};
 use crate::scheduler::Scheduler;
 use std::any::Any;
 use std::cmp::Reverse;
-use std::collections::BinaryHeap;
+use std::collections::{BinaryHeap, HashSet};
 
 /// A frame graph under construction, generic over the frame context `C` that conditions, keys
 /// and bodies see (camera, sun, "what the scene needs").
@@ -118,11 +118,12 @@ impl Topology {
         if g.foreign_output {
             return Err(GraphError::ForeignHandle { pass: "(graph output)".to_owned() });
         }
-        for (i, p) in g.passes.iter().enumerate() {
+        let mut seen = HashSet::with_capacity(n);
+        for p in &g.passes {
             if p.foreign {
                 return Err(GraphError::ForeignHandle { pass: p.name.clone() });
             }
-            if g.passes[..i].iter().any(|q| q.name == p.name) {
+            if !seen.insert(p.name.as_str()) {
                 return Err(GraphError::DuplicatePass { name: p.name.clone() });
             }
             if let Some(a) = p.amortise {
@@ -163,18 +164,15 @@ impl Topology {
         }
         let producer: Vec<Option<u32>> = writers.iter().map(|w| w.first().copied()).collect();
         // Readers: a producer or an input for each read; lanes exchange data through sync.
-        for (r, prod) in producer.iter().enumerate() {
-            if prod.is_none() && !g.external[r] {
-                let readers: Vec<u32> = (0..n as u32)
-                    .filter(|&p| g.passes[p as usize].reads.contains(&(r as u32)))
-                    .collect();
-                if !readers.is_empty() {
-                    return Err(GraphError::MissingProducer {
-                        resource: g.resources[r].clone(),
-                        readers: names(&readers),
-                    });
-                }
-            }
+        let orphan = |r: u32| producer[r as usize].is_none() && !g.external[r as usize];
+        if let Some(r) = g.passes.iter().flat_map(|p| p.reads.iter().copied()).find(|&r| orphan(r))
+        {
+            let readers: Vec<u32> =
+                (0..n as u32).filter(|&p| g.passes[p as usize].reads.contains(&r)).collect();
+            return Err(GraphError::MissingProducer {
+                resource: g.resources[r as usize].clone(),
+                readers: names(&readers),
+            });
         }
         let mut deps = vec![Vec::new(); n];
         let mut consumers = vec![Vec::new(); n];
@@ -214,21 +212,14 @@ fn order<C>(
     consumers: &[Vec<u32>],
 ) -> Result<Vec<u32>, Vec<u32>> {
     let n = deps.len();
-    // Does a pass (transitively) feed a CPU job? Fixpoint over the consumer relation.
+    // A first, plain order finds cycles and lets "feeds a CPU job" be computed in one sweep.
+    let plain = kahn(deps, consumers, |_| 0)?;
     let mut feeds_cpu = vec![false; n];
-    let mut changed = true;
-    while changed {
-        changed = false;
-        for i in 0..n {
-            if !feeds_cpu[i]
-                && consumers[i]
-                    .iter()
-                    .any(|&c| g.passes[c as usize].lane == Lane::Cpu || feeds_cpu[c as usize])
-            {
-                feeds_cpu[i] = true;
-                changed = true;
-            }
-        }
+    for &i in plain.iter().rev() {
+        let i = i as usize;
+        feeds_cpu[i] = consumers[i]
+            .iter()
+            .any(|&c| g.passes[c as usize].lane == Lane::Cpu || feeds_cpu[c as usize]);
     }
     let class = |i: usize| match g.passes[i].lane {
         Lane::Cpu => 0u8,
@@ -236,6 +227,16 @@ fn order<C>(
         Lane::Gpu => 2,
         Lane::Sync => 3,
     };
+    kahn(deps, consumers, class)
+}
+
+/// Kahn's algorithm, taking the ready pass of lowest (class, index) first.
+fn kahn(
+    deps: &[Vec<u32>],
+    consumers: &[Vec<u32>],
+    class: impl Fn(usize) -> u8,
+) -> Result<Vec<u32>, Vec<u32>> {
+    let n = deps.len();
     let mut indeg: Vec<usize> = deps.iter().map(Vec::len).collect();
     let mut ready: BinaryHeap<Reverse<(u8, u32)>> =
         (0..n).filter(|&i| indeg[i] == 0).map(|i| Reverse((class(i), i as u32))).collect();

@@ -1,6 +1,8 @@
 //! Invalidation keys: values whose change makes a pass's output stale, and helpers to quantise
 //! continuous inputs (a sun direction) so that tiny changes do not count.
 
+use std::any::Any;
+
 /// One invalidation key of a pass: evaluated every frame the pass is live, compared with the
 /// value it had when the pass last (re)started.
 pub(crate) trait KeySlot<C>: Send {
@@ -9,6 +11,10 @@ pub(crate) trait KeySlot<C>: Send {
     fn changed(&mut self, ctx: &C) -> bool;
     /// Makes the value last evaluated the committed one.
     fn commit(&mut self);
+    /// Hands the committed value over (to the same key of a rebuilt graph).
+    fn take_committed(&mut self) -> Option<Box<dyn Any + Send>>;
+    /// Takes over a committed value of a previous graph, if it has this key's type.
+    fn adopt(&mut self, value: Box<dyn Any + Send>);
 }
 
 pub(crate) struct Key<K, F> {
@@ -43,6 +49,16 @@ where
     fn commit(&mut self) {
         if let Some(v) = self.pending.take() {
             self.committed = Some(v);
+        }
+    }
+
+    fn take_committed(&mut self) -> Option<Box<dyn Any + Send>> {
+        self.committed.take().map(|v| Box::new(v) as Box<dyn Any + Send>)
+    }
+
+    fn adopt(&mut self, value: Box<dyn Any + Send>) {
+        if let Ok(v) = value.downcast::<K>() {
+            self.committed = Some(*v);
         }
     }
 }

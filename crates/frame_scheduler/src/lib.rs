@@ -23,6 +23,9 @@
 //!   amortised passes within their [`Budget`], runs CPU jobs on worker threads while the
 //!   calling thread submits GPU work, and returns a [`FrameReport`]: a markdown table, JSON
 //!   (serde) and an SVG timeline with a CPU lane and a GPU lane.
+//! * Build the graph once and keep the [`Scheduler`], or declare it anew each frame (when the
+//!   set of passes changes) and hand it to [`Scheduler::rebuild`], which carries values, keys,
+//!   input versions and amortisation progress over by name.
 //! * GPU time comes from a [`GpuTimer`] (the engine's uses wgpu timestamp queries);
 //!   [`SimGpu`] is a simulated GPU queue and timer for tests and demos.
 //!

@@ -9,6 +9,7 @@ use crate::pass::{Amortise, Body, Condition, Lane, Progress};
 use crate::report::{ExecMode, FrameReport, Outcome, PassRecord, Reason, Span};
 use crate::timer::{GpuTimer, NoGpuTimer};
 use std::any::Any;
+use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
@@ -157,6 +158,80 @@ impl<C: 'static> Scheduler<C> {
             records: vec![ExecRecord::default(); n],
             board: crate::exec::Board::new(n),
         }
+    }
+}
+
+impl<C: 'static> Scheduler<C> {
+    /// Replaces the graph with `graph`, keeping what the frames so far established, matched by
+    /// name: resource values and versions; per pass, whether it ran, its committed keys (same
+    /// label and type, in declaration order), the input versions it last saw, its amortisation
+    /// progress (same unit count) and its cost estimate. Rebuilding every frame therefore
+    /// behaves like keeping one scheduler: cached passes stay reused, amortised passes go on.
+    /// On error, `self` is left as it was.
+    pub fn rebuild(&mut self, graph: FrameGraph<C>) -> Result<(), crate::GraphError> {
+        let mut next = graph.build()?;
+        let prev = std::mem::replace(self, next.take_shell());
+        next.adopt(prev);
+        *self = next;
+        Ok(())
+    }
+
+    /// An empty scheduler to stand in for `self` while moving out of it.
+    fn take_shell(&mut self) -> Self {
+        let empty = FrameGraph::<C>::new();
+        let topo = Topology { order: vec![], producer: vec![], deps: vec![], consumers: vec![] };
+        Scheduler::new(empty, topo)
+    }
+
+    fn adopt(&mut self, mut prev: Scheduler<C>) {
+        fn index(names: &[String]) -> HashMap<&str, usize> {
+            names.iter().enumerate().map(|(i, n)| (n.as_str(), i)).collect()
+        }
+        let old_resources = index(&prev.shared.resource_names);
+        let old_passes = index(&prev.shared.pass_names);
+        {
+            let mut old = prev.store.lock();
+            let mut new = self.store.lock();
+            for (r, name) in self.shared.resource_names.iter().enumerate() {
+                if let Some(&o) = old_resources.get(name.as_str()) {
+                    new[r] = old[o].take();
+                    self.versions[r] = prev.versions[o];
+                    self.input_set[r] = prev.input_set[o] && self.shared.external[r];
+                }
+            }
+        }
+        for i in 0..self.meta.len() {
+            let Some(&o) = old_passes.get(self.shared.pass_names[i].as_str()) else {
+                continue;
+            };
+            let old = &prev.state[o];
+            let st = &mut self.state[i];
+            st.ran_once = old.ran_once;
+            st.invalidated = old.invalidated;
+            st.ms_per_unit = old.ms_per_unit;
+            if self.meta[i].amortise.map(|a| a.units) == prev.meta[o].amortise.map(|a| a.units) {
+                st.done = old.done;
+            }
+            for (k, &r) in self.shared.reads[i].iter().enumerate() {
+                let name = &self.shared.resource_names[r as usize];
+                let seen = old_resources.get(name.as_str()).and_then(|&or| {
+                    let pk = prev.shared.reads[o].iter().position(|&pr| pr as usize == or)?;
+                    Some(old.input_versions[pk])
+                });
+                // An input the pass did not read before counts as changed.
+                st.input_versions[k] = seen.unwrap_or(u64::MAX);
+            }
+            let (new_keys, old_keys) = (&mut self.meta[i].keys, &mut prev.meta[o].keys);
+            for (nk, ok) in new_keys.iter_mut().zip(old_keys.iter_mut()) {
+                if nk.label() == ok.label()
+                    && let Some(v) = ok.take_committed()
+                {
+                    nk.adopt(v);
+                }
+            }
+        }
+        self.frame = prev.frame;
+        self.mode = prev.mode;
     }
 }
 

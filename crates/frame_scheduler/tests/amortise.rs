@@ -228,3 +228,48 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn rebuilding_every_frame_keeps_progress_and_values() {
+    let make = || {
+        let mut g = FrameGraph::<Ctx>::new();
+        let vol = g.resource::<Vec<u32>>("volume");
+        g.output(vol);
+        g.gpu_pass("volume")
+            .writes(vol)
+            .key("sun", |c: &Ctx| c.sun)
+            .amortised(5, Budget::Units(2))
+            .run(move |io| {
+                let u = io.unit().unwrap();
+                let mut v = io.take_previous(vol)?.unwrap_or_default();
+                if u.index == 0 {
+                    v.clear();
+                }
+                v.push(u.index);
+                io.put(vol, v)?;
+                Ok(())
+            });
+        (g, vol)
+    };
+    let mut s = make().0.build().unwrap();
+    let mut outcomes = Vec::new();
+    let mut vol = None;
+    for _ in 0..4 {
+        let (g, v) = make();
+        s.rebuild(g).unwrap();
+        vol = Some(v);
+        outcomes.push(s.run_frame(&Ctx { sun: 0 }).unwrap().pass("volume").unwrap().outcome);
+    }
+    let a = |from, to| Outcome::Amortised { from, to, total: 5 };
+    assert_eq!(outcomes, [a(0, 2), a(2, 4), a(4, 5), Outcome::Reused]);
+    assert_eq!(*s.get(vol.unwrap()).unwrap(), vec![0, 1, 2, 3, 4]);
+    assert_eq!(s.frames(), 4);
+
+    // A rebuild that fails leaves the scheduler as it was.
+    let mut bad = FrameGraph::<Ctx>::new();
+    let r = bad.resource::<u32>("loop");
+    bad.gpu_pass("volume").reads(r).writes(r).run(|_| Ok(()));
+    assert!(s.rebuild(bad).is_err());
+    let r = s.run_frame(&Ctx { sun: 0 }).unwrap();
+    assert_eq!(r.pass("volume").unwrap().outcome, Outcome::Reused);
+}

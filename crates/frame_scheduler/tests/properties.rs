@@ -54,7 +54,7 @@ fn specs() -> impl Strategy<Value = Vec<PassSpec>> {
         })
 }
 
-fn case() -> impl Strategy<Value = (Vec<PassSpec>, Vec<usize>, Vec<Ctx>, bool)> {
+fn case() -> impl Strategy<Value = (Vec<PassSpec>, Vec<usize>, Vec<Ctx>, bool, bool)> {
     specs().prop_flat_map(|specs| {
         let n = specs.len();
         let perm = Just((0..n).collect::<Vec<_>>()).prop_shuffle();
@@ -62,7 +62,7 @@ fn case() -> impl Strategy<Value = (Vec<PassSpec>, Vec<usize>, Vec<Ctx>, bool)> 
             (prop::collection::vec(prop::bool::weighted(0.8), n), prop::collection::vec(0u8..2, n))
                 .prop_map(|(enabled, keys)| Ctx { enabled, keys });
         let frames = prop::collection::vec(ctx, 1..6);
-        (Just(specs), perm, frames, any::<bool>())
+        (Just(specs), perm, frames, any::<bool>(), any::<bool>())
     })
 }
 
@@ -73,7 +73,7 @@ struct Log {
     runs: Mutex<Vec<(usize, usize, usize)>>,
 }
 
-fn build(specs: &[PassSpec], perm: &[usize], log: &Arc<Log>) -> (Scheduler<Ctx>, Vec<String>) {
+fn graph(specs: &[PassSpec], perm: &[usize], log: &Arc<Log>) -> FrameGraph<Ctx> {
     let mut g = FrameGraph::<Ctx>::new();
     let res: Vec<Res<u64>> = (0..specs.len()).map(|i| g.resource(format!("r{i}"))).collect();
     let names: Vec<String> = (0..specs.len()).map(|i| format!("p{i}")).collect();
@@ -109,7 +109,12 @@ fn build(specs: &[PassSpec], perm: &[usize], log: &Arc<Log>) -> (Scheduler<Ctx>,
             Ok(())
         });
     }
-    (g.build().expect("a random DAG builds"), names)
+    g
+}
+
+fn build(specs: &[PassSpec], perm: &[usize], log: &Arc<Log>) -> (Scheduler<Ctx>, Vec<String>) {
+    let names = (0..specs.len()).map(|i| format!("p{i}")).collect();
+    (graph(specs, perm, log).build().expect("a random DAG builds"), names)
 }
 
 /// The reference: what each pass must do, frame after frame.
@@ -181,12 +186,19 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(common::cases(64)))]
 
     #[test]
-    fn random_graphs_follow_the_reference_model((specs, perm, frames, serial) in case()) {
+    fn random_graphs_follow_the_reference_model((specs, perm, frames, serial, rebuild) in case()) {
         let log = Arc::new(Log::default());
         let (mut sched, names) = build(&specs, &perm, &log);
         sched.set_mode(if serial { ExecMode::Serial } else { ExecMode::Overlapped });
         let mut model = Model::new(&specs);
-        for ctx in &frames {
+        for (f, ctx) in frames.iter().enumerate() {
+            if rebuild && f > 0 {
+                // A graph built anew each frame (declared in another order) behaves the same.
+                let mut order = perm.clone();
+                order.rotate_left(f % perm.len());
+                sched.rebuild(graph(&specs, &order, &log)).expect("the same DAG builds");
+                prop_assert_eq!(sched.mode(), if serial { ExecMode::Serial } else { ExecMode::Overlapped });
+            }
             log.runs.lock().unwrap().clear();
             let expect = model.frame(&specs, ctx);
             let report = sched.run_frame(ctx).expect("no pass fails");

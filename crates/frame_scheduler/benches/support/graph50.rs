@@ -13,6 +13,10 @@ pub struct Ctx {
 pub const CTX: Ctx = Ctx { sun: [0.3, 0.9, 0.1], sky: true, debug: false };
 
 pub fn graph50() -> Scheduler<Ctx> {
+    graph50_decl().build().expect("the benchmark graph is valid")
+}
+
+pub fn graph50_decl() -> FrameGraph<Ctx> {
     let mut g = FrameGraph::<Ctx>::new();
     let gpu: Vec<Res<u32>> = (0..38).map(|i| g.resource(format!("gpu{i}"))).collect();
     let cpu: Vec<Res<u32>> = (0..8).map(|i| g.resource(format!("cpu{i}"))).collect();
@@ -62,5 +66,5 @@ pub fn graph50() -> Scheduler<Ctx> {
         b.run(|_| Ok(()));
     }
     g.output(gpu[37]);
-    g.build().expect("the benchmark graph is valid")
+    g
 }
