@@ -75,6 +75,8 @@ fn main() -> Result<()> {
     let mut scene = None;
     let mut n_rays = 1_000_000usize;
     let mut json = false;
+    let mut build_only = false;
+    let mut settings = Settings::DEFAULT;
     let mut i = 0;
     while i < args.len() {
         match args[i].as_str() {
@@ -87,8 +89,19 @@ fn main() -> Result<()> {
                 scene = Some(args.get(i).context("--scene needs a name")?.clone());
             }
             "--json" => json = true,
+            "--build-only" => build_only = true,
+            "--settings" => {
+                i += 1;
+                settings = match args.get(i).map(String::as_str) {
+                    Some("low") => Settings::low(),
+                    Some("default") => Settings::DEFAULT,
+                    Some("high") => Settings::high(),
+                    Some("reference") => Settings::reference(),
+                    other => bail!("--settings low|default|high|reference, not {other:?}"),
+                };
+            }
             "-h" | "--help" => {
-                println!("kdbench MESH.obj [--rays N] [--json] | --scene city|sphere|soup|cornell");
+                println!("kdbench MESH.obj [--rays N] [--json] [--build-only] [--settings low|default|high|reference] | --scene city|sphere|soup|cornell");
                 return Ok(());
             }
             a if a.starts_with('-') => bail!("unknown option {a}"),
@@ -112,9 +125,13 @@ fn main() -> Result<()> {
     }
 
     let t = Instant::now();
-    let kd = KdTree::build(&mesh, &Settings::DEFAULT)?;
+    let kd = KdTree::build(&mesh, &settings)?;
     let kd_build = t.elapsed().as_secs_f64() * 1e3;
     let st = kd.stats();
+    if build_only {
+        println!("{name}: {n_tris} triangles, kd-tree build {kd_build:.1} ms, {} refs", st.references);
+        return Ok(());
+    }
     let t = Instant::now();
     let cw = BvhAccel::build(&mesh, BvhKind::Cwbvh, BvhPreset::MediumBuild)?;
     let cw_build = t.elapsed().as_secs_f64() * 1e3;
