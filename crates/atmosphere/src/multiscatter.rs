@@ -164,6 +164,29 @@ impl MultipleScatteringLut {
         a.lerp(b, ty)
     }
 
+    /// The radius-dependent part of [`MultipleScatteringLut::sample`]: `(row offset, ty)`.
+    #[inline]
+    pub(crate) fn row(&self, r: f32) -> (usize, f32) {
+        let m = (self.size - 1) as f32;
+        let fy = (((r - self.bottom) / self.thickness).max(0.0).sqrt() * m).clamp(0.0, m);
+        let y0 = (fy as u32).min(self.size - 2);
+        (y0 as usize * self.size as usize, fy - y0 as f32)
+    }
+
+    /// [`MultipleScatteringLut::sample`] at a precomputed row.
+    #[inline]
+    pub(crate) fn sample_row(&self, row: (usize, f32), mu_s: f32) -> Vec3 {
+        let m = (self.size - 1) as f32;
+        let fx = ((0.5 + 0.5 * mu_s) * m).clamp(0.0, m);
+        let x0 = (fx as u32).min(self.size - 2);
+        let tx = fx - x0 as f32;
+        let i = row.0 + x0 as usize;
+        let w = self.size as usize;
+        let a = self.data[i].lerp(self.data[i + 1], tx);
+        let b = self.data[i + w].lerp(self.data[i + w + 1], tx);
+        a.lerp(b, row.1)
+    }
+
     /// Every texel finite and non-negative.
     pub fn validate(&self) -> Result<(), AtmosphereError> {
         match self.data.iter().position(|t| !t.is_finite() || t.min_element() < 0.0) {

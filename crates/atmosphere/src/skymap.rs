@@ -55,16 +55,17 @@ impl SkyMapSettings {
     pub const fn low() -> Self {
         Self {
             size: 128,
-            method: SkyMapMethod::SkyViewLut { width: 16, height: 32 },
+            method: SkyMapMethod::SkyViewLut { width: 8, height: 24 },
             altitude_km: 0.0,
             dirty_angle: 0.01,
         }
     }
-    /// 256 x 256, sky-view table 32 x 64, camera on the ground, regenerated after 0.25
+    /// 256 x 256, sky-view table 16 x 32 (as accurate as 64 x 128 once the phase functions
+    /// are factored out: see the sweep), camera on the ground, regenerated after 0.25
     /// degree of sun motion (about a minute of time).
     pub const DEFAULT: Self = Self {
         size: 256,
-        method: SkyMapMethod::SkyViewLut { width: 32, height: 64 },
+        method: SkyMapMethod::SkyViewLut { width: 16, height: 32 },
         altitude_km: 0.0,
         dirty_angle: 0.0044,
     };
@@ -155,6 +156,44 @@ pub fn direction_to_texel(size: u32, dir: Vec3) -> Vec2 {
     (p + 1.0) * 0.5 * size as f32 - 0.5
 }
 
+/// Precomputed geometry of one texel that a sky map reads (inside the disk or within the
+/// bilinear margin).
+#[derive(Clone, Copy, Debug)]
+struct TexelGeom {
+    /// Column.
+    i: u32,
+    /// Direction (texels in the margin: the horizon in their radial direction).
+    dir: Vec3,
+    /// Unit horizontal direction (0 at the zenith).
+    h: Vec2,
+    /// Sky-view row coordinate `sqrt(dir.y)`.
+    v: f32,
+}
+
+fn texel_geometry(n: u32) -> Vec<Vec<TexelGeom>> {
+    // Texels further than two texels outside the disk are never read by bilinear lookups.
+    let margin = 1.0 + 4.0 / n as f32;
+    (0..n)
+        .map(|j| {
+            (0..n)
+                .filter_map(|i| {
+                    let p = texel_disk(n, i, j);
+                    let l = p.length();
+                    let dir = if l > margin {
+                        return None;
+                    } else if l > 1.0 {
+                        disk_to_direction(p / l)
+                    } else {
+                        disk_to_direction(p)
+                    };
+                    let h = Vec2::new(dir.x, dir.z).try_normalize().unwrap_or(Vec2::ZERO);
+                    Some(TexelGeom { i, dir, h, v: dir.y.max(0.0).sqrt() })
+                })
+                .collect()
+        })
+        .collect()
+}
+
 /// A paraboloid-mapped sky map of the upper hemisphere.
 #[derive(Clone, Debug)]
 pub struct SkyMap {
@@ -162,53 +201,75 @@ pub struct SkyMap {
     texels: Vec<Vec3>,
     sun: Vec3,
     settings: SkyMapSettings,
+    rows: Vec<Vec<TexelGeom>>,
 }
 
 impl SkyMap {
     /// Computes the map for the sun towards `sun` (world frame, need not be normalised).
     pub fn new(sky: &Sky, settings: SkyMapSettings, sun: Vec3) -> Result<Self, AtmosphereError> {
         settings.validate()?;
+        let n = settings.size;
+        let mut map = Self {
+            size: n,
+            texels: vec![Vec3::ZERO; (n * n) as usize],
+            sun: Vec3::Y,
+            settings,
+            rows: texel_geometry(n),
+        };
+        map.compute(sky, sun)?;
+        Ok(map)
+    }
+
+    /// Recomputes every texel for the sun towards `sun` (ignores the dirty rule).
+    pub fn compute(&mut self, sky: &Sky, sun: Vec3) -> Result<(), AtmosphereError> {
         let sun = sun.try_normalize().filter(|s| s.is_finite()).ok_or(
             AtmosphereError::InvalidVector { name: "sun", reason: "must be finite and non-zero" },
         )?;
-        let n = settings.size;
-        let mut texels = vec![Vec3::ZERO; (n * n) as usize];
-        // Texels further than two texels outside the disk are never read by bilinear lookups.
-        let margin = 1.0 + 4.0 / n as f32;
-        let direction = |i: u32, j: u32| {
-            let p = texel_disk(n, i, j);
-            let l = p.length();
-            if l > margin {
-                None
-            } else if l > 1.0 {
-                Some(disk_to_direction(p / l))
-            } else {
-                Some(disk_to_direction(p))
-            }
-        };
+        let settings = self.settings;
         match settings.method {
             SkyMapMethod::PerTexel => {
-                texels.par_chunks_mut(n as usize).enumerate().for_each(|(j, row)| {
-                    for (i, t) in row.iter_mut().enumerate() {
-                        if let Some(d) = direction(i as u32, j as u32) {
-                            *t = sky.radiance(settings.altitude_km, d, sun);
-                        }
+                let rows = &self.rows;
+                self.texels.par_chunks_mut(self.size as usize).zip(rows).for_each(|(row, geo)| {
+                    for g in geo {
+                        row[g.i as usize] = sky.radiance(settings.altitude_km, g.dir, sun);
                     }
                 });
+                self.sun = sun;
             }
             SkyMapMethod::SkyViewLut { width, height } => {
                 let lut = SkyViewLut::new(sky, settings.altitude_km, sun, width, height)?;
-                let atm = sky.atmosphere();
-                texels.par_chunks_mut(n as usize).enumerate().for_each(|(j, row)| {
-                    for (i, t) in row.iter_mut().enumerate() {
-                        if let Some(d) = direction(i as u32, j as u32) {
-                            *t = lut.integrals(d).radiance(atm, d.dot(sun));
-                        }
-                    }
-                });
+                self.fill_from_sky_view(sky, &lut);
             }
         }
-        Ok(Self { size: n, texels, sun, settings })
+        Ok(())
+    }
+
+    /// Fills the texels from a sky-view table computed for this map's altitude (the sun is
+    /// the table's).
+    pub fn fill_from_sky_view(&mut self, sky: &Sky, lut: &SkyViewLut) {
+        let atm = sky.atmosphere();
+        let sun = lut.sun();
+        let (shx, shz) = lut.sun_horizontal();
+        let sh = Vec2::new(shx, shz);
+        let e = atm.sun_irradiance;
+        let g = atm.mie_g;
+        // Cornette-Shanks as k (1 + c^2) / (a - b c)^{3/2}.
+        let k = 3.0 / (8.0 * std::f32::consts::PI) * (1.0 - g * g) / (2.0 + g * g);
+        let (a, b) = (1.0 + g * g, 2.0 * g);
+        let kr = 3.0 / (16.0 * std::f32::consts::PI);
+        let rows = &self.rows;
+        self.texels.par_chunks_mut(self.size as usize).zip(rows).for_each(|(row, geo)| {
+            for t in geo {
+                let cos_phi = if t.h == Vec2::ZERO { 1.0 } else { t.h.dot(sh) };
+                let [ir, im, is] = lut.lookup(cos_phi, t.v);
+                let c = t.dir.dot(sun);
+                let c2 = 1.0 + c * c;
+                let den = (a - b * c).max(1e-12);
+                let pm = k * c2 / (den * den.sqrt());
+                row[t.i as usize] = e * (ir * (kr * c2) + im * pm + is);
+            }
+        });
+        self.sun = sun;
     }
 
     /// Wraps texels computed elsewhere (the GPU path); checks the count and values.
@@ -222,7 +283,13 @@ impl SkyMap {
             name: "sun",
             reason: "must be finite and non-zero",
         })?;
-        let map = Self { size: settings.size, texels, sun, settings };
+        let map = Self {
+            size: settings.size,
+            texels,
+            sun,
+            settings,
+            rows: texel_geometry(settings.size),
+        };
         map.validate()?;
         Ok(map)
     }
@@ -259,7 +326,7 @@ impl SkyMap {
         if !self.needs_update(sun) {
             return Ok(false);
         }
-        *self = Self::new(sky, self.settings, sun)?;
+        self.compute(sky, sun)?;
         Ok(true)
     }
 

@@ -15,7 +15,8 @@
 
 use crate::geometry::atmosphere_segment;
 use crate::multiscatter::segment_weight;
-use crate::{AtmosphereError, ScatteringIntegrals, Sky};
+use crate::transmittance::TransmittanceRow;
+use crate::{AtmosphereError, LightTransmittance, ScatteringIntegrals, Sky};
 use glam::Vec3;
 use rayon::prelude::*;
 
@@ -35,6 +36,11 @@ struct RowSample {
     a: f32,
     b: f32,
     r: f32,
+    t_row: TransmittanceRow,
+    ms_row: (usize, f32),
+    /// Sun visibility smoothstep: `x = (mu_s - cos_h + w) * inv_2w`.
+    cos_h: f32,
+    w_vis: f32,
     w_r: Vec3,
     w_m: Vec3,
     w_s: Vec3,
@@ -76,6 +82,8 @@ impl SkyViewLut {
         let r0 = atm.radius_at_altitude(altitude_km);
         let n = sky.settings().view_samples;
         let ms = sky.multiple_scattering_lut();
+        let tlut = sky.transmittance_lut();
+        let lut_light = sky.settings().light == LightTransmittance::Lut;
         let data: Vec<[Vec3; 3]> = (0..height)
             .into_par_iter()
             .flat_map_iter(|j| {
@@ -101,10 +109,15 @@ impl SkyViewLut {
                         let med = atm.medium_at_radius(r);
                         let seg = (-med.extinction * dt).exp();
                         let w = segment_weight(trans, seg, med.extinction, dt);
+                        let sin_h = (atm.bottom_radius_km / r).min(1.0);
                         samples.push(RowSample {
                             a: px / r,
                             b: py / r,
                             r,
+                            t_row: tlut.row(r),
+                            ms_row: ms.map_or((0, 0.0), |m| m.row(r)),
+                            cos_h: -(1.0 - sin_h * sin_h).max(0.0).sqrt(),
+                            w_vis: sin_h * atm.sun_angular_radius,
                             w_r: w * med.rayleigh_scattering,
                             w_m: w * med.mie_scattering,
                             w_s: w * med.scattering(),
@@ -117,11 +130,23 @@ impl SkyViewLut {
                     let (mut ir, mut im, mut is) = (Vec3::ZERO, Vec3::ZERO, Vec3::ZERO);
                     for s in &samples {
                         let mu_s = s.a * cos_phi * sh + s.b * sy;
-                        let t_sun = sky.sun_transmittance_at(s.r, mu_s);
+                        let t_sun = if lut_light {
+                            // sun_visible_fraction and TransmittanceLut::to_top, with the
+                            // radius-only parts precomputed per row.
+                            let x = ((mu_s - s.cos_h + s.w_vis) / (2.0 * s.w_vis)).clamp(0.0, 1.0);
+                            let vis = x * x * (3.0 - 2.0 * x);
+                            if vis > 0.0 {
+                                tlut.to_top_row(&s.t_row, mu_s) * vis
+                            } else {
+                                Vec3::ZERO
+                            }
+                        } else {
+                            sky.sun_transmittance_at(s.r, mu_s)
+                        };
                         ir += s.w_r * t_sun;
                         im += s.w_m * t_sun;
                         if let Some(ms) = ms {
-                            is += s.w_s * ms.sample(s.r, mu_s);
+                            is += s.w_s * ms.sample_row(s.ms_row, mu_s);
                         }
                     }
                     [ir, im, is]
@@ -139,6 +164,30 @@ impl SkyViewLut {
     }
     pub fn sun(&self) -> Vec3 {
         self.sun
+    }
+
+    /// Unit horizontal direction `(x, z)` of the sun (arbitrary when it is at the zenith).
+    pub fn sun_horizontal(&self) -> (f32, f32) {
+        self.sun_h
+    }
+
+    /// Bilinear lookup at the relative-azimuth cosine `cos_phi` and the row coordinate
+    /// `v = sqrt(view.y)`: `[rayleigh, mie, multiple]`.
+    #[inline]
+    pub fn lookup(&self, cos_phi: f32, v: f32) -> [Vec3; 3] {
+        let fx = (0.5 - 0.5 * cos_phi).clamp(0.0, 1.0) * (self.width - 1) as f32;
+        let fy = v.clamp(0.0, 1.0) * (self.height - 1) as f32;
+        let x0 = (fx as u32).min(self.width - 2);
+        let y0 = (fy as u32).min(self.height - 2);
+        let (tx, ty) = (fx - x0 as f32, fy - y0 as f32);
+        let w = self.width as usize;
+        let i = y0 as usize * w + x0 as usize;
+        let (a, b, c, d) =
+            (&self.data[i], &self.data[i + 1], &self.data[i + w], &self.data[i + w + 1]);
+        let (w00, w10, w01, w11) =
+            ((1.0 - tx) * (1.0 - ty), tx * (1.0 - ty), (1.0 - tx) * ty, tx * ty);
+        let mix = |k: usize| a[k] * w00 + b[k] * w10 + c[k] * w01 + d[k] * w11;
+        [mix(0), mix(1), mix(2)]
     }
 
     /// Bilinear lookup of the integrals for a unit view direction (directions below the

@@ -232,6 +232,41 @@ impl TransmittanceLut {
         a.lerp(b, ty)
     }
 
+    /// Everything of a lookup that depends on `r` only (for many lookups at one radius).
+    #[inline]
+    pub(crate) fn row(&self, r: f32) -> TransmittanceRow {
+        let r = r.clamp(self.bottom, self.top);
+        let rho = (r * r - self.bottom * self.bottom).max(0.0).sqrt();
+        let d_min = self.top - r;
+        let d_max = rho + self.h;
+        let inv = if d_max > d_min { 1.0 / (d_max - d_min) } else { 0.0 };
+        let fy = rho / self.h * (self.height - 1) as f32;
+        let y0 = (fy as u32).min(self.height - 2);
+        TransmittanceRow {
+            r,
+            c: self.top * self.top - r * r,
+            d_min,
+            inv,
+            base: y0 as usize * self.width as usize,
+            ty: fy - y0 as f32,
+        }
+    }
+
+    /// [`TransmittanceLut::to_top`] at the radius of `row`.
+    #[inline]
+    pub(crate) fn to_top_row(&self, row: &TransmittanceRow, mu: f32) -> Vec3 {
+        let d = (-row.r * mu + (row.r * row.r * mu * mu + row.c).max(0.0).sqrt()).max(0.0);
+        let x_mu = ((d - row.d_min) * row.inv).clamp(0.0, 1.0);
+        let fx = x_mu * (self.width - 1) as f32;
+        let x0 = (fx as u32).min(self.width - 2);
+        let tx = fx - x0 as f32;
+        let i = row.base + x0 as usize;
+        let w = self.width as usize;
+        let a = self.data[i].lerp(self.data[i + 1], tx);
+        let b = self.data[i + w].lerp(self.data[i + w + 1], tx);
+        a.lerp(b, row.ty)
+    }
+
     /// Transmittance over the first `d` km of the ray from (`r`, `mu`), from the table:
     /// `T(r, mu) / T(r_d, mu_d)`, or for rays that hit the ground the same ratio for the
     /// reversed ray (Bruneton's trick, which keeps both lookups above the horizon).
@@ -299,4 +334,16 @@ mod tests {
             assert!((a - e).abs().max_element() < 3e-3, "h {h} mu {mu}: {a} vs {e}");
         }
     }
+}
+
+/// The `r`-dependent part of a transmittance lookup.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct TransmittanceRow {
+    r: f32,
+    /// `top^2 - r^2`.
+    c: f32,
+    d_min: f32,
+    inv: f32,
+    base: usize,
+    ty: f32,
 }
