@@ -186,3 +186,14 @@ fn a_failing_pass_aborts_the_rest_of_the_frame_only() {
     let r = s.run_frame(&false).unwrap();
     assert_eq!(r.pass("after").unwrap().outcome, Outcome::Ran);
 }
+
+#[test]
+fn schedulers_and_reports_move_between_threads() {
+    fn send<T: Send>() {}
+    fn sync<T: Sync>() {}
+    send::<frame_scheduler::Scheduler<Ctx>>();
+    send::<FrameReport>();
+    send::<frame_scheduler::SimGpu>();
+    sync::<frame_scheduler::SimGpu>();
+    send::<FrameError>();
+}
