@@ -11,6 +11,17 @@ use kdtree_tracer::{
 };
 use rayon::prelude::*;
 
+/// CPU seconds (user + system) this process has used so far, from /proc/self/stat (Linux;
+/// `None` elsewhere). On a machine shared with other jobs, wall time overstates the cost of a
+/// parallel step; CPU time divided by the thread count bounds what it needs on idle cores.
+fn cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    let rest = &stat[stat.rfind(')')? + 2..];
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    let ticks: f64 = f.get(11)?.parse::<f64>().ok()? + f.get(12)?.parse::<f64>().ok()?;
+    Some(ticks / 100.0)
+}
+
 fn pool(threads: usize) -> rayon::ThreadPool {
     rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("thread pool")
 }
@@ -115,13 +126,16 @@ fn main() -> std::io::Result<()> {
 
     sweep.stage("reflections 800x450");
     let filled = screen.iter().filter(|r| r.is_some()).count();
-    let (ms, _) = pool(2).install(|| {
-        time_ms(sweep.reps(10), || trace_tiles(&kd, w, h, &screen, f32::INFINITY, DEFAULT_TILE))
-    });
+    let reps = sweep.reps(10);
+    let cpu0 = cpu_seconds();
+    let (ms, _) = pool(2)
+        .install(|| time_ms(reps, || trace_tiles(&kd, w, h, &screen, f32::INFINITY, DEFAULT_TILE)));
+    let cpu_ms = cpu_seconds().zip(cpu0).map_or(-1.0, |(b, a)| (b - a) * 1e3 / (reps + 1) as f64);
     sweep.entry(
         Entry::new("kdtree_tracer/reflections_800x450_2t", "kdtree_tiles_40", ms)
             .setting("rays", filled)
             .setting("tile", DEFAULT_TILE)
+            .setting("cpu_ms_per_buffer", cpu_ms)
             .setting("triangles", city.triangle_count())
             .threads(2)
             .note("whole buffer, incoherent hemisphere rays from every visible pixel (thesis worst case: 78 ms on 4 cores)"),
@@ -132,6 +146,7 @@ fn main() -> std::io::Result<()> {
     let reps = if quick { 1 } else { 5 };
     let mut times = Vec::new();
     let mut stats = None;
+    let cpu0 = cpu_seconds();
     pool(2).install(|| {
         for _ in 0..reps {
             let t = Instant::now();
@@ -140,6 +155,7 @@ fn main() -> std::io::Result<()> {
             stats = Some(tree.stats());
         }
     });
+    let build_cpu_ms = cpu_seconds().zip(cpu0).map_or(-1.0, |(b, a)| (b - a) * 1e3 / reps as f64);
     times.sort_by(f64::total_cmp);
     let st = stats.expect("built");
     sweep.entry(
@@ -147,6 +163,7 @@ fn main() -> std::io::Result<()> {
             .setting("triangles", sphere.triangle_count())
             .setting("bytes_per_triangle", st.bytes_per_triangle)
             .setting("references", st.references)
+            .setting("cpu_ms_per_build", build_cpu_ms)
             .threads(2)
             .note("UV sphere, Settings::DEFAULT, one build"),
     );

@@ -101,7 +101,9 @@ fn main() -> Result<()> {
                 };
             }
             "-h" | "--help" => {
-                println!("kdbench MESH.obj [--rays N] [--json] [--build-only] [--settings low|default|high|reference] | --scene city|sphere|soup|cornell");
+                println!(
+                    "kdbench MESH.obj [--rays N] [--json] [--build-only] [--settings low|default|high|reference] | --scene city|sphere|soup|cornell"
+                );
                 return Ok(());
             }
             a if a.starts_with('-') => bail!("unknown option {a}"),
@@ -129,7 +131,10 @@ fn main() -> Result<()> {
     let kd_build = t.elapsed().as_secs_f64() * 1e3;
     let st = kd.stats();
     if build_only {
-        println!("{name}: {n_tris} triangles, kd-tree build {kd_build:.1} ms, {} refs", st.references);
+        println!(
+            "{name}: {n_tris} triangles, kd-tree build {kd_build:.1} ms, {} refs",
+            st.references
+        );
         return Ok(());
     }
     let t = Instant::now();
