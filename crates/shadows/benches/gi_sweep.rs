@@ -21,12 +21,24 @@ fn to64(v: &[f32]) -> Vec<f64> {
     v.iter().map(|&x| x as f64).collect()
 }
 
-/// ns per shaded point on one thread, and the visibilities.
-fn shade(sweep: &Sweep, recv: &[Receiver], f: impl Fn(&Receiver) -> f32) -> (f64, Vec<f32>) {
-    let n = recv.len();
-    let calls = if sweep.quick() { 100_000 } else { 400_000 };
-    let ns = time_ns_per_call(sweep.reps(25), calls, |i| f(&recv[(i * 7919) % n]));
-    (ns, recv.iter().map(f).collect())
+/// Receivers per side of the timing grid: 512 x 512 over the region (about 2.7 texels apart
+/// at 2048, the density of a screen-space pass), visited in row order. A power of two so the
+/// harness indexes with a mask, not a division.
+const TIMING_GRID: u32 = 512;
+
+/// ns per shaded point on one thread over `timing` (row order), and the visibilities over
+/// `error` (the grid compared with the reference).
+fn shade(
+    sweep: &Sweep,
+    timing: &[Receiver],
+    error: &[Receiver],
+    f: impl Fn(&Receiver) -> f32,
+) -> (f64, Vec<f32>) {
+    debug_assert!(timing.len().is_power_of_two());
+    let mask = timing.len() - 1;
+    let calls = if sweep.quick() { 200_000 } else { 1_000_000 };
+    let ns = time_ns_per_call(sweep.reps(25), calls, |i| f(&timing[i & mask]));
+    (ns, error.iter().map(f).collect())
 }
 
 fn main() {
@@ -46,21 +58,38 @@ fn main() {
             .note("the truth itself: Monte Carlo over the sun disk, analytic ray-box; whole image"),
     );
     let points = scene.receivers(grid);
+    let timing_points = scene.receivers(TIMING_GRID);
 
     // Headline: PCSS 16 + 16 at 2048, per shaded point and its error.
     sweep.stage("pcss 16+16");
     let view = scene.shadow_view(2048);
     let map = scene.depth_map(&view);
     let recv = scene.map_receivers(&view, &points);
+    let timing = scene.map_receivers(&view, &timing_points);
     let pcss = Pcss::directional(&view, scene.sun_angular_radius, &PcssSettings::DEFAULT).unwrap();
-    let (ns, vis) = shade(&sweep, &recv, |r| pcss.pcss(&map, r));
+    let (ns, vis) = shade(&sweep, &timing, &recv, |r| pcss.pcss(&map, r));
+    // The same filter over the sparse error grid (one receiver per ~14 texels): every point
+    // touches cold cache lines, the worst case for a CPU shadow lookup.
+    let sparse_mask = recv.len().next_power_of_two() / 2 - 1;
+    let sparse_ns = time_ns_per_call(sweep.reps(25), if quick { 100_000 } else { 400_000 }, |i| {
+        pcss.pcss(&map, &recv[i & sparse_mask])
+    });
     let err = rel_rms(&to64(&vis), &truth64);
     sweep.entry(
         Entry::new("shadows/pcss_16_16_cpu", "pcss", ns * 1e-6)
             .setting("blocker_taps", 16)
             .setting("pcf_taps", 16)
             .setting("resolution", 2048)
-            .note(format!("time per shaded point on one core: {ns:.1} ns (target < 15 ns), plane_box receivers")),
+            .note(format!(
+                "time per shaded point on one core: {ns:.1} ns (target < 15 ns); {TIMING_GRID}x{TIMING_GRID} plane_box receivers in row order (~2.7 texels apart); scattered receivers: {sparse_ns:.1} ns"
+            )),
+    );
+    sweep.entry(
+        Entry::new("shadows/pcss_16_16_cpu_scattered", "pcss", sparse_ns * 1e-6)
+            .setting("blocker_taps", 16)
+            .setting("pcf_taps", 16)
+            .setting("resolution", 2048)
+            .note("receivers ~14 texels apart: cache/TLB-miss bound"),
     );
     sweep.entry(
         Entry::new("shadows/pcss_16_16_plane_box", "pcss", ns * 1e-6)
@@ -78,7 +107,7 @@ fn main() {
         for &n in tap_counts {
             let s = PcssSettings { blocker_taps: n, pcf_taps: n, pattern, ..PcssSettings::DEFAULT };
             let p = Pcss::directional(&view, scene.sun_angular_radius, &s).unwrap();
-            let (ns, vis) = shade(&sweep, &recv, |r| p.pcss(&map, r));
+            let (ns, vis) = shade(&sweep, &timing, &recv, |r| p.pcss(&map, r));
             let pat = format!("{pattern:?}").to_lowercase();
             sweep.entry(
                 Entry::new(format!("shadows/pcss_{n}_{n}_{pat}_2048"), "pcss", ns * 1e-6)
@@ -98,6 +127,7 @@ fn main() {
         let view = scene.shadow_view(res);
         let map = scene.depth_map(&view);
         let recv = scene.map_receivers(&view, &points);
+        let timing = scene.map_receivers(&view, &timing_points);
         let p = Pcss::directional(&view, scene.sun_angular_radius, &PcssSettings::DEFAULT).unwrap();
         let runs: [(&str, Filter); 3] = [
             ("hard", Box::new(|r| p.hard(&map, r))),
@@ -105,7 +135,7 @@ fn main() {
             ("pcss", Box::new(|r| p.pcss(&map, r))),
         ];
         for (tech, f) in runs {
-            let (ns, vis) = shade(&sweep, &recv, f);
+            let (ns, vis) = shade(&sweep, &timing, &recv, f);
             sweep.entry(
                 Entry::new(format!("shadows/{tech}_{res}_plane_box"), tech, ns * 1e-6)
                     .setting("resolution", res)
@@ -169,18 +199,16 @@ fn main() {
                     .unwrap()
             })
             .collect();
-        let recv: Vec<(usize, Receiver)> = points
-            .iter()
-            .map(|p| {
-                let depth = (p.as_dvec3() - cam.position).dot(cam.forward());
-                let k = csm.select_by_depth(depth.max(cam.near as f64)).unwrap_or(n as usize - 1);
-                let r = scene.map_receivers(&csm.cascades[k].view, &[*p])[0];
-                (k, r)
-            })
-            .collect();
-        let nrec = recv.len();
-        let ns = time_ns_per_call(sweep.reps(25), if quick { 100_000 } else { 400_000 }, |i| {
-            let (k, r) = &recv[(i * 7919) % nrec];
+        let select = |p: &Vec3| {
+            let depth = (p.as_dvec3() - cam.position).dot(cam.forward());
+            let k = csm.select_by_depth(depth.max(cam.near as f64)).unwrap_or(n as usize - 1);
+            (k, scene.map_receivers(&csm.cascades[k].view, &[*p])[0])
+        };
+        let recv: Vec<(usize, Receiver)> = points.iter().map(select).collect();
+        let timing: Vec<(usize, Receiver)> = timing_points.iter().map(select).collect();
+        let mask = timing.len() - 1;
+        let ns = time_ns_per_call(sweep.reps(25), if quick { 200_000 } else { 1_000_000 }, |i| {
+            let (k, r) = &timing[i & mask];
             filters[*k].pcss(&maps[*k], r)
         });
         let vis: Vec<f32> = recv.iter().map(|(k, r)| filters[*k].pcss(&maps[*k], r)).collect();
