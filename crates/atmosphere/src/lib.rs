@@ -36,8 +36,30 @@
 //! # Ok::<(), atmosphere::AtmosphereError>(())
 //! ```
 //!
+//! # How the sky map is made fast
+//!
+//! The thesis integrated every texel on the GPU. Here the default [`SkyMap`] regenerates in
+//! two steps: a 16 x 32 [`SkyViewLut`] of the three *phase-free* integrals (Rayleigh, Mie,
+//! multiple scattering) over relative azimuth and view height, whose rows share their
+//! densities and view transmittance so that only the sun-dependent lookups run per grid
+//! point; then per texel one bilinear lookup and the exact Rayleigh and Cornette-Shanks
+//! phase functions (the sharp Mie forward peak is never interpolated). The texel geometry
+//! is cached when the map is created, so [`SkyMap::update`] only pays for those two steps.
+//!
+//! # Accuracy and cost (measured by `benches/gi_sweep.rs`)
+//!
+//! Against the reference (`SkySettings::reference()`: 512 view samples, the sun-ray
+//! transmittance integrated with 256 samples at every view sample, a 64 x 64 multiple
+//! scattering table), relative RMS over the map's texels: default 256 x 256 map about
+//! 2.4e-3 with the sun at 30 degrees and 4.5e-3 at 5 degrees; single scattering alone (the
+//! thesis's model) misses about 38% of the sky's radiance. Regenerating the default map
+//! took about 1.3 ms on a 2-core machine shared with other jobs (noisy); one
+//! [`Sky::sun_colour`] call about 0.2 us. The largest remaining error is the view-sample
+//! count (24 by default; 32 gives 1.6e-3 and costs little more).
+//!
 //! The GPU path (feature `gpu`, module `gpu`) fills the same sky map with a WGSL compute
-//! shader (`shaders/atmosphere/skymap.wgsl`).
+//! shader (`shaders/atmosphere/skymap.wgsl`), one view-ray integration per texel, and
+//! agrees with the CPU's per-texel map to a relative RMS below 1e-3 (tested).
 
 mod error;
 pub mod geometry;
