@@ -167,8 +167,8 @@ impl Sweep {
     pub fn entry(&mut self, mut entry: Entry) {
         entry.crate_name = self.crate_name.clone();
         self.progress.inc(1);
-        self.progress.println(format!(
-            "  {:<48} {:>12.4} ms  {}",
+        self.say(format!(
+            "  {:<48} {:>12.6} ms  {}",
             entry.name,
             entry.time_ms,
             entry.error.as_ref().map_or(String::new(), |e| format!("{} {:.3e}", e.metric, e.value))
@@ -178,11 +178,20 @@ impl Sweep {
 
     pub fn comparison(&mut self, c: Comparison) {
         self.progress.inc(1);
-        self.progress.println(format!(
+        self.say(format!(
             "  {:<48} ours {:.3} vs theirs {:.3} {} (ratio {:.2})",
             c.name, c.ours, c.theirs, c.unit, c.ratio
         ));
         self.part.comparisons.push(c);
+    }
+
+    /// A line above the progress bar, or on stderr when there is no terminal to draw it on.
+    fn say(&self, line: String) {
+        if self.progress.is_hidden() {
+            eprintln!("{line}");
+        } else {
+            self.progress.println(line);
+        }
     }
 
     /// Writes the part to [`ENV_OUT`] (or prints it as JSON when unset).

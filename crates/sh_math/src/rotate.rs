@@ -9,7 +9,7 @@
 //!   generic directions `d_k` and `A[k][m] = Y(l,m)(R^T d_k)` (exact: the rotated band lies
 //!   in the same `(2l+1)`-dimensional space, so `2l+1` point values determine it).
 
-use crate::basis::eval_basis_recurrence;
+use crate::basis::{eval_basis_recurrence, eval_unit_into};
 use crate::coeffs::{Sh, ShRgb};
 use crate::points::random_sphere;
 use glam::{DMat3, Mat3, Quat, Vec3};
@@ -120,13 +120,25 @@ fn band_samples(l: usize) -> &'static BandSamples {
     })
 }
 
-/// `B^-1 A` for band `l` (3 or 4) and rotation `r`.
+/// `B^-1 A` for band `l` (3 or 4) and rotation `r`. `B^-1` is computed once in f64 from the
+/// recurrence; `A` per rotation from the closed-form polynomials (fast, f32-accurate).
 fn high_band<const N: usize>(l: usize, r: Mat3) -> [[f32; N]; N] {
     let s = band_samples(l);
     let rt = r.transpose();
-    let a: Vec<Vec<f64>> = s.dirs.iter().map(|d| band_values(l, (rt * *d).normalize())).collect();
+    let a: Vec<[f32; 25]> = s
+        .dirs
+        .iter()
+        .map(|d| {
+            let mut all = [0.0f32; 25];
+            eval_unit_into((rt * *d).normalize(), &mut all);
+            all
+        })
+        .collect();
+    let first = l * l;
     std::array::from_fn(|i| {
-        std::array::from_fn(|j| (0..N).map(|k| s.inverse[i][k] * a[k][j]).sum::<f64>() as f32)
+        std::array::from_fn(|j| {
+            (0..N).map(|k| s.inverse[i][k] * a[k][first + j] as f64).sum::<f64>() as f32
+        })
     })
 }
 
