@@ -8,6 +8,7 @@
 //! render can later replace it.
 
 use crate::depth_map::DepthMap;
+use crate::error::ShadowError;
 use crate::light_space::{LightBasis, ShadowView};
 use crate::pcss::Receiver;
 use crate::raster::rasterize;
@@ -35,6 +36,40 @@ pub struct PlaneBox {
 }
 
 impl PlaneBox {
+    /// Checks the configuration: finite fields, a non-zero sun direction, a non-empty box
+    /// and region, a non-negative sun radius. The other methods assume a valid
+    /// configuration and panic (with this check's message) on an invalid one.
+    pub fn validate(&self) -> Result<(), ShadowError> {
+        let finite = self.plane_half.is_finite()
+            && self.box_min.is_finite()
+            && self.box_max.is_finite()
+            && self.sun_direction.is_finite()
+            && self.sun_angular_radius.is_finite()
+            && self.region_min.is_finite()
+            && self.region_max.is_finite();
+        if !finite {
+            return Err(ShadowError::NonFinite("plane_box configuration"));
+        }
+        LightBasis::new(self.sun_direction)?;
+        if self.box_min.cmpge(self.box_max).any()
+            || self.region_min.cmpge(self.region_max).any()
+            || self.sun_angular_radius < 0.0
+            || self.plane_half <= 0.0
+        {
+            return Err(ShadowError::Invariant(
+                "plane_box: empty box/region or negative sizes".into(),
+            ));
+        }
+        Ok(())
+    }
+
+    fn checked(&self) -> &Self {
+        if let Err(e) = self.validate() {
+            panic!("invalid PlaneBox: {e}");
+        }
+        self
+    }
+
     /// A 1 x 3 x 1 m box on a 40 x 40 m plane, sun 35 degrees high; the 7 x 7 m receiver
     /// region holds the whole shadow (about 4.3 m long).
     pub const DEFAULT: Self = Self {
@@ -91,10 +126,11 @@ impl PlaneBox {
     }
 
     /// A snapped orthographic view of `resolution` texels covering the region and the box.
+    ///
+    /// # Panics
+    /// On an invalid configuration (see [`PlaneBox::validate`]).
     pub fn shadow_view(&self, resolution: u32) -> ShadowView {
-        let basis = LightBasis::new(self.sun_direction).unwrap_or_else(|_| {
-            LightBasis::new(Vec3::NEG_Y).expect("a constant direction is valid")
-        });
+        let basis = LightBasis::new(self.checked().sun_direction).expect("validated");
         let lo = Vec3::new(self.region_min.x, 0.0, self.region_min.y).min(self.box_min);
         let hi = Vec3::new(self.region_max.x, 0.0, self.region_max.y).max(self.box_max);
         let c = ((lo + hi) * 0.5).as_dvec3();
@@ -103,7 +139,11 @@ impl PlaneBox {
     }
 
     /// Renders the depth map of the scene for `view` on the CPU.
+    ///
+    /// # Panics
+    /// On an invalid configuration (see [`PlaneBox::validate`]) or a non-finite view.
     pub fn depth_map(&self, view: &ShadowView) -> DepthMap {
+        self.checked();
         let mut map = DepthMap::new(view.resolution, view.resolution)
             .expect("a shadow view has a valid resolution");
         rasterize(&mut map, None, &view.view_proj_f64(), &self.triangles())
@@ -127,9 +167,12 @@ impl PlaneBox {
 
     /// Fraction of the sun disk visible from `p`: `samples` directions spread over the disk
     /// (golden-angle spiral, uniform in area) traced against the box (slab test).
+    ///
+    /// # Panics
+    /// On an invalid configuration (see [`PlaneBox::validate`]).
     pub fn reference_visibility(&self, p: Vec3, samples: usize) -> f32 {
-        let s = -self.sun_direction.as_dvec3().normalize();
-        let basis = LightBasis::new(self.sun_direction).expect("valid sun direction");
+        let s = -self.checked().sun_direction.as_dvec3().normalize();
+        let basis = LightBasis::new(self.sun_direction).expect("validated");
         let m = basis.world_to_light.transpose();
         let (e1, e2) = (m.x_axis, m.y_axis);
         let tan_r = (self.sun_angular_radius as f64).tan();
@@ -148,6 +191,7 @@ impl PlaneBox {
     /// The reference image over `n x n` receivers (row-major), in parallel, deterministic.
     /// Name it in reports as [`PlaneBox::reference_name`].
     pub fn reference_image(&self, n: u32, samples: usize) -> Vec<f32> {
+        self.checked();
         self.receivers(n).par_iter().map(|&p| self.reference_visibility(p, samples)).collect()
     }
 

@@ -42,6 +42,16 @@ fn rasteriser_is_deterministic_across_thread_counts() {
 }
 
 #[test]
+fn plane_box_validates_its_configuration() {
+    PlaneBox::DEFAULT.validate().unwrap();
+    assert!(PlaneBox { sun_direction: Vec3::ZERO, ..PlaneBox::DEFAULT }.validate().is_err());
+    assert!(PlaneBox { box_min: Vec3::NAN, ..PlaneBox::DEFAULT }.validate().is_err());
+    assert!(
+        PlaneBox { box_max: Vec3::new(-1.0, 0.0, 0.0), ..PlaneBox::DEFAULT }.validate().is_err()
+    );
+}
+
+#[test]
 fn rasteriser_rejects_bad_input() {
     let mut m = DepthMap::new(8, 8).unwrap();
     let vp = glam::DMat4::IDENTITY;
