@@ -290,7 +290,7 @@ fn split_node(ctx: &Ctx, input: NodeInput, split: &Split) -> (NodeInput, NodeInp
             }
         }
     }
-    for a in 0..3 {
+    let per_axis = |a: usize| {
         let src = &input.events[a];
         let mut lf = Vec::with_capacity(left.tris.len() * 2);
         let mut rf = Vec::with_capacity(right.tris.len() * 2);
@@ -310,8 +310,20 @@ fn split_node(ctx: &Ctx, input: NodeInput, split: &Split) -> (NodeInput, NodeInp
         }
         ln.sort_unstable_by(cmp_events);
         rn.sort_unstable_by(cmp_events);
-        left.events[a] = merge(lf, ln);
-        right.events[a] = merge(rf, rn);
+        (merge(lf, ln), merge(rf, rn))
+    };
+    // Large nodes (the first levels, before subtrees run in parallel) filter their three
+    // lists in parallel; the result is the same either way.
+    let [x, y, z] = if n >= PAR_SWEEP {
+        let (x, (y, z)) =
+            rayon::join(|| per_axis(0), || rayon::join(|| per_axis(1), || per_axis(2)));
+        [x, y, z]
+    } else {
+        [per_axis(0), per_axis(1), per_axis(2)]
+    };
+    for (a, (l, r)) in [x, y, z].into_iter().enumerate() {
+        left.events[a] = l;
+        right.events[a] = r;
     }
     drop(input);
     (left.into_input(), right.into_input())
