@@ -120,3 +120,127 @@ pub fn sky_map_from_gpu(
         rgb.chunks_exact(3).map(|c| Vec3::new(c[0], c[1], c[2])).collect(),
     )
 }
+
+/// A compiled sky-map pipeline on a wgpu device: the engine-facing GPU entry point.
+pub struct GpuSkyMapper {
+    pipeline: wgpu::ComputePipeline,
+}
+
+impl GpuSkyMapper {
+    /// Compiles [`SKYMAP_WGSL`] on `device`; a shader or pipeline error is
+    /// [`AtmosphereError::Gpu`].
+    pub fn new(device: &wgpu::Device) -> Result<Self, AtmosphereError> {
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("atmosphere skymap"),
+            source: wgpu::ShaderSource::Wgsl(std::borrow::Cow::Borrowed(SKYMAP_WGSL)),
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("atmosphere skymap"),
+            layout: None,
+            module: &module,
+            entry_point: Some(SKYMAP_ENTRY),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        if let Some(err) = pollster::block_on(scope.pop()) {
+            return Err(AtmosphereError::Gpu(err.to_string()));
+        }
+        Ok(Self { pipeline })
+    }
+
+    /// Records the dispatch into `encoder` and returns the output storage buffer (RGB `f32`
+    /// triples, usable as `STORAGE` and `COPY_SRC`).
+    pub fn record(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        inputs: &SkyMapGpuInputs,
+    ) -> wgpu::Buffer {
+        use wgpu::util::DeviceExt;
+        let init = |label: &str, contents: &[u8], usage| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage,
+            })
+        };
+        let params =
+            init("skymap params", bytemuck::bytes_of(&inputs.params), wgpu::BufferUsages::UNIFORM);
+        let tlut = init(
+            "skymap transmittance",
+            bytemuck::cast_slice(&inputs.transmittance),
+            wgpu::BufferUsages::STORAGE,
+        );
+        let ms = init(
+            "skymap multiple scattering",
+            bytemuck::cast_slice(&inputs.multiple_scattering),
+            wgpu::BufferUsages::STORAGE,
+        );
+        let out = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("skymap output"),
+            size: inputs.output_bytes.max(4),
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("atmosphere skymap"),
+            layout: &self.pipeline.get_bind_group_layout(0),
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: params.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: tlut.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 2, resource: ms.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 3, resource: out.as_entire_binding() },
+            ],
+        });
+        let mut pass = encoder.begin_compute_pass(&Default::default());
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &bind_group, &[]);
+        let [x, y, z] = inputs.workgroups;
+        pass.dispatch_workgroups(x, y, z);
+        drop(pass);
+        out
+    }
+
+    /// Computes a whole sky map on the GPU and reads it back (blocking).
+    pub fn compute_blocking(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        sky: &Sky,
+        settings: &SkyMapSettings,
+        sun: Vec3,
+    ) -> Result<SkyMap, AtmosphereError> {
+        let inputs = SkyMapGpuInputs::new(sky, settings, sun)?;
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let mut encoder = device.create_command_encoder(&Default::default());
+        let out = self.record(device, &mut encoder, &inputs);
+        let staging = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("skymap staging"),
+            size: out.size(),
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        encoder.copy_buffer_to_buffer(&out, 0, &staging, 0, out.size());
+        queue.submit([encoder.finish()]);
+        if let Some(err) = pollster::block_on(scope.pop()) {
+            return Err(AtmosphereError::Gpu(err.to_string()));
+        }
+        let slice = staging.slice(..);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| AtmosphereError::Gpu(e.to_string()))?;
+        rx.recv()
+            .map_err(|e| AtmosphereError::Gpu(e.to_string()))?
+            .map_err(|e| AtmosphereError::Gpu(e.to_string()))?;
+        let bytes =
+            slice.get_mapped_range().map_err(|e| AtmosphereError::Gpu(e.to_string()))?.to_vec();
+        staging.unmap();
+        let rgb: Vec<f32> = bytemuck::pod_collect_to_vec(&bytes[..inputs.output_bytes as usize]);
+        sky_map_from_gpu(settings, sun, &rgb)
+    }
+}

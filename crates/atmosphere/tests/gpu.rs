@@ -62,3 +62,17 @@ fn gpu_sky_map_matches_cpu() {
         assert!(cpu.texels().iter().any(|t| t.max_element() > 0.0));
     }
 }
+
+#[test]
+fn crate_gpu_entry_point_matches_cpu() {
+    use atmosphere::gpu::GpuSkyMapper;
+    let Some(ctx) = gpu_test_context() else { return };
+    let sky = Sky::new(Atmosphere::EARTH, SkySettings::low()).unwrap();
+    let settings = SkyMapSettings { size: 32, ..SkyMapSettings::default() };
+    let sun = Vec3::new(-0.2, 0.3, 0.9).normalize();
+    let mapper = GpuSkyMapper::new(&ctx.device).unwrap();
+    let gpu = mapper.compute_blocking(&ctx.device, &ctx.queue, &sky, &settings, sun).unwrap();
+    let cpu = SkyMapGpuInputs::cpu_equivalent(&sky, &settings, sun).unwrap();
+    gpu.validate().unwrap();
+    assert!(rel_rms(gpu.texels(), cpu.texels()) < 1e-3);
+}

@@ -202,3 +202,37 @@ fn invalid_inputs_are_typed_errors() {
     assert_eq!(sky().radiance(0.0, Vec3::ZERO, Vec3::Y), Vec3::ZERO);
     assert_eq!(sky().radiance(0.0, Vec3::Y, Vec3::NAN), Vec3::ZERO);
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(cases()))]
+
+    #[test]
+    fn lut_transmittance_between_points_matches_integration(alt in 0.0f32..80.0, mu in cosine(),
+                                                            frac in 0.0f32..1.0) {
+        let atm = Atmosphere::EARTH;
+        let lut = sky().transmittance_lut();
+        let r = atm.bottom_radius_km + alt;
+        let hits = atmosphere::geometry::ray_hits_ground(&atm, r, mu);
+        let (_, t_end) = atmosphere::geometry::atmosphere_segment(&atm, r, mu).unwrap();
+        let d = t_end * frac;
+        let a = Vec3::new(0.0, r, 0.0);
+        let b = a + direction(mu, 0.0) * d;
+        let exact = transmittance_between_exact(&atm, a, b, 2048);
+        let approx = lut.along_ray(r, mu, d, hits);
+        prop_assert!(approx.is_finite() && approx.min_element() >= 0.0 && approx.max_element() <= 1.0);
+        // Ratios of two lookups: absolute error grows where both are tiny (grazing paths).
+        prop_assert!((exact - approx).abs().max_element() < 2e-2, "{exact} vs {approx}");
+    }
+}
+
+#[test]
+fn sun_disk_radiance_integrates_to_the_sun_colour() {
+    let sun = sun_at(35.0, 10.0);
+    let a = Atmosphere::EARTH.sun_angular_radius as f64;
+    let solid_angle = 2.0 * std::f64::consts::PI * (1.0 - a.cos());
+    let l = sky().sun_disk_radiance(0.0, sun);
+    let e = sky().sun_colour(0.0, sun);
+    for k in 0..3 {
+        assert!(((l[k] as f64 * solid_angle) / e[k] as f64 - 1.0).abs() < 1e-3, "{l} {e}");
+    }
+}
