@@ -174,6 +174,7 @@ fn texel_geometry(n: u32) -> Vec<Vec<TexelGeom>> {
     // Texels further than two texels outside the disk are never read by bilinear lookups.
     let margin = 1.0 + 4.0 / n as f32;
     (0..n)
+        .into_par_iter()
         .map(|j| {
             (0..n)
                 .filter_map(|i| {
