@@ -1,0 +1,117 @@
+//! Building a [`World`] and a [`Camera`] from a `scene::Scene`.
+//!
+//! - Geometry: every mesh in world space, one material per mesh; geometric normals (the
+//!   scene's shading normals and normal maps are not used).
+//! - Materials: albedo, glossiness, specular power, reflectivity, transparency + IOR,
+//!   emission and the alpha mask (its texture's alpha, bilinear on level 0, at the
+//!   interpolated UV) map one to one; albedo textures are not applied (the constant albedo is).
+//! - Sun: with `scene.sky` the irradiance is `sun.color * atmosphere::Sky::sun_colour` (the
+//!   Earth atmosphere's transmittance, in units of the solar irradiance at the top) and the
+//!   sky radiance comes from an `atmosphere::SkyMap`; without a sky the sun's colour is read
+//!   as its irradiance and there is no sky light. Point lights map one to one.
+
+use crate::material::AlphaTest;
+use crate::world::{PointLight, Sun, World};
+use crate::{Camera, Error, Material};
+use atmosphere::{Sky, SkyMap, SkyMapSettings, SkyRadiance};
+use glam::{Vec2, Vec3};
+use std::sync::Arc;
+
+/// How the sun and sky of a scene are turned into light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SceneLighting {
+    /// Sky map settings used when the scene shows the sky.
+    pub sky_map: SkyMapSettings,
+}
+
+impl SceneLighting {
+    pub const fn low() -> Self {
+        Self { sky_map: SkyMapSettings::low() }
+    }
+    pub const DEFAULT: Self = Self { sky_map: SkyMapSettings::DEFAULT };
+    pub const fn high() -> Self {
+        Self { sky_map: SkyMapSettings::high() }
+    }
+    pub const fn reference() -> Self {
+        Self { sky_map: SkyMapSettings::reference() }
+    }
+}
+
+impl Default for SceneLighting {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+fn scene_err(e: impl std::fmt::Display) -> Error {
+    Error::Scene(e.to_string())
+}
+
+/// The world of a scene (see the module doc for what is carried over).
+pub fn world_from_scene(scene: &scene::Scene, lighting: &SceneLighting) -> Result<World, Error> {
+    scene.validate().map_err(scene_err)?;
+    let mut b = World::builder();
+    // Per-triangle UVs, shared by the alpha tests.
+    let mut uvs: Vec<[Vec2; 3]> = Vec::with_capacity(scene.triangle_count());
+    for m in &scene.meshes {
+        for t in &m.indices {
+            uvs.push(t.map(|i| m.uvs.get(i as usize).copied().unwrap_or(Vec2::ZERO)));
+        }
+    }
+    let uvs = Arc::new(uvs);
+    for sm in &scene.materials {
+        let alpha = sm.alpha_mask.and_then(|mask| {
+            let tex = scene.textures.get(mask.texture.index())?.clone();
+            let uvs = Arc::clone(&uvs);
+            let coverage = move |tri: u32, bary: Vec2| {
+                let [a, b, c] = uvs[tri as usize];
+                let uv = a * (1.0 - bary.x - bary.y) + b * bary.x + c * bary.y;
+                tex.sample_bilinear(uv, 0).w
+            };
+            Some(AlphaTest { coverage: Arc::new(coverage), cutoff: mask.cutoff })
+        });
+        b.material(Material {
+            albedo: sm.albedo,
+            emission: sm.emission,
+            glossiness: sm.glossiness,
+            specular_power: sm.specular_power,
+            reflectivity: sm.reflectivity,
+            transparency: sm.transparency,
+            ior: sm.ior,
+            alpha,
+        });
+    }
+    for m in &scene.meshes {
+        let p: Vec<Vec3> = m.positions.iter().map(|&p| m.transform.transform_point3(p)).collect();
+        b.triangles(&p, &m.indices, m.material.0);
+    }
+    let sun_dir = match &scene.sun {
+        Some(s) => Some(s.direction().map_err(scene_err)?),
+        None => None,
+    };
+    if scene.sky {
+        let sky = Sky::earth().map_err(scene_err)?;
+        let dir = sun_dir.unwrap_or(Vec3::new(0.0, -1.0, 0.0));
+        let map = SkyMap::new(&sky, lighting.sky_map, dir).map_err(scene_err)?;
+        b.sky(move |d: Vec3| map.radiance(d));
+        if let (Some(s), Some(d)) = (&scene.sun, sun_dir) {
+            let mut sun = Sun::new(d, s.color * sky.sun_colour(lighting.sky_map.altitude_km, d));
+            sun.angular_radius = s.angular_radius;
+            b.sun(sun);
+        }
+    } else if let (Some(s), Some(d)) = (&scene.sun, sun_dir) {
+        let mut sun = Sun::new(d, s.color);
+        sun.angular_radius = s.angular_radius;
+        b.sun(sun);
+    }
+    for l in &scene.point_lights {
+        b.point_light(PointLight { position: l.position, intensity: l.color, radius: l.radius });
+    }
+    b.build()
+}
+
+/// The scene's camera.
+pub fn camera_from_scene(scene: &scene::Scene) -> Camera {
+    let c = &scene.camera;
+    Camera { position: c.position, forward: c.forward, up: c.up, fov_y_deg: c.fov_y_deg }
+}

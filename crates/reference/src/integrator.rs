@@ -1,0 +1,275 @@
+//! The path tracer and the component estimators, one sample at a time.
+
+use crate::rng::Rng;
+use crate::sampling::{cosine_hemisphere, uniform_cone};
+use crate::world::{SurfaceHit, World};
+use glam::Vec3;
+use std::f32::consts::PI;
+
+/// Which quantity a render or a query computes: one per real-time technique it is the
+/// truth for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Component {
+    /// Direct sunlight through the disk (area-light shadows with true penumbrae): the truth
+    /// for shadow maps (CSM, PCSS). Images: reflected radiance; points: irradiance.
+    SunDirect,
+    /// Sunlight after exactly one diffuse bounce: the truth for light propagation volumes.
+    /// Images: reflected (diffuse) radiance; points: irradiance.
+    SunIndirectDiffuse,
+    /// Sky light with occlusion: the truth for the sky volume. Images and points:
+    /// irradiance `E = int L_sky V cos` (images at the first visible surface).
+    SkyIrradiance,
+    /// Light reaching the eye through the first surface's mirror/glass part, with full
+    /// global illumination after it: the truth for ray-traced reflections and refractions.
+    Reflections,
+    /// Everything: emission, sun, point lights and sky, all bounces. Points: irradiance.
+    Full,
+}
+
+impl Component {
+    pub const ALL: [Self; 5] = [
+        Self::SunDirect,
+        Self::SunIndirectDiffuse,
+        Self::SkyIrradiance,
+        Self::Reflections,
+        Self::Full,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::SunDirect => "sun_direct",
+            Self::SunIndirectDiffuse => "sun_indirect_diffuse",
+            Self::SkyIrradiance => "sky_irradiance",
+            Self::Reflections => "reflections",
+            Self::Full => "full",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|c| c.name() == name)
+    }
+}
+
+/// Path-length controls.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PathSettings {
+    /// Maximum number of scattering events (0: emission and what the eye sees directly).
+    pub max_bounces: u32,
+    /// Russian roulette starts after this many bounces.
+    pub rr_start: u32,
+}
+
+impl PathSettings {
+    pub const DEFAULT: Self = Self { max_bounces: 64, rr_start: 3 };
+}
+
+impl Default for PathSettings {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// Shading frame at a hit seen from `wo`: the normal flipped to the viewer's side, and
+/// whether the viewer is on the wound front side.
+fn facing(h: &SurfaceHit, wo: Vec3) -> (Vec3, bool) {
+    let front = h.normal.dot(wo) >= 0.0;
+    (if front { h.normal } else { -h.normal }, front)
+}
+
+/// Sun irradiance at `p` on a surface with normal `n` (the disk sampled uniformly, one
+/// shadow ray), and the sampled direction.
+fn sun_sample(world: &World, p: Vec3, n: Vec3, rng: &mut Rng) -> Option<(Vec3, Vec3)> {
+    let sun = world.sun()?;
+    let wi = if sun.angular_radius > 0.0 {
+        uniform_cone(sun.direction, sun.one_minus_cos_max(), rng.next_2d())
+    } else {
+        sun.direction
+    };
+    let cos = wi.dot(n);
+    if cos <= 0.0 {
+        return None;
+    }
+    let o = world.offset(p, n, wi);
+    if world.occluded(o, wi, f32::INFINITY) {
+        return None;
+    }
+    let e = if sun.angular_radius > 0.0 {
+        sun.radiance() * sun.solid_angle() * cos
+    } else {
+        sun.irradiance * cos
+    };
+    Some((wi, e))
+}
+
+/// Irradiance-weighted BRDF sum of the point lights at `p` (each light one shadow ray).
+fn point_lights(world: &World, p: Vec3, n: Vec3, mut f: impl FnMut(Vec3) -> Vec3) -> Vec3 {
+    let mut sum = Vec3::ZERO;
+    for l in world.point_lights() {
+        let d = l.position - p;
+        let dist = d.length();
+        if !(dist > 0.0) || dist > l.radius {
+            continue;
+        }
+        let wi = d / dist;
+        let cos = wi.dot(n);
+        if cos <= 0.0 {
+            continue;
+        }
+        let o = world.offset(p, n, wi);
+        let dist_o = (l.position - o).length();
+        if world.occluded(o, wi, dist_o * (1.0 - 1e-4)) {
+            continue;
+        }
+        sum += f(wi) * l.intensity * cos / (dist * dist);
+    }
+    sum
+}
+
+/// Radiance arriving along a ray through a full path (all light), starting with throughput
+/// `beta` after `depth` bounces; `specular` says whether the previous vertex was the eye or
+/// a mirror/glass bounce (then the sun disk is seen directly).
+#[allow(clippy::too_many_arguments)] // the path state, spelled out
+pub(crate) fn trace_path(
+    world: &World,
+    mut origin: Vec3,
+    mut dir: Vec3,
+    mut beta: Vec3,
+    mut specular: bool,
+    start_depth: u32,
+    settings: &PathSettings,
+    rng: &mut Rng,
+) -> Vec3 {
+    let mut l = Vec3::ZERO;
+    let mut depth = start_depth;
+    loop {
+        let Some(h) = world.intersect(origin, dir, f32::INFINITY) else {
+            l += beta * world.sky_radiance(dir);
+            if specular
+                && let Some(sun) = world.sun()
+                && dir.dot(sun.direction) >= sun.cos_max()
+            {
+                l += beta * sun.radiance();
+            }
+            break;
+        };
+        let m = world.material(h.material);
+        let wo = -dir;
+        let (n, front) = facing(&h, wo);
+        l += beta * m.emission;
+        if depth >= settings.max_bounces {
+            break;
+        }
+        let wb = m.base_weight();
+        if wb > 0.0 {
+            if let Some((wi, e)) = sun_sample(world, h.position, n, rng) {
+                l += beta * wb * m.eval_base(n, wo, wi) * e;
+            }
+            l += beta * wb * point_lights(world, h.position, n, |wi| m.eval_base(n, wo, wi));
+        }
+        let u_lobe = rng.next_f32();
+        let Some(s) = m.sample(n, wo, front, u_lobe, rng.next_2d()) else { break };
+        beta *= s.weight;
+        specular = s.delta;
+        origin = world.offset(h.position, h.normal, s.dir);
+        dir = s.dir;
+        depth += 1;
+        if depth > settings.rr_start {
+            let q = beta.max_element().min(0.95);
+            if !(q > 0.0) || rng.next_f32() >= q {
+                break;
+            }
+            beta /= q;
+        }
+    }
+    l
+}
+
+/// Sun irradiance at a surface point, one disk sample.
+pub(crate) fn sun_irradiance(world: &World, p: Vec3, n: Vec3, rng: &mut Rng) -> Vec3 {
+    sun_sample(world, p, n, rng).map_or(Vec3::ZERO, |(_, e)| e)
+}
+
+/// Irradiance at `p`, normal `n`, from the given component (one sample).
+pub(crate) fn irradiance(
+    world: &World,
+    component: Component,
+    p: Vec3,
+    n: Vec3,
+    settings: &PathSettings,
+    rng: &mut Rng,
+) -> Vec3 {
+    match component {
+        Component::SunDirect => sun_irradiance(world, p, n, rng),
+        Component::SkyIrradiance => {
+            let wi = cosine_hemisphere(n, rng.next_2d());
+            let o = world.offset(p, n, wi);
+            if world.occluded(o, wi, f32::INFINITY) {
+                Vec3::ZERO
+            } else {
+                PI * world.sky_radiance(wi)
+            }
+        }
+        Component::SunIndirectDiffuse => {
+            let wi = cosine_hemisphere(n, rng.next_2d());
+            let o = world.offset(p, n, wi);
+            match world.intersect(o, wi, f32::INFINITY) {
+                Some(h) => {
+                    let (ny, _) = facing(&h, -wi);
+                    let rho = world.material(h.material).diffuse_reflectance();
+                    rho * sun_irradiance(world, h.position, ny, rng)
+                }
+                None => Vec3::ZERO,
+            }
+        }
+        Component::Full | Component::Reflections => {
+            let direct =
+                sun_irradiance(world, p, n, rng) + point_lights(world, p, n, |_| Vec3::ONE);
+            let wi = cosine_hemisphere(n, rng.next_2d());
+            let o = world.offset(p, n, wi);
+            direct + PI * trace_path(world, o, wi, Vec3::ONE, false, 1, settings, rng)
+        }
+    }
+}
+
+/// Radiance along a camera (or any) ray for the given component (one sample).
+pub(crate) fn radiance(
+    world: &World,
+    component: Component,
+    origin: Vec3,
+    dir: Vec3,
+    settings: &PathSettings,
+    rng: &mut Rng,
+) -> Vec3 {
+    if component == Component::Full {
+        return trace_path(world, origin, dir, Vec3::ONE, true, 0, settings, rng);
+    }
+    let Some(h) = world.intersect(origin, dir, f32::INFINITY) else { return Vec3::ZERO };
+    let m = world.material(h.material);
+    let wo = -dir;
+    let (n, front) = facing(&h, wo);
+    match component {
+        Component::SunDirect => match sun_sample(world, h.position, n, rng) {
+            Some((wi, e)) => m.base_weight() * m.eval_base(n, wo, wi) * e,
+            None => Vec3::ZERO,
+        },
+        Component::SunIndirectDiffuse => {
+            m.diffuse_reflectance() / PI
+                * irradiance(world, component, h.position, n, settings, rng)
+        }
+        Component::SkyIrradiance => irradiance(world, component, h.position, n, settings, rng),
+        Component::Reflections => {
+            if settings.max_bounces == 0 {
+                return Vec3::ZERO;
+            }
+            let u = rng.next_f32();
+            match m.sample_delta(n, wo, front, u) {
+                Some(s) => {
+                    let o = world.offset(h.position, h.normal, s.dir);
+                    trace_path(world, o, s.dir, s.weight, true, 1, settings, rng)
+                }
+                None => Vec3::ZERO,
+            }
+        }
+        Component::Full => trace_path(world, origin, dir, Vec3::ONE, true, 0, settings, rng),
+    }
+}

@@ -1,0 +1,75 @@
+//! # reference
+//!
+//! The ground truth every real-time approximation of the workspace is measured against: a
+//! CPU Monte Carlo path tracer (J. Kajiya, "The Rendering Equation", SIGGRAPH 1986) over
+//! [`kdtree_tracer`], with
+//!
+//! - **next-event estimation** towards the sun's disk (uniform cone sampling over its
+//!   angular radius 0.004675 rad, so shadows get true penumbrae) and point lights;
+//! - **sky light** from any radiance function (`atmosphere`'s sky map, a constant),
+//!   importance-sampled with the BRDF (cosine / Phong lobe);
+//! - **multiple importance sampling** of the base BRDF's diffuse and Phong lobes (one-sample
+//!   balance heuristic, E. Veach and L. Guibas, SIGGRAPH 1995);
+//! - **Russian roulette** on the path throughput;
+//! - **materials**: Lambert + energy-normalised Phong (Lafortune and Willems 1994), perfect
+//!   mirror, smooth glass with Fresnel, alpha test ([`Material`]);
+//! - **components** that match one technique each ([`Component`]): direct sun with area
+//!   shadows (CSM/PCSS), one-bounce diffuse from the sun (LPV), occluded sky irradiance
+//!   (sky volume), mirror reflections and refractions (ray-traced reflections), full image;
+//! - **point queries** ([`irradiance`], [`radiance`]): positions and normals (or rays) in,
+//!   an [`Estimate`] with its standard error out;
+//! - **progressive images** ([`Renderer`]): 16x16 tiles on rayon, one seeded random stream
+//!   per (pixel, sample), so results are identical bit for bit whatever the thread count;
+//!   per-pixel variance, EXR output of the mean and standard error, tone-mapped PNG;
+//! - **image comparison** ([`compare`], [`difference_image`]) on `gi_report`'s metrics.
+//!
+//! With the `scene` crate's scenes: [`world_from_scene`] and [`camera_from_scene`].
+//!
+//! ```
+//! use glam::Vec3;
+//! use reference::{Component, Material, QueryPoint, QuerySettings, World, irradiance};
+//!
+//! // A grey ground plane under a constant sky of radiance 1: irradiance pi.
+//! let mut b = World::builder();
+//! let grey = b.material(Material::diffuse(Vec3::splat(0.5)));
+//! b.quad(Vec3::new(-10.0, 0.0, 10.0), Vec3::new(20.0, 0.0, 0.0), Vec3::new(0.0, 0.0, -20.0), grey);
+//! b.sky(|_| Vec3::ONE);
+//! let world = b.build()?;
+//! world.validate()?;
+//!
+//! let points = [QueryPoint::new(Vec3::ZERO, Vec3::Y)];
+//! let e = irradiance(&world, Component::SkyIrradiance, &points, &QuerySettings::low())?;
+//! assert!((e[0].mean.x - std::f32::consts::PI).abs() < 1e-4);
+//! # Ok::<(), reference::Error>(())
+//! ```
+
+// `!(a > b)` is used on purpose: it is also true when either side is NaN.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
+mod camera;
+mod compare;
+mod error;
+mod from_scene;
+mod image;
+mod integrator;
+mod material;
+mod query;
+mod render;
+mod rng;
+mod sampling;
+mod stats;
+mod world;
+
+pub use camera::Camera;
+pub use compare::{ImageErrors, compare, difference_image, error_in_std_errors};
+pub use error::Error;
+pub use from_scene::{SceneLighting, camera_from_scene, world_from_scene};
+pub use image::Image;
+pub use integrator::{Component, PathSettings};
+pub use material::{AlphaTest, CoverageFn, Material, Sample};
+pub use query::{QueryPoint, QuerySettings, irradiance, radiance};
+pub use render::{RenderSettings, Renderer, TILE, render};
+pub use rng::Rng;
+pub use sampling::luminance;
+pub use stats::{Estimate, Moments};
+pub use world::{PointLight, SkyFn, Sun, SurfaceHit, World, WorldBuilder};

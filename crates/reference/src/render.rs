@@ -1,0 +1,251 @@
+//! Progressive image rendering: tiles on rayon, per-pixel moments, a progress bar.
+
+use crate::camera::Camera;
+use crate::image::Image;
+use crate::integrator::{self, Component, PathSettings};
+use crate::rng::Rng;
+use crate::stats::{Estimate, Moments};
+use crate::world::World;
+use crate::{Error, sampling::luminance};
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+
+/// Tile edge in pixels (the unit of parallel work).
+pub const TILE: u32 = 16;
+
+/// What to render and how many samples.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RenderSettings {
+    pub width: u32,
+    pub height: u32,
+    /// Samples per pixel.
+    pub spp: u32,
+    pub component: Component,
+    pub path: PathSettings,
+    /// Seed: the same seed gives the same image bit for bit, whatever the thread count.
+    pub seed: u64,
+}
+
+impl RenderSettings {
+    pub const fn low() -> Self {
+        Self {
+            width: 160,
+            height: 90,
+            spp: 4,
+            component: Component::Full,
+            path: PathSettings { max_bounces: 4, rr_start: 2 },
+            seed: 1,
+        }
+    }
+    pub const DEFAULT: Self = Self {
+        width: 320,
+        height: 180,
+        spp: 16,
+        component: Component::Full,
+        path: PathSettings::DEFAULT,
+        seed: 1,
+    };
+    pub const fn high() -> Self {
+        Self { width: 800, height: 450, spp: 64, ..Self::DEFAULT }
+    }
+    pub const fn reference() -> Self {
+        Self {
+            width: 1600,
+            height: 900,
+            spp: 1024,
+            path: PathSettings { max_bounces: 256, rr_start: 4 },
+            ..Self::DEFAULT
+        }
+    }
+    /// The same settings for another component.
+    pub const fn with_component(mut self, component: Component) -> Self {
+        self.component = component;
+        self
+    }
+    /// The same settings at another size.
+    pub const fn with_size(mut self, width: u32, height: u32) -> Self {
+        self.width = width;
+        self.height = height;
+        self
+    }
+    /// The same settings with another sample count.
+    pub const fn with_spp(mut self, spp: u32) -> Self {
+        self.spp = spp;
+        self
+    }
+
+    pub fn validate(&self) -> Result<(), Error> {
+        if self.width == 0 || self.height == 0 || self.width > 16_384 || self.height > 16_384 {
+            return Err(Error::InvalidSettings(format!(
+                "image size {}x{}",
+                self.width, self.height
+            )));
+        }
+        if self.spp == 0 {
+            return Err(Error::InvalidSettings("zero samples per pixel".into()));
+        }
+        Ok(())
+    }
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// A progressive render: call [`Renderer::add_samples`] as often as wanted; the mean and
+/// standard error images are available at any time.
+pub struct Renderer<'w> {
+    world: &'w World,
+    camera: Camera,
+    settings: RenderSettings,
+    moments: Vec<Moments>,
+    samples: u32,
+    progress: bool,
+}
+
+impl<'w> Renderer<'w> {
+    pub fn new(world: &'w World, camera: Camera, settings: RenderSettings) -> Result<Self, Error> {
+        settings.validate()?;
+        camera.validate()?;
+        let n = settings.width as usize * settings.height as usize;
+        Ok(Self {
+            world,
+            camera,
+            settings,
+            moments: vec![Moments::default(); n],
+            samples: 0,
+            progress: false,
+        })
+    }
+
+    /// Shows an indicatif progress bar (tiles done) during [`Renderer::add_samples`].
+    pub fn with_progress(mut self, on: bool) -> Self {
+        self.progress = on;
+        self
+    }
+
+    pub fn settings(&self) -> &RenderSettings {
+        &self.settings
+    }
+
+    /// Samples per pixel so far.
+    pub fn samples(&self) -> u32 {
+        self.samples
+    }
+
+    /// Adds `count` samples to every pixel (sample numbers continue where the last call
+    /// stopped, so `add(a); add(b)` equals `add(a + b)` bit for bit).
+    pub fn add_samples(&mut self, count: u32) {
+        let (w, h) = (self.settings.width, self.settings.height);
+        let tiles_x = w.div_ceil(TILE);
+        let tiles = tiles_x * h.div_ceil(TILE);
+        let bar = if self.progress {
+            let b = ProgressBar::new(tiles as u64);
+            if let Ok(style) = ProgressStyle::with_template(
+                "{msg} [{elapsed_precise}] {wide_bar} {pos}/{len} tiles (eta {eta})",
+            ) {
+                b.set_style(style);
+            }
+            b.set_message(format!(
+                "{} spp {}..{}",
+                self.settings.component.name(),
+                self.samples,
+                self.samples + count
+            ));
+            b
+        } else {
+            ProgressBar::hidden()
+        };
+        let first = self.samples;
+        let (world, camera, s) = (self.world, self.camera, self.settings);
+        let results: Vec<(u32, Vec<Moments>)> = (0..tiles)
+            .into_par_iter()
+            .map(|t| {
+                let (x0, y0) = ((t % tiles_x) * TILE, (t / tiles_x) * TILE);
+                let (x1, y1) = ((x0 + TILE).min(w), (y0 + TILE).min(h));
+                let mut out = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
+                for y in y0..y1 {
+                    for x in x0..x1 {
+                        let pixel = (y * w + x) as u64;
+                        let mut m = Moments::default();
+                        for k in first..first + count {
+                            let mut rng = Rng::for_sample(s.seed, pixel, k as u64);
+                            let (jx, jy) = rng.next_2d();
+                            let dir = camera.direction(x as f32 + jx, y as f32 + jy, w, h);
+                            m.add(integrator::radiance(
+                                world,
+                                s.component,
+                                camera.position,
+                                dir,
+                                &s.path,
+                                &mut rng,
+                            ));
+                        }
+                        out.push(m);
+                    }
+                }
+                bar.inc(1);
+                (t, out)
+            })
+            .collect();
+        bar.finish_and_clear();
+        for (t, tile) in results {
+            let (x0, y0) = ((t % tiles_x) * TILE, (t / tiles_x) * TILE);
+            let tw = (x0 + TILE).min(w) - x0;
+            for (i, m) in tile.iter().enumerate() {
+                let (x, y) = (x0 + i as u32 % tw, y0 + i as u32 / tw);
+                self.moments[(y * w + x) as usize].merge(m);
+            }
+        }
+        self.samples += count;
+    }
+
+    /// Per-pixel estimates.
+    pub fn estimates(&self) -> Vec<Estimate> {
+        self.moments.iter().map(Moments::estimate).collect()
+    }
+
+    /// The mean image.
+    pub fn mean(&self) -> Image {
+        self.image(|e| e.mean)
+    }
+
+    /// The per-pixel standard error of the mean.
+    pub fn std_error(&self) -> Image {
+        self.image(|e| e.std_error)
+    }
+
+    fn image(&self, f: impl Fn(&Estimate) -> glam::Vec3) -> Image {
+        Image {
+            width: self.settings.width,
+            height: self.settings.height,
+            pixels: self.moments.iter().map(|m| f(&m.estimate())).collect(),
+        }
+    }
+
+    /// Mean relative standard error of the image: `sum Y(se) / sum Y(mean)` (Rec. 709
+    /// luminance), the error bar of the whole image in one number.
+    pub fn mean_rel_std_error(&self) -> f64 {
+        let (mut se, mut mean) = (0.0f64, 0.0f64);
+        for e in self.estimates() {
+            se += luminance(e.std_error) as f64;
+            mean += luminance(e.mean) as f64;
+        }
+        if mean > 0.0 { se / mean } else { 0.0 }
+    }
+}
+
+/// Renders `settings.spp` samples per pixel in one go and returns the renderer (for the
+/// mean, the standard error and further progressive passes).
+pub fn render<'w>(
+    world: &'w World,
+    camera: Camera,
+    settings: RenderSettings,
+    progress: bool,
+) -> Result<Renderer<'w>, Error> {
+    let mut r = Renderer::new(world, camera, settings)?.with_progress(progress);
+    r.add_samples(settings.spp);
+    Ok(r)
+}

@@ -1,0 +1,320 @@
+//! The world the renderer traces: world-space triangles with one material each, the sun,
+//! point lights and an optional sky, over a kd-tree.
+
+use crate::{Error, Material};
+use glam::{Vec2, Vec3};
+use kdtree_tracer::{KdTree, Mesh, Ray, Settings};
+use std::f32::consts::PI;
+use std::sync::Arc;
+
+/// Sky radiance in a world direction (unit, pointing away from the viewer), without the sun
+/// disk. `atmosphere::SkyMap::sample` or a constant fit here.
+pub type SkyFn = dyn Fn(Vec3) -> Vec3 + Send + Sync;
+
+/// The sun: a uniform disk of angular radius `angular_radius` around `direction`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sun {
+    /// Unit vector towards the sun's centre.
+    pub direction: Vec3,
+    /// Irradiance on a surface facing the sun (after the atmosphere), linear RGB.
+    pub irradiance: Vec3,
+    /// Angular radius, radians (the real sun: 0.004675). Zero is a point at infinity.
+    pub angular_radius: f32,
+}
+
+impl Sun {
+    /// The real sun's angular radius (radians).
+    pub const ANGULAR_RADIUS: f32 = 0.004675;
+
+    pub fn new(direction: Vec3, irradiance: Vec3) -> Self {
+        Self { direction, irradiance, angular_radius: Self::ANGULAR_RADIUS }
+    }
+
+    /// Cosine of the angular radius.
+    pub fn cos_max(&self) -> f32 {
+        self.angular_radius.cos()
+    }
+
+    /// `1 - cos(angular_radius)`, computed without cancellation.
+    pub fn one_minus_cos_max(&self) -> f32 {
+        let s = (0.5 * self.angular_radius).sin();
+        2.0 * s * s
+    }
+
+    /// Solid angle of the disk, `2 pi (1 - cos alpha)`.
+    pub fn solid_angle(&self) -> f32 {
+        2.0 * PI * self.one_minus_cos_max()
+    }
+
+    /// Radiance of the disk: the irradiance divided by the projected solid angle of a
+    /// cap seen head-on, `pi sin^2(alpha)`, so a surface facing the sun receives exactly
+    /// `irradiance`.
+    pub fn radiance(&self) -> Vec3 {
+        let s = self.angular_radius.sin();
+        self.irradiance / (PI * s * s)
+    }
+}
+
+/// A point light (radiant intensity in W/sr), contributing nothing beyond `radius`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointLight {
+    pub position: Vec3,
+    pub intensity: Vec3,
+    pub radius: f32,
+}
+
+/// Collects triangles, materials and lights; [`WorldBuilder::build`] makes a [`World`].
+#[derive(Default)]
+pub struct WorldBuilder {
+    positions: Vec<Vec3>,
+    indices: Vec<[u32; 3]>,
+    tri_material: Vec<u32>,
+    materials: Vec<Material>,
+    sun: Option<Sun>,
+    points: Vec<PointLight>,
+    sky: Option<Arc<SkyFn>>,
+}
+
+impl WorldBuilder {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Adds a material and returns its id.
+    pub fn material(&mut self, m: Material) -> u32 {
+        self.materials.push(m);
+        self.materials.len() as u32 - 1
+    }
+
+    /// Adds indexed world-space triangles, all with material `material`.
+    pub fn triangles(
+        &mut self,
+        positions: &[Vec3],
+        indices: &[[u32; 3]],
+        material: u32,
+    ) -> &mut Self {
+        let base = self.positions.len() as u32;
+        self.positions.extend_from_slice(positions);
+        self.indices.extend(indices.iter().map(|t| t.map(|i| i.saturating_add(base))));
+        self.tri_material.extend(std::iter::repeat_n(material, indices.len()));
+        self
+    }
+
+    /// Adds an axis-free quad `corner, corner + u, corner + u + v, corner + v` (normal `u x v`).
+    pub fn quad(&mut self, corner: Vec3, u: Vec3, v: Vec3, material: u32) -> &mut Self {
+        let p = [corner, corner + u, corner + u + v, corner + v];
+        self.triangles(&p, &[[0, 1, 2], [0, 2, 3]], material)
+    }
+
+    pub fn sun(&mut self, sun: Sun) -> &mut Self {
+        self.sun = Some(sun);
+        self
+    }
+
+    pub fn point_light(&mut self, light: PointLight) -> &mut Self {
+        self.points.push(light);
+        self
+    }
+
+    /// Sets the sky's radiance (without the sun disk).
+    pub fn sky(&mut self, sky: impl Fn(Vec3) -> Vec3 + Send + Sync + 'static) -> &mut Self {
+        self.sky = Some(Arc::new(sky));
+        self
+    }
+
+    /// Sets the sky from a shared closure.
+    pub fn sky_shared(&mut self, sky: Arc<SkyFn>) -> &mut Self {
+        self.sky = Some(sky);
+        self
+    }
+
+    /// Checks everything and builds the kd-tree.
+    pub fn build(self) -> Result<World, Error> {
+        for (i, m) in self.materials.iter().enumerate() {
+            m.validate(i)?;
+        }
+        if let Some(&material) =
+            self.tri_material.iter().find(|&&m| m as usize >= self.materials.len())
+        {
+            return Err(Error::MaterialOutOfRange { material, count: self.materials.len() });
+        }
+        if let Some(s) = &self.sun {
+            let ok = s.direction.is_finite()
+                && s.direction.length_squared() > 0.0
+                && s.irradiance.is_finite()
+                && s.irradiance.min_element() >= 0.0
+                && (0.0..0.5).contains(&s.angular_radius);
+            if !ok {
+                return Err(Error::InvalidLight(format!("sun {s:?}")));
+            }
+        }
+        for l in &self.points {
+            let ok = l.position.is_finite()
+                && l.intensity.is_finite()
+                && l.intensity.min_element() >= 0.0
+                && l.radius > 0.0
+                && !l.radius.is_nan();
+            if !ok {
+                return Err(Error::InvalidLight(format!("point light {l:?}")));
+            }
+        }
+        let mesh = Mesh::from_indexed(&self.positions, &self.indices)?;
+        let tree = KdTree::build(&mesh, &Settings::DEFAULT)?;
+        let normals = (0..mesh.triangle_count() as u32)
+            .map(|t| {
+                let [a, b, c] = mesh.triangle(t);
+                (b - a).cross(c - a).try_normalize().unwrap_or(Vec3::Y)
+            })
+            .collect();
+        let any_alpha = self.materials.iter().any(|m| m.alpha.is_some());
+        let extent =
+            mesh.bounds().map_or(1.0, |(lo, hi)| lo.abs().max(hi.abs()).max_element().max(1.0));
+        let sun = self.sun.map(|s| Sun { direction: s.direction.normalize(), ..s });
+        Ok(World {
+            mesh,
+            tree,
+            normals,
+            tri_material: self.tri_material,
+            materials: self.materials,
+            sun,
+            points: self.points,
+            sky: self.sky,
+            any_alpha,
+            epsilon: 2e-5 * extent,
+        })
+    }
+}
+
+/// A surface point found by a ray.
+#[derive(Clone, Copy, Debug)]
+pub struct SurfaceHit {
+    pub t: f32,
+    pub position: Vec3,
+    /// Unit geometric normal as wound (`(p1 - p0) x (p2 - p0)`).
+    pub normal: Vec3,
+    pub triangle: u32,
+    pub material: u32,
+    pub barycentrics: Vec2,
+}
+
+/// Triangles, materials and lights over a kd-tree: what the integrators trace.
+pub struct World {
+    mesh: Mesh,
+    tree: KdTree,
+    normals: Vec<Vec3>,
+    tri_material: Vec<u32>,
+    materials: Vec<Material>,
+    sun: Option<Sun>,
+    points: Vec<PointLight>,
+    sky: Option<Arc<SkyFn>>,
+    any_alpha: bool,
+    epsilon: f32,
+}
+
+impl World {
+    pub fn builder() -> WorldBuilder {
+        WorldBuilder::new()
+    }
+
+    pub fn triangle_count(&self) -> usize {
+        self.mesh.triangle_count()
+    }
+
+    pub fn materials(&self) -> &[Material] {
+        &self.materials
+    }
+
+    pub fn material(&self, id: u32) -> &Material {
+        &self.materials[id as usize]
+    }
+
+    pub fn sun(&self) -> Option<&Sun> {
+        self.sun.as_ref()
+    }
+
+    pub fn point_lights(&self) -> &[PointLight] {
+        &self.points
+    }
+
+    /// Sky radiance towards `dir` (zero without a sky).
+    pub fn sky_radiance(&self, dir: Vec3) -> Vec3 {
+        match &self.sky {
+            Some(f) => {
+                let l = f(dir);
+                if l.is_finite() { l.max(Vec3::ZERO) } else { Vec3::ZERO }
+            }
+            None => Vec3::ZERO,
+        }
+    }
+
+    pub fn has_sky(&self) -> bool {
+        self.sky.is_some()
+    }
+
+    /// Bounding box of the geometry.
+    pub fn bounds(&self) -> Option<(Vec3, Vec3)> {
+        self.mesh.bounds()
+    }
+
+    /// Offset used to leave a surface (scaled with the scene's extent).
+    pub fn epsilon(&self) -> f32 {
+        self.epsilon
+    }
+
+    /// Checks the kd-tree and the per-triangle tables.
+    pub fn validate(&self) -> Result<(), Error> {
+        self.tree.validate(&self.mesh)?;
+        if self.tri_material.len() != self.mesh.triangle_count()
+            || self.normals.len() != self.tri_material.len()
+        {
+            return Err(Error::Scene("per-triangle tables out of step with the mesh".into()));
+        }
+        Ok(())
+    }
+
+    /// A point just off the surface at `p` on the side of `dir`.
+    pub fn offset(&self, p: Vec3, normal: Vec3, dir: Vec3) -> Vec3 {
+        let e = self.epsilon.max(p.abs().max_element() * 4e-6);
+        if normal.dot(dir) >= 0.0 { p + normal * e } else { p - normal * e }
+    }
+
+    fn passes_alpha(&self, triangle: u32, bary: Vec2) -> bool {
+        match &self.materials[self.tri_material[triangle as usize] as usize].alpha {
+            Some(a) => (a.coverage)(triangle, bary) >= a.cutoff,
+            None => true,
+        }
+    }
+
+    /// Closest hit along `origin + t dir`, `t` in `(0, t_max]`, skipping alpha-tested holes.
+    pub fn intersect(&self, origin: Vec3, dir: Vec3, t_max: f32) -> Option<SurfaceHit> {
+        let mut t_min = 0.0f32;
+        loop {
+            let ray = Ray::new(origin, dir).with_t_min(t_min);
+            let h = self.tree.intersect(&ray, t_max)?;
+            if !self.any_alpha || self.passes_alpha(h.triangle, h.barycentrics) {
+                return Some(SurfaceHit {
+                    t: h.t,
+                    position: origin + dir * h.t,
+                    normal: self.normals[h.triangle as usize],
+                    triangle: h.triangle,
+                    material: self.tri_material[h.triangle as usize],
+                    barycentrics: h.barycentrics,
+                });
+            }
+            let next = h.t + (h.t * 1e-6).max(1e-7);
+            if !(next > t_min) || next > t_max {
+                return None;
+            }
+            t_min = next;
+        }
+    }
+
+    /// True when something opaque lies along `origin + t dir`, `t` in `(0, t_max)`.
+    pub fn occluded(&self, origin: Vec3, dir: Vec3, t_max: f32) -> bool {
+        if self.any_alpha {
+            self.intersect(origin, dir, t_max).is_some()
+        } else {
+            self.tree.occluded(&Ray::new(origin, dir), t_max)
+        }
+    }
+}

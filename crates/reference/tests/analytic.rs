@@ -1,0 +1,271 @@
+//! Analytic answers the renderer must reproduce (within 3 standard errors).
+
+mod common;
+
+use common::{dir, furnace, ground};
+use glam::Vec3;
+use reference::{
+    Camera, Component, Estimate, Material, PathSettings, PointLight, QueryPoint, QuerySettings,
+    RenderSettings, Sun, World, irradiance, radiance, render,
+};
+use std::f32::consts::PI;
+
+fn pooled(est: &[Estimate]) -> (f64, f64) {
+    let n = est.len() as f64;
+    let mean = est.iter().map(|e| e.mean.x as f64).sum::<f64>() / n;
+    let se = est.iter().map(|e| (e.std_error.x as f64).powi(2)).sum::<f64>().sqrt() / n;
+    (mean, se)
+}
+
+#[test]
+fn furnace_converges_to_the_analytic_radiance() {
+    let (a, e) = (0.5, 0.5);
+    let world = furnace(a, e);
+    world.validate().unwrap();
+    let cam = Camera::look_at(Vec3::new(0.1, 0.05, 0.0), Vec3::new(1.0, 0.2, -1.0), 90.0);
+    let s = RenderSettings { width: 24, height: 24, spp: 16, ..RenderSettings::DEFAULT };
+    let r = render(&world, cam, s, false).unwrap();
+    let (mean, se) = pooled(&r.estimates());
+    let expected = (e / (1.0 - a)) as f64;
+    assert!(se > 0.0 && se < 0.02, "standard error {se}");
+    assert!((mean - expected).abs() < 3.0 * se, "furnace {mean} +- {se}, expected {expected}");
+}
+
+#[test]
+fn furnace_irradiance_query_is_pi_times_radiance() {
+    let world = furnace(0.6, 0.2);
+    let pts: Vec<QueryPoint> = (0..8)
+        .map(|i| {
+            let d = dir(10.0 * i as f32 - 30.0, 45.0 * i as f32);
+            QueryPoint::new(d * 0.95, -d)
+        })
+        .collect();
+    let q = QuerySettings { samples: 400, ..QuerySettings::DEFAULT };
+    let est = irradiance(&world, Component::Full, &pts, &q).unwrap();
+    let (mean, se) = pooled(&est);
+    let expected = PI as f64 * 0.2 / 0.4;
+    assert!((mean - expected).abs() < 3.0 * se, "{mean} +- {se} vs {expected}");
+}
+
+#[test]
+fn energy_never_increases_with_bounce_count() {
+    let (a, e) = (0.7f32, 0.3f32);
+    let world = furnace(a, e);
+    let rays: Vec<(Vec3, Vec3)> =
+        (0..16).map(|i| (Vec3::ZERO, dir(11.0 * i as f32 - 80.0, 37.0 * i as f32))).collect();
+    let mut prev_total: Option<(f64, f64)> = None;
+    let mut prev_inc = f64::INFINITY;
+    for k in 0..6 {
+        let q = QuerySettings {
+            samples: 256,
+            seed: 7,
+            path: PathSettings { max_bounces: k, rr_start: 100 },
+        };
+        let (total, se) = pooled(&radiance(&world, Component::Full, &rays, &q).unwrap());
+        // Analytic: e (1 + a + ... + a^k).
+        let expected = (e * (1.0 - a.powi(k as i32 + 1)) / (1.0 - a)) as f64;
+        assert!(
+            (total - expected).abs() <= 3.0 * se + 1e-5,
+            "k={k}: {total} +- {se} vs {expected}"
+        );
+        assert!(total <= (e / (1.0 - a)) as f64 + 3.0 * se + 1e-5);
+        if let Some((p, pse)) = prev_total {
+            let inc = total - p;
+            assert!(inc >= -1e-6, "adding bounce {k} removed light");
+            assert!(
+                inc <= prev_inc + 3.0 * (se + pse) + 1e-6,
+                "bounce {k} added {inc} > {prev_inc}"
+            );
+            prev_inc = inc;
+        }
+        prev_total = Some((total, se));
+    }
+}
+
+#[test]
+fn plane_under_a_constant_sky_receives_pi_l() {
+    let mut b = World::builder();
+    let g = b.material(Material::diffuse(Vec3::splat(0.8)));
+    ground(&mut b, g);
+    b.sky(|_| Vec3::new(0.5, 1.0, 2.0));
+    let world = b.build().unwrap();
+    let pts: Vec<QueryPoint> = (0..10)
+        .map(|i| QueryPoint::new(Vec3::new(i as f32 - 5.0, 0.0, 0.3 * i as f32), Vec3::Y))
+        .collect();
+    for c in [Component::SkyIrradiance, Component::Full] {
+        for e in irradiance(&world, c, &pts, &QuerySettings::low()).unwrap() {
+            let want = PI * Vec3::new(0.5, 1.0, 2.0);
+            assert!(
+                ((e.mean - want) / want).abs().max_element() < 1e-4,
+                "{c:?}: {} vs {want}",
+                e.mean
+            );
+        }
+    }
+    // Seen from above, the lit plane's radiance is albedo * L (one bounce to the sky).
+    let cam = Camera::look_at(Vec3::new(0.0, 2.0, 0.0), Vec3::new(0.0, 0.0, -0.5), 40.0);
+    let r = render(
+        &world,
+        cam,
+        RenderSettings { width: 8, height: 8, spp: 4, ..RenderSettings::DEFAULT },
+        false,
+    )
+    .unwrap();
+    for p in r.mean().pixels {
+        assert!((p - 0.8 * Vec3::new(0.5, 1.0, 2.0)).abs().max_element() < 1e-4, "{p}");
+    }
+}
+
+#[test]
+fn plane_under_the_sun_receives_e_cos_theta() {
+    for elevation in [90.0f32, 60.0, 30.0, 10.0, 2.0] {
+        let mut b = World::builder();
+        let g = b.material(Material::diffuse(Vec3::splat(0.5)));
+        ground(&mut b, g);
+        let sun = Sun::new(dir(elevation, 20.0), Vec3::new(100.0, 90.0, 80.0));
+        b.sun(sun);
+        let world = b.build().unwrap();
+        let pts = [QueryPoint::new(Vec3::new(1.0, 0.0, 2.0), Vec3::Y)];
+        let q = QuerySettings { samples: 2000, ..QuerySettings::DEFAULT };
+        for c in [Component::SunDirect, Component::Full] {
+            let e = irradiance(&world, c, &pts, &q).unwrap()[0];
+            let want = sun.irradiance * elevation.to_radians().sin();
+            assert!(
+                e.agrees_with(want, 3.0, 1e-4 * want.max_element()),
+                "{elevation} {c:?}: {e:?} vs {want}"
+            );
+        }
+    }
+}
+
+#[test]
+fn sun_shadows_have_a_true_penumbra() {
+    // A tall wall along x = 0 (from z = -20 to 20, up to y = 10) with the sun straight
+    // above-behind it: on the ground the shadow edge is blurred over d * 2 * alpha.
+    let mut b = World::builder();
+    let g = b.material(Material::diffuse(Vec3::splat(0.5)));
+    ground(&mut b, g);
+    b.quad(Vec3::new(0.0, 0.0, 20.0), Vec3::new(0.0, 0.0, -40.0), Vec3::new(0.0, 10.0, 0.0), g);
+    let sun = Sun::new(dir(45.0, 0.0), Vec3::splat(10.0));
+    b.sun(sun);
+    let world = b.build().unwrap();
+    // The wall top (y = 10) casts its edge at x = -10 on the ground; the penumbra half width
+    // there is about 10 * sqrt(2) * alpha / sin(45 deg).
+    let half = 10.0 * 2f32.sqrt() * Sun::ANGULAR_RADIUS / 45f32.to_radians().sin();
+    let q = QuerySettings { samples: 4000, ..QuerySettings::DEFAULT };
+    let at = |x: f32| {
+        irradiance(
+            &world,
+            Component::SunDirect,
+            &[QueryPoint::new(Vec3::new(x, 0.0, 0.0), Vec3::Y)],
+            &q,
+        )
+        .unwrap()[0]
+    };
+    let full = 10.0 * 45f32.to_radians().sin();
+    let lit = at(-10.0 - 2.0 * half);
+    let umbra = at(-10.0 + 2.0 * half);
+    let edge = at(-10.0);
+    assert!(lit.agrees_with(Vec3::splat(full), 3.0, 1e-3), "{lit:?}");
+    assert_eq!(umbra.mean, Vec3::ZERO);
+    assert!(
+        edge.agrees_with(Vec3::splat(0.5 * full), 3.0, 0.02 * full),
+        "{edge:?} vs {}",
+        0.5 * full
+    );
+}
+
+#[test]
+fn mirror_reflects_a_known_emitter_exactly() {
+    let mut b = World::builder();
+    let mirror = b.material(Material::mirror(0.8));
+    let light = b.material(Material::emissive(Vec3::ZERO, Vec3::new(2.0, 3.0, 4.0)));
+    ground(&mut b, mirror);
+    b.quad(Vec3::new(-1.0, 3.0, -1.0), Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 2.0), light);
+    b.sun(Sun::new(dir(40.0, 0.0), Vec3::splat(5.0)));
+    let world = b.build().unwrap();
+    // From (-1, 1, 0) towards the mirror at (-0.75, 0, 0): reflects up to the emitter's
+    // plane y = 3 at x = 0.
+    let o = Vec3::new(-1.0, 1.0, 0.0);
+    let d = (Vec3::new(-0.75, 0.0, 0.0) - o).normalize();
+    let q = QuerySettings { samples: 16, ..QuerySettings::DEFAULT };
+    for c in [Component::Reflections, Component::Full] {
+        let e = radiance(&world, c, &[(o, d)], &q).unwrap()[0];
+        assert!(
+            (e.mean - 0.8 * Vec3::new(2.0, 3.0, 4.0)).abs().max_element() < 1e-5,
+            "{c:?} {e:?}"
+        );
+        assert_eq!(e.std_error, Vec3::ZERO);
+    }
+    // A ray reflected straight at the sun sees its disk radiance times the reflectivity.
+    let sun = *world.sun().unwrap();
+    let to_sun = sun.direction;
+    let incoming = Vec3::new(to_sun.x, -to_sun.y, to_sun.z);
+    let o = Vec3::new(5.0, 0.0, 5.0) - incoming * 2.0;
+    let e = radiance(&world, Component::Reflections, &[(o, incoming)], &q).unwrap()[0];
+    assert!(((e.mean - 0.8 * sun.radiance()) / sun.radiance()).abs().max_element() < 1e-4, "{e:?}");
+}
+
+#[test]
+fn glass_slab_transmits_one_minus_f_over_one_plus_f() {
+    let mut b = World::builder();
+    let glass = b.material(Material::glass(1.5));
+    let light = b.material(Material::emissive(Vec3::ZERO, Vec3::ONE));
+    // Slab between z = 0 and z = -0.1 (quads facing out), emitter far behind.
+    b.quad(
+        Vec3::new(-50.0, -50.0, 0.0),
+        Vec3::new(100.0, 0.0, 0.0),
+        Vec3::new(0.0, 100.0, 0.0),
+        glass,
+    );
+    b.quad(
+        Vec3::new(-50.0, -50.0, -0.1),
+        Vec3::new(0.0, 100.0, 0.0),
+        Vec3::new(100.0, 0.0, 0.0),
+        glass,
+    );
+    b.quad(
+        Vec3::new(-50.0, -50.0, -5.0),
+        Vec3::new(100.0, 0.0, 0.0),
+        Vec3::new(0.0, 100.0, 0.0),
+        light,
+    );
+    let world = b.build().unwrap();
+    let q = QuerySettings { samples: 20_000, ..QuerySettings::DEFAULT };
+    let e =
+        radiance(&world, Component::Full, &[(Vec3::new(0.0, 0.0, 1.0), -Vec3::Z)], &q).unwrap()[0];
+    let f = 0.04f32;
+    let want = (1.0 - f) / (1.0 + f);
+    assert!(e.agrees_with(Vec3::splat(want), 3.0, 1e-4), "{e:?} vs {want}");
+    let refl =
+        radiance(&world, Component::Reflections, &[(Vec3::new(0.0, 0.0, 1.0), -Vec3::Z)], &q)
+            .unwrap()[0];
+    assert!(refl.agrees_with(Vec3::splat(want), 3.0, 1e-4), "{refl:?}");
+}
+
+#[test]
+fn point_light_irradiance_is_i_cos_over_d2_within_its_radius() {
+    let mut b = World::builder();
+    let g = b.material(Material::diffuse(Vec3::splat(0.5)));
+    ground(&mut b, g);
+    b.point_light(PointLight {
+        position: Vec3::new(0.0, 2.0, 0.0),
+        intensity: Vec3::splat(8.0),
+        radius: 5.0,
+    });
+    let world = b.build().unwrap();
+    let q = QuerySettings {
+        samples: 1,
+        path: PathSettings { max_bounces: 0, rr_start: 0 },
+        ..QuerySettings::DEFAULT
+    };
+    let pts = [
+        QueryPoint::new(Vec3::new(2.0, 0.0, 0.0), Vec3::Y),
+        QueryPoint::new(Vec3::new(6.0, 0.0, 0.0), Vec3::Y),
+    ];
+    let e = irradiance(&world, Component::Full, &pts, &q).unwrap();
+    let d2 = 8.0f32;
+    let want = 8.0 * (2.0 / d2.sqrt()) / d2;
+    assert!((e[0].mean.x - want).abs() < 1e-4, "{:?} vs {want}", e[0]);
+    assert_eq!(e[1].mean, Vec3::ZERO, "beyond the radius");
+}

@@ -1,0 +1,58 @@
+//! Small analytic worlds shared by the tests.
+#![allow(dead_code)]
+
+use glam::Vec3;
+use reference::{Material, World, WorldBuilder};
+use std::f32::consts::PI;
+
+/// A closed UV sphere of radius `r` around the origin (shared vertices: watertight).
+pub fn sphere(b: &mut WorldBuilder, r: f32, slices: u32, stacks: u32, material: u32) {
+    let mut p = vec![Vec3::new(0.0, r, 0.0)];
+    for i in 1..stacks {
+        let th = PI * i as f32 / stacks as f32;
+        for j in 0..slices {
+            let ph = 2.0 * PI * j as f32 / slices as f32;
+            p.push(r * Vec3::new(th.sin() * ph.cos(), th.cos(), th.sin() * ph.sin()));
+        }
+    }
+    p.push(Vec3::new(0.0, -r, 0.0));
+    let bottom = p.len() as u32 - 1;
+    let ring = |i: u32, j: u32| 1 + i * slices + j % slices;
+    let mut idx = Vec::new();
+    for j in 0..slices {
+        idx.push([0, ring(0, j + 1), ring(0, j)]);
+        idx.push([bottom, ring(stacks - 2, j), ring(stacks - 2, j + 1)]);
+    }
+    for i in 0..stacks - 2 {
+        for j in 0..slices {
+            idx.push([ring(i, j), ring(i, j + 1), ring(i + 1, j + 1)]);
+            idx.push([ring(i, j), ring(i + 1, j + 1), ring(i + 1, j)]);
+        }
+    }
+    b.triangles(&p, &idx, material);
+}
+
+/// The furnace: a closed sphere with albedo `a` and emission `e` (radiance `e / (1 - a)`).
+pub fn furnace(a: f32, e: f32) -> World {
+    let mut b = World::builder();
+    let m = b.material(Material::emissive(Vec3::splat(a), Vec3::splat(e)));
+    sphere(&mut b, 1.0, 24, 12, m);
+    b.build().unwrap()
+}
+
+/// A 40 x 40 m ground plane (y = 0, facing up) with the given material.
+pub fn ground(b: &mut WorldBuilder, material: u32) {
+    b.quad(
+        Vec3::new(-20.0, 0.0, 20.0),
+        Vec3::new(40.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, -40.0),
+        material,
+    );
+}
+
+/// Unit vector at `elevation_deg` above the horizon towards azimuth `azimuth_deg` (from +X
+/// towards -Z).
+pub fn dir(elevation_deg: f32, azimuth_deg: f32) -> Vec3 {
+    let (e, a) = (elevation_deg.to_radians(), azimuth_deg.to_radians());
+    Vec3::new(e.cos() * a.cos(), e.sin(), -e.cos() * a.sin())
+}
