@@ -1,0 +1,15 @@
+//! Errors for bad settings and broken structures (user data never panics).
+
+/// What went wrong building or validating a light propagation volume.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum LpvError {
+    /// A setting is out of its range (the message names it and the range).
+    #[error("invalid LPV setting `{name}` = {value}: {why}")]
+    InvalidSetting { name: &'static str, value: f64, why: &'static str },
+    /// A structure failed its invariant check ([`crate::Lpv::validate`]).
+    #[error("LPV invariant broken: {0}")]
+    Invariant(String),
+    /// A GPU entry point could not run (no adapter, validation failure, read-back failure).
+    #[error("LPV GPU path: {0}")]
+    Gpu(String),
+}

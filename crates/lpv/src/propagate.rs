@@ -1,0 +1,230 @@
+//! Propagation (Kaplanyan & Dachsbacher 2010, the "second version" the thesis used): every
+//! cell gathers from its 6 face neighbours; the flux a neighbour sends through each of the 5
+//! faces of this cell it can see (the far face and the 4 side faces) is its intensity
+//! towards that face's centre times the face's solid angle, and is re-emitted from this
+//! cell's centre as a lobe towards that face.
+
+use crate::geometry::FaceBlocking;
+use crate::grid::{COEFFS, K1, Volume, Y00};
+use rayon::prelude::*;
+
+/// Solid angle of the destination cell's **far** face (the face opposite the shared one),
+/// seen from the source cell's centre: a unit square at distance 1.5, `4 asin(1/10)`.
+pub const FACE_SOLID_ANGLE_MAIN: f32 = 0.400_669_7;
+/// Solid angle of each of the destination cell's 4 **side** faces seen from the source
+/// cell's centre (the exact value, 0.4234313544; much public code has 0.4234413544).
+pub const FACE_SOLID_ANGLE_SIDE: f32 = 0.423_431_35;
+
+const INV_SQRT5: f32 = 0.447_213_6;
+const DM: f32 = FACE_SOLID_ANGLE_MAIN;
+const DS: f32 = FACE_SOLID_ANGLE_SIDE;
+/// Re-emission: a lobe of flux F towards axis e adds `F Y00` to c0 and `F K1 / 3` to c_e.
+const RE_A: f32 = K1 / 3.0;
+// The no-occlusion step is linear; its coefficients (see `step_linear`).
+const C00: f32 = Y00 * Y00 * (DM + 4.0 * DS);
+const C0A: f32 = Y00 * K1 * (DM + 8.0 * DS * INV_SQRT5);
+const CA0: f32 = RE_A * DM * Y00;
+const CAA: f32 = RE_A * DM * K1;
+const CPP: f32 = RE_A * 2.0 * DS * INV_SQRT5 * K1;
+
+/// SH coefficient slot of an axis: x -> 3, y -> 1, z -> 2 (order `Y00, y, z, x`).
+pub(crate) const AXIS_COEF: [usize; 3] = [3, 1, 2];
+/// The two axes perpendicular to each axis.
+pub(crate) const PERP: [[usize; 2]; 3] = [[1, 2], [0, 2], [0, 1]];
+
+fn four(s: &mut [f32], n: usize) -> [&mut [f32]; 4] {
+    let (a, rest) = s.split_at_mut(n);
+    let (b, rest) = rest.split_at_mut(n);
+    let (c, d) = rest.split_at_mut(n);
+    [a, b, c, &mut d[..n]]
+}
+
+/// One direction without occlusion, for one channel, over a row: linear in the source.
+#[inline(always)]
+fn step_linear(d: [&mut [f32]; 4], s: [&[f32]; 4], axis: usize, sigma: f32) {
+    let [d0, d1, d2, d3] = d;
+    let mut dd = [Some(d0), Some(d1), Some(d2), Some(d3)];
+    let a = AXIS_COEF[axis];
+    let [p, q] = PERP[axis].map(|x| AXIS_COEF[x]);
+    let d0 = dd[0].take().unwrap_or_default();
+    let da = dd[a].take().unwrap_or_default();
+    let dp = dd[p].take().unwrap_or_default();
+    let dq = dd[q].take().unwrap_or_default();
+    let len = d0.len();
+    let (da, dp, dq) = (&mut da[..len], &mut dp[..len], &mut dq[..len]);
+    let (s0, sa, sp, sq) = (&s[0][..len], &s[a][..len], &s[p][..len], &s[q][..len]);
+    let c0a = C0A * sigma;
+    let ca0 = CA0 * sigma;
+    for i in 0..len {
+        d0[i] += C00 * s0[i] + c0a * sa[i];
+        da[i] += ca0 * s0[i] + CAA * sa[i];
+        dp[i] += CPP * sp[i];
+        dq[i] += CPP * sq[i];
+    }
+}
+
+#[inline(always)]
+fn transmittance(f: [f32; 4], w: [f32; 3]) -> f32 {
+    // f in SH order (Y00, y, z, x); w = (x, y, z).
+    let b = Y00 * f[0] + K1 * (f[3] * w[0] + f[1] * w[1] + f[2] * w[2]);
+    1.0 - b.clamp(0.0, 1.0)
+}
+
+/// One direction with occlusion by the face blocking `f` (4 planes), all 3 channels.
+#[inline(always)]
+fn step_blocked(
+    dst: &mut [f32],
+    src: [&[f32]; COEFFS],
+    f: [&[f32]; 4],
+    n: usize,
+    x0: usize,
+    axis: usize,
+    sigma: f32,
+) {
+    let len = src[0].len();
+    let a = AXIS_COEF[axis];
+    let perp = PERP[axis];
+    let [p, q] = perp.map(|x| AXIS_COEF[x]);
+    let mut e = [0.0f32; 3];
+    e[axis] = sigma;
+    for i in 0..len {
+        let fi = [f[0][i], f[1][i], f[2][i], f[3][i]];
+        let t_main = transmittance(fi, e);
+        let mut ts = [0.0f32; 4];
+        for (j, &pa) in perp.iter().enumerate() {
+            for (k, sgn) in [1.0f32, -1.0].into_iter().enumerate() {
+                let mut w = [0.0f32; 3];
+                w[axis] = 2.0 * sigma * INV_SQRT5;
+                w[pa] = sgn * INV_SQRT5;
+                ts[j * 2 + k] = transmittance(fi, w);
+            }
+        }
+        for c in 0..3 {
+            let s = |k: usize| src[c * 4 + k][i];
+            let av = Y00 * s(0);
+            let ba = K1 * s(a) * sigma;
+            let (bp, bq) = (K1 * s(p) * INV_SQRT5, K1 * s(q) * INV_SQRT5);
+            let base = av + 2.0 * INV_SQRT5 * ba;
+            // Non-negative lobes make every flux >= 0; the clamps only remove rounding.
+            let fm = DM * t_main * (av + ba).max(0.0);
+            let fpp = DS * ts[0] * (base + bp).max(0.0);
+            let fpm = DS * ts[1] * (base - bp).max(0.0);
+            let fqp = DS * ts[2] * (base + bq).max(0.0);
+            let fqm = DS * ts[3] * (base - bq).max(0.0);
+            let o = c * 4 * n + x0 + i;
+            dst[o] += Y00 * (fm + fpp + fpm + fqp + fqm);
+            dst[o + a * n] += RE_A * sigma * fm;
+            dst[o + p * n] += RE_A * (fpp - fpm);
+            dst[o + q * n] += RE_A * (fqp - fqm);
+        }
+    }
+}
+
+/// One propagation step: `dst` = what every cell of `dst` gathers from its 6 neighbours in
+/// `src` (overwritten). Border cells gather only from neighbours inside the volume; flux
+/// sent through the volume's boundary leaves it. With `blocking`, each face's flux is
+/// multiplied by the transmittance `1 - clamp(B(w), 0, 1)` of the geometry volume at the
+/// shared face. When `accum` is given, the result is also added to it.
+pub fn propagate_step(
+    src: &Volume,
+    dst: &mut Volume,
+    blocking: Option<&FaceBlocking>,
+    accum: Option<&mut Volume>,
+) {
+    assert_eq!(src.res, dst.res, "propagate_step: volumes of different sizes");
+    let n = src.res as usize;
+    let sl = src.slice_len();
+    let n2 = n * n;
+    let body = |z: usize, out: &mut [f32], acc: Option<&mut [f32]>| {
+        let mut row = vec![0.0f32; COEFFS * n];
+        for y in 0..n {
+            row.fill(0.0);
+            for (axis, sigma) in
+                [(0usize, 1.0f32), (0, -1.0), (1, 1.0), (1, -1.0), (2, 1.0), (2, -1.0)]
+            {
+                // Source cell = dest - sigma * e_axis.
+                let (zs, ys) = match axis {
+                    2 if sigma > 0.0 && z == 0 => continue,
+                    2 if sigma < 0.0 && z + 1 == n => continue,
+                    1 if sigma > 0.0 && y == 0 => continue,
+                    1 if sigma < 0.0 && y + 1 == n => continue,
+                    2 => (if sigma > 0.0 { z - 1 } else { z + 1 }, y),
+                    1 => (z, if sigma > 0.0 { y - 1 } else { y + 1 }),
+                    _ => (z, y),
+                };
+                // x ranges: dest [dx0, dx0+len), source [sx0, sx0+len).
+                let (dx0, sx0, len) = match (axis, sigma > 0.0) {
+                    (0, true) => (1, 0, n - 1),
+                    (0, false) => (0, 1, n - 1),
+                    _ => (0, 0, n),
+                };
+                let srow = |k: usize| {
+                    let o = (zs * COEFFS + k) * n2 + ys * n + sx0;
+                    &src.data[o..o + len]
+                };
+                match blocking {
+                    None => {
+                        for c in 0..3 {
+                            let d = four(&mut row[c * 4 * n..(c + 1) * 4 * n], n)
+                                .map(|r| &mut r[dx0..dx0 + len]);
+                            let s =
+                                [srow(c * 4), srow(c * 4 + 1), srow(c * 4 + 2), srow(c * 4 + 3)];
+                            step_linear(d, s, axis, sigma);
+                        }
+                    }
+                    Some(b) => {
+                        // The shared face is the low face (on `axis`) of the higher cell.
+                        let (fz, fy, fx0) = if sigma > 0.0 { (z, y, dx0) } else { (zs, ys, sx0) };
+                        let frow = |k: usize| {
+                            let o = (fz * COEFFS + axis * 4 + k) * n2 + fy * n + fx0;
+                            &b.data[o..o + len]
+                        };
+                        let s: [&[f32]; COEFFS] = std::array::from_fn(srow);
+                        step_blocked(
+                            &mut row,
+                            s,
+                            [frow(0), frow(1), frow(2), frow(3)],
+                            n,
+                            dx0,
+                            axis,
+                            sigma,
+                        );
+                    }
+                }
+            }
+            for k in 0..COEFFS {
+                out[k * n2 + y * n..k * n2 + y * n + n].copy_from_slice(&row[k * n..k * n + n]);
+            }
+        }
+        if let Some(acc) = acc {
+            for (a, o) in acc.iter_mut().zip(out.iter()) {
+                *a += *o;
+            }
+        }
+    };
+    match accum {
+        Some(acc) => {
+            assert_eq!(acc.res, src.res, "propagate_step: accumulator of a different size");
+            dst.data
+                .par_chunks_mut(sl)
+                .zip(acc.data.par_chunks_mut(sl))
+                .enumerate()
+                .for_each(|(z, (out, a))| body(z, out, Some(a)));
+        }
+        None => dst.data.par_chunks_mut(sl).enumerate().for_each(|(z, out)| body(z, out, None)),
+    }
+}
+
+/// Runs `iterations` steps from the injected volume `initial` and returns the accumulated
+/// volume `initial + V1 + ... + VN` (the light that passed through every cell), which is
+/// what the lookup reads.
+pub fn propagate(initial: &Volume, iterations: u32, blocking: Option<&FaceBlocking>) -> Volume {
+    let mut accum = initial.clone();
+    let mut a = initial.clone();
+    let mut b = Volume::new(initial.res);
+    for _ in 0..iterations {
+        propagate_step(&a, &mut b, blocking, Some(&mut accum));
+        std::mem::swap(&mut a, &mut b);
+    }
+    accum
+}
