@@ -184,10 +184,10 @@ impl Lpv {
             if !c.volume.lobes_non_negative(1e-4) {
                 return bad(format!("cascade {i}: a lobe is negative somewhere"));
             }
-            if let Some(gv) = &c.geometry {
-                if gv.res != g.res || !gv.is_finite() {
-                    return bad(format!("cascade {i}: bad geometry volume"));
-                }
+            if let Some(gv) = &c.geometry
+                && (gv.res != g.res || !gv.is_finite())
+            {
+                return bad(format!("cascade {i}: bad geometry volume"));
             }
         }
         Ok(())
