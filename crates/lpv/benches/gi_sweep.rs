@@ -213,11 +213,16 @@ fn main() {
             iterations: res / 4,
             ..LpvSettings::DEFAULT
         };
-        point(&mut sweep, format!("lpv/cornell_window_3x{res}_{}it", res / 4), "lpv", s);
+        point(&mut sweep, format!("lpv/cornell_window_res{res}_3x{res}_{}it", res / 4), "lpv", s);
     }
     for cascades in 1..=4 {
         let s = LpvSettings { cascades, ..LpvSettings::DEFAULT };
-        point(&mut sweep, format!("lpv/cornell_window_{cascades}x32_8it"), "lpv", s);
+        point(
+            &mut sweep,
+            format!("lpv/cornell_window_cascades{cascades}_{cascades}x32_8it"),
+            "lpv",
+            s,
+        );
     }
     if !quick {
         point(&mut sweep, "lpv/cornell_window_high".into(), "lpv_gv", LpvSettings::high());
