@@ -25,7 +25,26 @@ fn main() {
     let world = world_from_scene(&city, &SceneLighting::DEFAULT).expect("city world");
     let cam = camera_from_scene(&city);
 
-    let mut points = vec![(320u32, 180u32, 16u32, 3usize)];
+    sweep.stage("city primary rays");
+    let (pw, ph) = (320u32, 180u32);
+    let dirs: Vec<glam::Vec3> = (0..pw * ph)
+        .map(|i| cam.direction((i % pw) as f32 + 0.5, (i / pw) as f32 + 0.5, pw, ph))
+        .collect();
+    let (ms, hits) = time_ms(sweep.reps(10), || {
+        use rayon::prelude::*;
+        dirs.par_iter()
+            .filter(|&&d| world.intersect(cam.position, d, f32::INFINITY).is_some())
+            .count()
+    });
+    sweep.entry(
+        Entry::new("reference/city_primary_rays_320x180", "closest_hit", ms)
+            .setting("rays", dirs.len())
+            .setting("mrays_per_s", dirs.len() as f64 / ms * 1e-3)
+            .note(format!("{hits} of {} camera rays hit geometry", dirs.len()))
+            .threads(threads()),
+    );
+
+    let mut points = vec![(320u32, 180u32, 16u32, if quick { 1 } else { 3 })];
     if !quick {
         points.push((800, 450, 64, 1));
     }
