@@ -4,13 +4,14 @@
 //!   scene's shading normals and normal maps are not used).
 //! - Materials: albedo, glossiness, specular power, reflectivity, transparency + IOR,
 //!   emission and the alpha mask (its texture's alpha, bilinear on level 0, at the
-//!   interpolated UV) map one to one; albedo textures are not applied (the constant albedo is).
+//!   interpolated UV) map one to one; the albedo texture (bilinear, level 0) multiplies the
+//!   albedo at each hit.
 //! - Sun: with `scene.sky` the irradiance is `sun.color * atmosphere::Sky::sun_colour` (the
 //!   Earth atmosphere's transmittance, in units of the solar irradiance at the top) and the
 //!   sky radiance comes from an `atmosphere::SkyMap`; without a sky the sun's colour is read
 //!   as its irradiance and there is no sky light. Point lights map one to one.
 
-use crate::material::AlphaTest;
+use crate::material::{AlbedoTexture, AlphaTest};
 use crate::world::{PointLight, Sun, World};
 use crate::{Camera, Error, Material};
 use atmosphere::{Sky, SkyMap, SkyMapSettings, SkyRadiance};
@@ -70,6 +71,16 @@ pub fn world_from_scene(scene: &scene::Scene, lighting: &SceneLighting) -> Resul
             };
             Some(AlphaTest { coverage: Arc::new(coverage), cutoff: mask.cutoff })
         });
+        let albedo_texture = sm.albedo_texture.and_then(|id| {
+            let tex = scene.textures.get(id.index())?.clone();
+            let uvs = Arc::clone(&uvs);
+            let colour = move |tri: u32, bary: Vec2| {
+                let [a, b, c] = uvs[tri as usize];
+                let uv = a * (1.0 - bary.x - bary.y) + b * bary.x + c * bary.y;
+                tex.sample_bilinear(uv, 0).truncate()
+            };
+            Some(AlbedoTexture(Arc::new(colour)))
+        });
         b.material(Material {
             albedo: sm.albedo,
             emission: sm.emission,
@@ -79,6 +90,7 @@ pub fn world_from_scene(scene: &scene::Scene, lighting: &SceneLighting) -> Resul
             transparency: sm.transparency,
             ior: sm.ior,
             alpha,
+            albedo_texture,
         });
     }
     for m in &scene.meshes {

@@ -152,7 +152,7 @@ pub(crate) fn trace_path(
             }
             break;
         };
-        let m = world.material(h.material);
+        let m = world.shade(&h);
         let wo = -dir;
         let (n, front) = facing(&h, wo);
         l += beta * m.emission;
@@ -215,7 +215,7 @@ pub(crate) fn irradiance(
             match world.intersect(o, wi, f32::INFINITY) {
                 Some(h) => {
                     let (ny, _) = facing(&h, -wi);
-                    let rho = world.material(h.material).diffuse_reflectance();
+                    let rho = world.shade(&h).diffuse_reflectance();
                     rho * sun_irradiance(world, h.position, ny, rng)
                 }
                 None => Vec3::ZERO,
@@ -244,7 +244,7 @@ pub(crate) fn radiance(
         return trace_path(world, origin, dir, Vec3::ONE, true, 0, settings, rng);
     }
     let Some(h) = world.intersect(origin, dir, f32::INFINITY) else { return Vec3::ZERO };
-    let m = world.material(h.material);
+    let m = world.shade(&h);
     let wo = -dir;
     let (n, front) = facing(&h, wo);
     match component {

@@ -66,7 +66,7 @@ pub use error::Error;
 pub use from_scene::{SceneLighting, camera_from_scene, world_from_scene};
 pub use image::Image;
 pub use integrator::{Component, PathSettings};
-pub use material::{AlphaTest, CoverageFn, Material, Sample};
+pub use material::{AlbedoTexture, AlphaTest, CoverageFn, Material, Sample, TextureFn};
 pub use query::{QueryPoint, QuerySettings, irradiance, radiance};
 pub use render::{RenderSettings, Renderer, TILE, render};
 pub use rng::Rng;

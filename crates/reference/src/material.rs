@@ -37,6 +37,19 @@ impl fmt::Debug for AlphaTest {
     }
 }
 
+/// Colour of a surface point: `(triangle, barycentrics) -> RGB`, multiplying the albedo.
+pub type TextureFn = dyn Fn(u32, Vec2) -> Vec3 + Send + Sync;
+
+/// An albedo texture (already linear), looked up at each hit.
+#[derive(Clone)]
+pub struct AlbedoTexture(pub Arc<TextureFn>);
+
+impl fmt::Debug for AlbedoTexture {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("AlbedoTexture(..)")
+    }
+}
+
 /// One material of the reference renderer (see the module doc for the model).
 #[derive(Clone, Debug)]
 pub struct Material {
@@ -56,6 +69,8 @@ pub struct Material {
     pub ior: f32,
     /// Optional alpha test.
     pub alpha: Option<AlphaTest>,
+    /// Optional albedo texture (multiplies `albedo`; values are clamped to `[0, 1]`).
+    pub albedo_texture: Option<AlbedoTexture>,
 }
 
 impl Material {
@@ -70,6 +85,7 @@ impl Material {
             transparency: 0.0,
             ior: 1.5,
             alpha: None,
+            albedo_texture: None,
         }
     }
 

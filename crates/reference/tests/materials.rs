@@ -252,3 +252,26 @@ fn bad_input_is_a_typed_error() {
     .unwrap();
     assert_eq!(e[0].samples, 0);
 }
+
+#[test]
+fn albedo_texture_multiplies_the_albedo() {
+    let mut b = World::builder();
+    let mut m = Material::diffuse(Vec3::splat(0.8));
+    // Left half of each triangle's barycentric domain dark, the rest bright.
+    m.albedo_texture =
+        Some(reference::AlbedoTexture(std::sync::Arc::new(|_, bary: glam::Vec2| {
+            if bary.x < 0.5 { Vec3::splat(0.25) } else { Vec3::ONE }
+        })));
+    let m = b.material(m);
+    common::ground(&mut b, m);
+    b.sky(|_| Vec3::ONE);
+    let world = b.build().unwrap();
+    let q = QuerySettings::low();
+    let rays: Vec<(Vec3, Vec3)> = (0..20)
+        .map(|i| (Vec3::new(i as f32 - 10.0, 1.0, 0.37 * i as f32 - 3.0), -Vec3::Y))
+        .collect();
+    for e in reference::radiance(&world, Component::Full, &rays, &q).unwrap() {
+        let v = e.mean.x;
+        assert!((v - 0.2).abs() < 1e-4 || (v - 0.8).abs() < 1e-4, "{e:?}");
+    }
+}
