@@ -1,0 +1,132 @@
+//! GPU path (feature `gpu`): WGSL for the lookup (the deferred sky-lighting pass, thesis
+//! 5.3.6) and the brute-force fill (thesis 5.3.4), and the `#[repr(C)]` data they read.
+//!
+//! Storage layout: one `array<f32>` of 27 floats per point (r, g, b x 9 radiance SH), in grid
+//! order (x fastest, then z, then y): exactly [`SkyVolume::probes`] as bytes. Bindings are
+//! listed at the top of each shader; the engine builds the pipelines.
+
+use crate::sky::sanitize;
+use crate::{OcclusionQuad, SkyRadiance, SkyVolume};
+use bytemuck::{Pod, Zeroable};
+
+/// WGSL of the lookup (entry point `lookup`, plus `sky_volume_irradiance` for other passes);
+/// needs the `sh_math` snippet: use [`lookup_shader`].
+pub const LOOKUP_WGSL: &str = include_str!("../../../shaders/sky_volume/lookup.wgsl");
+/// WGSL of the brute-force fill (entry point `fill`); use [`fill_shader`].
+pub const FILL_WGSL: &str = include_str!("../../../shaders/sky_volume/fill.wgsl");
+
+/// The complete lookup shader (sh_math snippet + [`LOOKUP_WGSL`]).
+pub fn lookup_shader() -> String {
+    format!("{}\n{}", sh_math::WGSL, LOOKUP_WGSL)
+}
+
+/// The complete fill shader (sh_math snippet + [`FILL_WGSL`]).
+pub fn fill_shader() -> String {
+    format!("{}\n{}", sh_math::WGSL, FILL_WGSL)
+}
+
+/// Uniform of the lookup shader.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct LookupParams {
+    pub origin: [f32; 4],
+    pub spacing: [f32; 4],
+    pub dims: [u32; 4],
+    pub kernel: [f32; 12],
+}
+const _: () = assert!(std::mem::size_of::<LookupParams>() == 96);
+
+/// One lookup query (storage array element).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct Query {
+    pub position: [f32; 4],
+    pub normal: [f32; 4],
+    pub albedo: [f32; 4],
+}
+const _: () = assert!(std::mem::size_of::<Query>() == 48);
+
+/// Uniform of the fill shader.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct FillParams {
+    pub origin: [f32; 4],
+    pub spacing: [f32; 4],
+    /// Points along x, y, z; total points.
+    pub dims: [u32; 4],
+    /// Samples, quads.
+    pub counts: [u32; 4],
+}
+const _: () = assert!(std::mem::size_of::<FillParams>() == 64);
+
+/// An occlusion quad as the fill shader reads it.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuQuad {
+    pub center_half_u: [f32; 4],
+    pub axis_u_half_v: [f32; 4],
+    pub axis_v_opacity: [f32; 4],
+    pub tint: [f32; 4],
+}
+const _: () = assert!(std::mem::size_of::<GpuQuad>() == 64);
+
+impl From<&OcclusionQuad> for GpuQuad {
+    fn from(q: &OcclusionQuad) -> Self {
+        let (c, u, v, t) = (q.center, q.axis_u, q.axis_v, q.tint);
+        Self {
+            center_half_u: [c.x, c.y, c.z, q.half_u],
+            axis_u_half_v: [u.x, u.y, u.z, q.half_v],
+            axis_v_opacity: [v.x, v.y, v.z, q.opacity],
+            tint: [t.x, t.y, t.z, 0.0],
+        }
+    }
+}
+
+/// Everything the fill shader's bindings 0..=3 hold.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FillInputs {
+    pub params: FillParams,
+    /// Direction and solid-angle weight per sample.
+    pub samples: Vec<[f32; 4]>,
+    /// Sky radiance per sample (sanitised: non-finite or negative channels are zero).
+    pub sky: Vec<[f32; 4]>,
+    pub quads: Vec<GpuQuad>,
+}
+
+impl SkyVolume {
+    /// The lookup shader's uniform for this volume.
+    pub fn gpu_lookup_params(&self) -> LookupParams {
+        let g = &self.grid;
+        let mut kernel = [0.0; 12];
+        kernel[..9].copy_from_slice(&self.kernel);
+        LookupParams {
+            origin: g.origin.extend(0.0).to_array(),
+            spacing: g.spacing.extend(0.0).to_array(),
+            dims: [g.dims.x, g.dims.y, g.dims.z, g.len() as u32],
+            kernel,
+        }
+    }
+
+    /// The probes as the shaders' `array<f32>`.
+    pub fn gpu_probe_bytes(&self) -> &[u8] {
+        bytemuck::cast_slice(&self.probes)
+    }
+
+    /// The fill shader's inputs for this volume, its quads and `sky`.
+    pub fn gpu_fill_inputs(&self, sky: &impl SkyRadiance) -> FillInputs {
+        let g = &self.grid;
+        let dirs = self.sample_directions();
+        let w = std::f32::consts::TAU / dirs.len() as f32;
+        FillInputs {
+            params: FillParams {
+                origin: g.origin.extend(0.0).to_array(),
+                spacing: g.spacing.extend(0.0).to_array(),
+                dims: [g.dims.x, g.dims.y, g.dims.z, g.len() as u32],
+                counts: [dirs.len() as u32, self.quads().len() as u32, 0, 0],
+            },
+            samples: dirs.iter().map(|d| d.extend(w).to_array()).collect(),
+            sky: dirs.iter().map(|d| sanitize(sky.radiance(*d)).extend(0.0).to_array()).collect(),
+            quads: self.quads().iter().map(GpuQuad::from).collect(),
+        }
+    }
+}

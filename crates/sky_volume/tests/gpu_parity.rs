@@ -1,0 +1,117 @@
+//! CPU/GPU parity of the WGSL lookup and brute-force fill, and naga validation of the exact
+//! shader strings Rust uses.
+#![cfg(feature = "gpu")]
+
+use glam::{UVec3, Vec3};
+use gpu_harness::{Binding, cast_vec, gpu_test_context};
+use sky_volume::gpu::*;
+use sky_volume::*;
+
+fn validate_wgsl(src: &str) {
+    let module = naga::front::wgsl::parse_str(src).expect("WGSL parses");
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::all(),
+    )
+    .validate(&module)
+    .expect("WGSL validates");
+}
+
+#[test]
+fn shaders_validate() {
+    validate_wgsl(&lookup_shader());
+    validate_wgsl(&fill_shader());
+}
+
+fn volume(method: FillMethod) -> (SkyVolume, AnalyticSky) {
+    let grid =
+        VolumeGrid::new(Vec3::new(-9.0, 0.0, -9.0), UVec3::new(7, 4, 6), Vec3::new(3.0, 2.5, 3.0));
+    let mut quads = generated_city(&grid, 12, 4);
+    quads.push(
+        OcclusionQuad::horizontal(Vec3::new(2.0, 5.0, 1.0), 3.0, 2.0)
+            .with_opacity(0.6, Vec3::new(0.3, 0.9, 0.4)),
+    );
+    let sky = AnalyticSky::new(Vec3::new(0.4, 0.5, -0.3));
+    let mut v =
+        SkyVolume::with_quads(grid, Settings::DEFAULT.with_samples(64).with_method(method), &quads)
+            .unwrap();
+    v.fill(&sky);
+    (v, sky)
+}
+
+#[test]
+fn fill_matches_cpu() {
+    let Some(ctx) = gpu_test_context() else { return };
+    let (v, sky) = volume(FillMethod::BruteForce);
+    let inputs = v.gpu_fill_inputs(&sky);
+    let n = v.grid().len();
+    let out = ctx
+        .run_compute(
+            &fill_shader(),
+            "fill",
+            &[
+                Binding::Uniform(bytemuck::bytes_of(&inputs.params)),
+                Binding::Read(bytemuck::cast_slice(&inputs.samples)),
+                Binding::Read(bytemuck::cast_slice(&inputs.sky)),
+                Binding::Read(bytemuck::cast_slice(&inputs.quads)),
+                Binding::Output((n * 27 * 4) as u64),
+            ],
+            [n.div_ceil(64) as u32, 1, 1],
+        )
+        .expect("dispatch");
+    let gpu = cast_vec::<f32>(&out[4]);
+    let cpu: Vec<f32> = cast_vec::<f32>(v.gpu_probe_bytes());
+    let (mut num, mut den) = (0.0f64, 0.0f64);
+    for (a, b) in gpu.iter().zip(&cpu) {
+        num += ((a - b) as f64).powi(2);
+        den += (*b as f64).powi(2);
+    }
+    let rel = (num / den).sqrt();
+    assert!(rel < 1e-3, "GPU fill rel RMS {rel}");
+}
+
+#[test]
+fn lookup_matches_cpu() {
+    let Some(ctx) = gpu_test_context() else { return };
+    let (v, _) = volume(FillMethod::CachedVisibility);
+    let g = *v.grid();
+    let lo = g.origin - Vec3::splat(2.0);
+    let size = g.max_corner() - g.origin + Vec3::splat(4.0);
+    let queries: Vec<Query> = (0..256u32)
+        .map(|i| {
+            let f = |k: u32| ((i * 7919 + k * 104_729) % 1000) as f32 / 1000.0;
+            let n = Vec3::new(f(1) - 0.5, f(2) - 0.4, f(3) - 0.5).normalize_or(Vec3::Y);
+            let p = lo + size * Vec3::new(f(4), f(5), f(6));
+            Query {
+                position: p.extend(1.0).to_array(),
+                normal: n.extend(0.0).to_array(),
+                albedo: [0.8, 0.5, 0.2, 1.0],
+            }
+        })
+        .collect();
+    let params = v.gpu_lookup_params();
+    let out = ctx
+        .run_compute(
+            &lookup_shader(),
+            "lookup",
+            &[
+                Binding::Uniform(bytemuck::bytes_of(&params)),
+                Binding::Read(v.gpu_probe_bytes()),
+                Binding::Read(bytemuck::cast_slice(&queries)),
+                Binding::Output((queries.len() * 16) as u64),
+            ],
+            [4, 1, 1],
+        )
+        .expect("dispatch");
+    let gpu = cast_vec::<[f32; 4]>(&out[3]);
+    for (q, got) in queries.iter().zip(&gpu) {
+        let p = Vec3::from_slice(&q.position[..3]);
+        let n = Vec3::from_slice(&q.normal[..3]);
+        let want = v.diffuse(p, n, Vec3::new(0.8, 0.5, 0.2));
+        let got = Vec3::from_slice(&got[..3]);
+        assert!(
+            (got - want).abs().max_element() <= 1e-4 * (1.0 + want.max_element()),
+            "{p} {n}: {got} vs {want}"
+        );
+    }
+}

@@ -1,0 +1,75 @@
+// include: sh_math/sh.inc.wgsl
+// Sky-light irradiance volume lookup (thesis 5.3.6): trilinear interpolation of the 27 SH
+// coefficients (r, g, b x 9 per point, x fastest, then z, then y), clamped at the borders,
+// clamped-cosine (and window) convolution at the normal, clamp at zero, diffuse = albedo/pi*E.
+
+struct LookupParams {
+    origin: vec4<f32>,
+    spacing: vec4<f32>,
+    dims: vec4<u32>,
+    // Per-coefficient factors: clamped cosine times the window, 9 used.
+    kernel: array<vec4<f32>, 3>,
+}
+
+struct Query {
+    position: vec4<f32>,
+    normal: vec4<f32>,
+    albedo: vec4<f32>,
+}
+
+@group(0) @binding(0) var<uniform> params: LookupParams;
+@group(0) @binding(1) var<storage, read> probes: array<f32>;
+@group(0) @binding(2) var<storage, read> queries: array<Query>;
+@group(0) @binding(3) var<storage, read_write> out_diffuse: array<vec4<f32>>;
+
+// (lower index, upper index, weight of upper) along one axis, clamped to the grid.
+fn axis_coord(p: f32, o: f32, s: f32, n: u32) -> vec3<f32> {
+    let g = clamp((p - o) / s, 0.0, f32(n - 1u));
+    let i0 = min(u32(g), max(n, 2u) - 2u);
+    let i1 = min(i0 + 1u, n - 1u);
+    return vec3<f32>(f32(i0), f32(i1), clamp(g - f32(i0), 0.0, 1.0));
+}
+
+fn kernel_at(i: u32) -> f32 {
+    return params.kernel[i / 4u][i % 4u];
+}
+
+fn sky_volume_irradiance(pos: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
+    let y = sh_basis_9(normal);
+    var kb: array<f32, 9>;
+    for (var i = 0u; i < 9u; i++) {
+        kb[i] = y[i] * kernel_at(i);
+    }
+    let ax = axis_coord(pos.x, params.origin.x, params.spacing.x, params.dims.x);
+    let ay = axis_coord(pos.y, params.origin.y, params.spacing.y, params.dims.y);
+    let az = axis_coord(pos.z, params.origin.z, params.spacing.z, params.dims.z);
+    var e = vec3<f32>(0.0);
+    for (var c = 0u; c < 8u; c++) {
+        let sx = select(0u, 1u, (c & 1u) != 0u);
+        let sy = select(0u, 1u, (c & 2u) != 0u);
+        let sz = select(0u, 1u, (c & 4u) != 0u);
+        let x = u32(ax[sx]);
+        let yy = u32(ay[sy]);
+        let z = u32(az[sz]);
+        let w = select(1.0 - ax.z, ax.z, sx == 1u) * select(1.0 - ay.z, ay.z, sy == 1u)
+            * select(1.0 - az.z, az.z, sz == 1u);
+        let base = ((yy * params.dims.z + z) * params.dims.x + x) * 27u;
+        var d = vec3<f32>(0.0);
+        for (var i = 0u; i < 9u; i++) {
+            d += vec3<f32>(probes[base + i], probes[base + 9u + i], probes[base + 18u + i]) * kb[i];
+        }
+        e += d * w;
+    }
+    return max(e, vec3<f32>(0.0));
+}
+
+@compute @workgroup_size(64)
+fn lookup(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let i = gid.x;
+    if (i >= arrayLength(&queries)) {
+        return;
+    }
+    let q = queries[i];
+    let e = sky_volume_irradiance(q.position.xyz, q.normal.xyz);
+    out_diffuse[i] = vec4<f32>(q.albedo.xyz * 0.31830988 * e, 0.0);
+}
