@@ -10,7 +10,8 @@
 //! - `sky_volume/brute_force_32x16x32_100`: whole-volume brute-force fill, 32 quads.
 //! - `sky_volume/relight_32x16x32_100`: whole-volume re-light from cached visibility after a
 //!   sun move, error vs brute force at 100 samples.
-//! - `sky_volume/lookup`: one shaded point (trilinear + clamped-cosine irradiance).
+//! - `sky_volume/lookup`: one shaded point (trilinear + clamped-cosine irradiance), pixels in
+//!   raster order over a slice; `sky_volume/lookup_random_positions` the same at random points.
 //!
 //! Sweep: samples 16..1024 (brute force), PRT sky bands 3..5, methods 1/2/3 (fill and
 //! re-light). The quick sweep compares the sweep points on a 16x8x16 volume over the same
@@ -120,17 +121,40 @@ fn main() {
             (lo + size * Vec3::new(h(4), h(5), h(6)), n)
         })
         .collect();
-    let ns = time_ns_per_call(sweep.reps(30), 200_000, |i| {
+    let ns_random = time_ns_per_call(sweep.reps(30), 200_000, |i| {
         let (p, n) = points[i & 4095];
+        cv.diffuse(black_box(p), black_box(n), Vec3::splat(0.5))
+    });
+    // Screen-like order: a 64x64 raster over a slice (neighbouring pixels share cells), the
+    // access pattern of the deferred pass; normals as above.
+    let raster: Vec<(Vec3, Vec3)> = (0..4096usize)
+        .map(|i| {
+            let (px, pz) = ((i % 64) as f32 / 63.0, (i / 64) as f32 / 63.0);
+            (lo + size * Vec3::new(px, 0.3 + 0.1 * px * pz, pz), points[i].1)
+        })
+        .collect();
+    let ns = time_ns_per_call(sweep.reps(30), 200_000, |i| {
+        let (p, n) = raster[i & 4095];
         cv.diffuse(black_box(p), black_box(n), Vec3::splat(0.5))
     });
     sweep.entry(
         Entry::new("sky_volume/lookup", "trilinear_sh3_irradiance", ns * 1e-6)
             .setting("unit", "one shaded point")
+            .setting("order", "raster over a slice")
             .threads(1)
             .note(
                 "thesis: a deferred pass on the GPU (hardware trilinear filtering of 7 textures)",
             ),
+    );
+    sweep.entry(
+        Entry::new(
+            "sky_volume/lookup_random_positions",
+            "trilinear_sh3_irradiance",
+            ns_random * 1e-6,
+        )
+        .setting("unit", "one shaded point")
+        .setting("order", "random over the volume (cache misses)")
+        .threads(1),
     );
 
     // The sweep proper, on a smaller volume in quick mode.
