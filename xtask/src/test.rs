@@ -18,11 +18,15 @@ pub fn run(root: &Path, test_args: &[String]) -> anyhow::Result<()> {
     ]))?;
     let n = shaders::validate_all(root)?;
     eprintln!("naga: {n} top-level WGSL shaders valid");
-    // Last, so the run ends with the test runner's own summary.
+    // Last, so the run ends with the test runner's own summary. Property tests draw from a
+    // fixed seed unless the caller picks another (`PROPTEST_RNG_SEED`), so CI is reproducible;
+    // `--no-fail-fast` reports every failing test binary, not just the first.
+    let seed = std::env::var("PROPTEST_RNG_SEED").unwrap_or_else(|_| "20261122".into());
     run_cmd(
         Command::new(&cargo)
             .current_dir(root)
-            .args(["test", "--workspace", "--all-features", "--"])
+            .env("PROPTEST_RNG_SEED", seed)
+            .args(["test", "--workspace", "--all-features", "--no-fail-fast", "--"])
             .args(test_args),
     )
 }
