@@ -96,11 +96,11 @@ fn markdown(report: &Report, charts: &[String]) -> String {
             let err =
                 e.error.as_ref().map_or("".into(), |x| format!("{} {:.3e}", x.metric, x.value));
             md += &format!(
-                "| `{}` | {} | {} | {:.4} | {} | {} | {} | {} |\n",
+                "| `{}` | {} | {} | {} | {} | {} | {} | {} |\n",
                 e.name,
                 e.technique,
                 fmt_settings(e),
-                e.time_ms,
+                fmt_ms(e.time_ms),
                 err,
                 e.reference.as_deref().unwrap_or(""),
                 e.threads,
@@ -153,6 +153,15 @@ fn charts(dir: &Path, report: &Report) -> anyhow::Result<Vec<String>> {
     Ok(written)
 }
 
+/// The series a point belongs to: its label without a trailing `_<number>` (so
+/// `projection_fibonacci_hemisphere_100` and `_1024` form one line).
+fn series_of(label: &str) -> &str {
+    match label.rsplit_once('_') {
+        Some((head, tail)) if !head.is_empty() && tail.chars().all(|c| c.is_ascii_digit()) => head,
+        _ => label,
+    }
+}
+
 fn draw_chart(path: &Path, title: &str, points: &[(f64, f64, String)]) -> anyhow::Result<()> {
     let (mut xmin, mut xmax, mut ymin, mut ymax) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
     for (x, y, _) in points {
@@ -164,29 +173,55 @@ fn draw_chart(path: &Path, title: &str, points: &[(f64, f64, String)]) -> anyhow
     let pad = |lo: f64, hi: f64| (lo / 2.0, hi * 2.0);
     let (xmin, xmax) = pad(xmin, xmax);
     let (ymin, ymax) = pad(ymin, ymax);
-    let root = SVGBackend::new(path, (720, 480)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| anyhow::anyhow!("{e}"))?;
+    let mut series: BTreeMap<&str, Vec<(f64, f64)>> = BTreeMap::new();
+    for (x, y, label) in points {
+        series.entry(series_of(label)).or_default().push((*x, *y));
+    }
+    let err = |e: &dyn std::fmt::Display| anyhow::anyhow!("{e}");
+    let root = SVGBackend::new(path, (820, 520)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| err(&e))?;
     let mut chart = ChartBuilder::on(&root)
         .caption(title, ("sans-serif", 20))
         .margin(12)
         .x_label_area_size(40)
-        .y_label_area_size(60)
+        .y_label_area_size(70)
         .build_cartesian_2d((xmin..xmax).log_scale(), (ymin..ymax).log_scale())
-        .map_err(|e| anyhow::anyhow!("{e}"))?;
+        .map_err(|e| err(&e))?;
     chart
         .configure_mesh()
         .x_desc("error against the reference")
         .y_desc("time (ms)")
+        .x_labels(8)
+        .y_labels(8)
+        .x_label_formatter(&|v| format!("{v:.1e}"))
+        .y_label_formatter(&|v| format!("{v:.1e}"))
         .draw()
-        .map_err(|e| anyhow::anyhow!("{e}"))?;
+        .map_err(|e| err(&e))?;
+    for (i, (name, mut pts)) in series.into_iter().enumerate() {
+        let colour = Palette99::pick(i).to_rgba();
+        pts.sort_by(|a, b| a.1.total_cmp(&b.1));
+        chart
+            .draw_series(LineSeries::new(pts.clone(), colour.stroke_width(1)))
+            .map_err(|e| err(&e))?
+            .label(name)
+            .legend(move |(x, y)| Circle::new((x + 8, y), 4, colour.filled()));
+        chart
+            .draw_series(pts.iter().map(|p| Circle::new(*p, 4, colour.filled())))
+            .map_err(|e| err(&e))?;
+    }
     chart
-        .draw_series(points.iter().map(|(x, y, _)| Circle::new((*x, *y), 4, BLUE.filled())))
-        .map_err(|e| anyhow::anyhow!("{e}"))?;
-    chart
-        .draw_series(points.iter().map(|(x, y, label)| {
-            Text::new(label.clone(), (*x, *y), ("sans-serif", 11).into_font())
-        }))
-        .map_err(|e| anyhow::anyhow!("{e}"))?;
-    root.present().map_err(|e| anyhow::anyhow!("{e}"))?;
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperRight)
+        .label_font(("sans-serif", 11))
+        .draw()
+        .map_err(|e| err(&e))?;
+    root.present().map_err(|e| err(&e))?;
     Ok(())
+}
+
+/// Milliseconds with four significant digits whatever the scale (1.234e-5 for 12 ns).
+fn fmt_ms(ms: f64) -> String {
+    if ms != 0.0 && ms.abs() < 0.01 { format!("{ms:.3e}") } else { format!("{ms:.4}") }
 }
