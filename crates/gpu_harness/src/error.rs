@@ -1,0 +1,28 @@
+//! The harness's typed errors.
+
+use crate::SKIP_ENV;
+
+/// Why a GPU context or dispatch could not be had.
+#[derive(Debug, thiserror::Error)]
+pub enum GpuError {
+    /// No adapter at all: neither a GPU nor Mesa's software rasterisers.
+    #[error(
+        "no wgpu adapter found (no GPU, no Vulkan lavapipe, no GL llvmpipe). Install Mesa's \
+         software Vulkan driver with `apt-get install -y mesa-vulkan-drivers`, or set {SKIP_ENV}=1 \
+         to skip GPU tests locally ({0})"
+    )]
+    NoAdapter(String),
+    /// The adapter refused to create a device.
+    #[error("the adapter `{adapter}` could not create a device: {source}")]
+    Device {
+        adapter: String,
+        #[source]
+        source: wgpu::RequestDeviceError,
+    },
+    /// Shader compilation, pipeline creation or dispatch failed (wgpu validation error).
+    #[error("GPU validation failed: {0}")]
+    Validation(String),
+    /// Mapping a buffer for read-back failed.
+    #[error("buffer read-back failed: {0}")]
+    Readback(String),
+}

@@ -1,0 +1,34 @@
+//! Helpers for tests: read-back conversion, the local skip switch, the test context.
+
+use crate::GpuContext;
+
+/// Environment variable that lets a developer skip GPU tests on a machine with no adapter.
+/// CI never sets it.
+pub const SKIP_ENV: &str = "SEREIN_SKIP_GPU";
+
+/// Copies read-back bytes into a vector of `T` (read-back `Vec<u8>`s are not guaranteed to be
+/// aligned for `T`, so `bytemuck::cast_slice` on them may fail; this never does).
+pub fn cast_vec<T: bytemuck::Pod>(bytes: &[u8]) -> Vec<T> {
+    bytemuck::pod_collect_to_vec(bytes)
+}
+
+/// True when the developer asked to skip GPU tests (`SEREIN_SKIP_GPU=1`) and this is not CI.
+pub fn skip_requested() -> bool {
+    let skip = std::env::var(SKIP_ENV).is_ok_and(|v| v == "1");
+    let ci = std::env::var("CI").is_ok_and(|v| !v.is_empty() && v != "false");
+    skip && !ci
+}
+
+/// For tests: a [`GpuContext`], or `None` when the developer explicitly skips GPU tests.
+/// Panics with the [`GpuError`] message (naming `mesa-vulkan-drivers`) when no adapter
+/// exists and no skip was requested, so GPU tests never pass silently.
+pub fn gpu_test_context() -> Option<GpuContext> {
+    if skip_requested() {
+        eprintln!("{SKIP_ENV}=1: skipping a GPU test");
+        return None;
+    }
+    match GpuContext::new() {
+        Ok(ctx) => Some(ctx),
+        Err(e) => panic!("{e}"),
+    }
+}
