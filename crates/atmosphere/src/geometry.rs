@@ -42,6 +42,19 @@ pub fn sun_visible_fraction(atm: &Atmosphere, r: f32, mu_s: f32) -> f32 {
     x * x * (3.0 - 2.0 * x)
 }
 
+/// Splits `[t0, t1]` into `n` segments whose ends grow quadratically, `t0 + (t1 - t0) (k/n)^2`
+/// (short segments near the start, where the view ray is in the densest air), yielding each
+/// segment's midpoint and length.
+#[inline]
+pub fn quadratic_segments(t0: f32, t1: f32, n: u32) -> impl Iterator<Item = (f32, f32)> {
+    let len = t1 - t0;
+    (0..n).map(move |i| {
+        let (u0, u1) = (i as f32 / n as f32, (i + 1) as f32 / n as f32);
+        let (a, b) = (t0 + len * (u0 * u0), t0 + len * (u1 * u1));
+        (0.5 * (a + b), b - a)
+    })
+}
+
 /// The segment of a ray from (`r`, `mu`) that lies inside the atmosphere: `(t_start, t_end)`
 /// along the ray, or `None` when the ray misses the atmosphere. The segment stops at the
 /// ground when the ray hits it.

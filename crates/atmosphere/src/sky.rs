@@ -1,7 +1,7 @@
 //! Sky radiance along a view ray (single scattering, the thesis model, plus Hillaire's
 //! multiple-scattering term) and the sun as seen through the atmosphere.
 
-use crate::geometry::{atmosphere_segment, sun_visible_fraction};
+use crate::geometry::{atmosphere_segment, quadratic_segments, sun_visible_fraction};
 use crate::multiscatter::segment_weight;
 use crate::{
     Atmosphere, AtmosphereError, MultipleScatteringLut, MultipleScatteringSettings,
@@ -219,17 +219,9 @@ impl Sky {
         let mut out = ScatteringIntegrals { transmittance: Vec3::ONE, ..Default::default() };
         let Some((t0, t1)) = atmosphere_segment(atm, r, view.y) else { return out };
         let origin = Vec3::new(0.0, r, 0.0);
-        let n = self.settings.view_samples;
-        let len = t1 - t0;
         let mut trans = Vec3::ONE;
-        let mut prev = 0.0f32;
-        for i in 0..n {
-            let u = (i + 1) as f32 / n as f32;
-            let next = u * u;
-            let (a, b) = (t0 + len * prev, t0 + len * next);
-            prev = next;
-            let dt = b - a;
-            let p = origin + view * (0.5 * (a + b));
+        for (t, dt) in quadratic_segments(t0, t1, self.settings.view_samples) {
+            let p = origin + view * t;
             let rt = p.length();
             let med = atm.medium_at_radius(rt);
             let mu_s = p.dot(sun) / rt;

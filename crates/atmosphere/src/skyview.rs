@@ -13,7 +13,7 @@
 //! only the sun's zenith cosine (hence the transmittance and multiple-scattering lookups)
 //! changes along the row.
 
-use crate::geometry::atmosphere_segment;
+use crate::geometry::{atmosphere_segment, quadratic_segments};
 use crate::multiscatter::segment_weight;
 use crate::transmittance::TransmittanceRow;
 use crate::{AtmosphereError, LightTransmittance, ScatteringIntegrals, Sky};
@@ -93,16 +93,8 @@ impl SkyViewLut {
                 // Per-row samples: everything but the sun's direction.
                 let mut samples = Vec::with_capacity(n as usize);
                 if let Some((t0, t1)) = atmosphere_segment(atm, r0, y) {
-                    let len = t1 - t0;
                     let mut trans = Vec3::ONE;
-                    let mut prev = 0.0f32;
-                    for i in 0..n {
-                        let u = (i + 1) as f32 / n as f32;
-                        let next = u * u;
-                        let (ta, tb) = (t0 + len * prev, t0 + len * next);
-                        prev = next;
-                        let dt = tb - ta;
-                        let t = 0.5 * (ta + tb);
+                    for (t, dt) in quadratic_segments(t0, t1, n) {
                         let px = t * hm;
                         let py = r0 + t * y;
                         let r = (px * px + py * py).sqrt();
