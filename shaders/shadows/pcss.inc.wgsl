@@ -104,20 +104,23 @@ fn pcss_soft(p: PcssParams, r: PcssReceiver) -> f32 {
     }
     let pl = pcss_plane(p, r);
     let radius = pcss_search_radius(p, r.depth);
-    var sum = 0.0;
+    // Four partial sums, tap i into sum i mod 4, total (s0 + s1) + (s2 + s3): the CPU's
+    // summation order (its fast path sums four taps at a time).
+    var part = array<f32, 4>(0.0, 0.0, 0.0, 0.0);
     var count = 0u;
     for (var i = 0u; i < p.blocker_taps; i = i + 1u) {
         let o = pcss_tap(i);
         let t = pcss_texel(p, r.x + o.x * radius, r.y + o.y * radius);
         let z = pcss_depth(t.x, t.y);
         if z < pcss_reference(pl, t) {
-            sum = sum + z;
+            part[i & 3u] = part[i & 3u] + z;
             count = count + 1u;
         }
     }
     if count == 0u {
         return 1.0;
     }
+    let sum = (part[0] + part[1]) + (part[2] + part[3]);
     let w = pcss_penumbra(p, r.depth, sum / f32(count));
     return pcss_pcf(p, r, w);
 }

@@ -45,6 +45,7 @@ mod error;
 mod light_space;
 mod osm;
 mod pcss;
+mod pcss_kernel;
 pub mod plane_box;
 mod raster;
 mod rsm;

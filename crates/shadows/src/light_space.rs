@@ -2,6 +2,7 @@
 //! basis, texel snapping in double precision, and the resulting shadow-map matrices.
 
 use crate::error::ShadowError;
+use crate::pcss::Receiver;
 use glam::{DMat3, DMat4, DVec3, DVec4, Mat4, Vec3};
 
 /// An orthonormal light basis for a directional light. Rows of [`LightBasis::world_to_light`]
@@ -162,6 +163,24 @@ impl ShadowView {
         let res = self.resolution as f64;
         let clip = DVec3::new(m.x / res * 2.0 - 1.0, 1.0 - m.y / res * 2.0, m.z);
         self.view_proj_f64().inverse().project_point3(clip)
+    }
+
+    /// The PCF/PCSS receiver of a world point on a surface with (world) normal `normal`:
+    /// its map coordinates, stored depth, and the surface plane's depth gradient per texel
+    /// ([`Receiver::ortho_gradient`]). A zero normal gives a zero gradient.
+    pub fn receiver(&self, p: DVec3, normal: Vec3) -> Receiver {
+        let m = self.world_to_map(p);
+        let n = normal.as_dvec3().normalize_or_zero();
+        let gradient = if n == DVec3::ZERO {
+            glam::Vec2::ZERO
+        } else {
+            Receiver::ortho_gradient(
+                (self.basis.world_to_light * n).as_vec3(),
+                self.texel_size as f32,
+                self.depth_range() as f32,
+            )
+        };
+        Receiver { x: m.x as f32, y: m.y as f32, depth: m.z as f32, gradient }
     }
 
     /// True when the world point lies in the map's square (with `margin_texels` to spare on

@@ -11,6 +11,10 @@
 //!    / texel size`: the `d_b -> infinity` limit of the same similar triangles);
 //! 3. PCF over a disk of radius `w`.
 //!
+//! The blocker depths are summed in four partial sums (tap `i` into sum `i mod 4`, total
+//! `(s0 + s1) + (s2 + s3)`) on every path, CPU and WGSL: the CPU evaluates four taps per step
+//! (`pcss_kernel`).
+//!
 //! Biases: a constant, a slope-scaled term `slope * |dz/dtexel|` (covers the nearest-texel
 //! quantisation of a tilted receiver), and optionally the receiver-plane depth bias, which
 //! compares every tap against the receiver's plane evaluated at the sampled texel's centre.
@@ -18,8 +22,9 @@
 use crate::depth_map::DepthMap;
 use crate::error::ShadowError;
 use crate::light_space::ShadowView;
+use crate::pcss_kernel::{self as kernel, Disk, Plane, TapLanes};
 use crate::taps::{TapPattern, taps};
-use glam::{IVec4, Vec2, Vec3, Vec4};
+use glam::{Vec2, Vec3, Vec4};
 
 /// Tap counts, pattern and biases (the user-facing knobs).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -134,6 +139,11 @@ const _: () = assert!(std::mem::size_of::<PcssParams>() == 48);
 pub struct Pcss {
     params: PcssParams,
     taps: Vec<Vec2>,
+    /// The blocker and PCF taps as lanes of four (the CPU fast path).
+    blocker_lanes: TapLanes,
+    pcf_lanes: TapLanes,
+    /// `width * height <= 2^24`: texel indices can be formed exactly in `f32`.
+    float_index: bool,
 }
 
 /// One receiver: map coordinates (texels), stored depth, and the receiver plane's depth
@@ -184,8 +194,13 @@ impl Pcss {
             });
         }
         let mut t = taps(settings.pattern, settings.blocker_taps as usize);
-        t.extend(taps(settings.pattern, settings.pcf_taps as usize));
+        let pcf = taps(settings.pattern, settings.pcf_taps as usize);
+        let (blocker_lanes, pcf_lanes) = (TapLanes::new(&t), TapLanes::new(&pcf));
+        t.extend(pcf);
         Ok(Self {
+            blocker_lanes,
+            pcf_lanes,
+            float_index: width as u64 * height as u64 <= 1 << 24,
             params: PcssParams {
                 light_size,
                 near,
@@ -245,13 +260,13 @@ impl Pcss {
     /// plane evaluated at the texel's centre (receiver-plane bias), or the receiver's own
     /// depth (`gx = gy = 0`); the bias is folded into `c0`.
     #[inline(always)]
-    fn plane(&self, r: &Receiver) -> (f32, f32, f32) {
+    fn plane(&self, r: &Receiver) -> Plane {
         let b = self.bias(r);
         if self.params.receiver_plane != 0 {
             let (gx, gy) = (r.gradient.x, r.gradient.y);
-            (r.depth - b + gx * (0.5 - r.x) + gy * (0.5 - r.y), gx, gy)
+            Plane { c0: r.depth - b + gx * (0.5 - r.x) + gy * (0.5 - r.y), gx, gy }
         } else {
-            (r.depth - b, 0.0, 0.0)
+            Plane { c0: r.depth - b, gx: 0.0, gy: 0.0 }
         }
     }
 
@@ -273,18 +288,13 @@ impl Pcss {
             && r.y + radius < self.params.height as f32 - 1.0
     }
 
-    /// Fetches the stored depth and the reference depth of the texel under `(x, y)`.
+    /// Fetches (clamped to the edge) the stored depth and the reference depth of the texel
+    /// under `(x, y)`.
     #[inline(always)]
-    fn fetch<const FAST: bool>(
-        &self,
-        depth: &[f32],
-        x: f32,
-        y: f32,
-        plane: (f32, f32, f32),
-    ) -> (f32, f32) {
-        let (tx, ty) = if FAST { (x as i32, y as i32) } else { self.texel(x, y) };
+    fn fetch(&self, depth: &[f32], x: f32, y: f32, plane: Plane) -> (f32, f32) {
+        let (tx, ty) = self.texel(x, y);
         let z = depth[ty as usize * self.params.width as usize + tx as usize];
-        (z, plane.0 + plane.1 * tx as f32 + plane.2 * ty as f32)
+        (z, plane.c0 + plane.gx * tx as f32 + plane.gy * ty as f32)
     }
 
     /// The plain shadow test: 1 lit, 0 shadowed.
@@ -292,7 +302,7 @@ impl Pcss {
         if !self.matches(map) {
             return 1.0;
         }
-        let (z, zr) = self.fetch::<false>(map.as_slice(), r.x, r.y, self.plane(r));
+        let (z, zr) = self.fetch(map.as_slice(), r.x, r.y, self.plane(r));
         if z >= zr { 1.0 } else { 0.0 }
     }
 
@@ -303,55 +313,31 @@ impl Pcss {
         map.width() == self.params.width && map.height() == self.params.height
     }
 
-    /// Four taps at once (the in-bounds fast path): the same operations in the same order
-    /// as the scalar loop, so results are bit-identical to it. Returns, per lane, the
-    /// stored and the reference depth.
+    /// The filter disk of a receiver (fast path inputs).
     #[inline(always)]
-    fn fetch4(
-        &self,
-        depth: &[f32],
-        o: &[Vec2],
-        r: &Receiver,
-        radius: f32,
-        plane: (f32, f32, f32),
-    ) -> (Vec4, Vec4) {
-        let ox = Vec4::new(o[0].x, o[1].x, o[2].x, o[3].x);
-        let oy = Vec4::new(o[0].y, o[1].y, o[2].y, o[3].y);
-        let x = Vec4::splat(r.x) + ox * radius;
-        let y = Vec4::splat(r.y) + oy * radius;
-        let (tx, ty) = (x.as_ivec4(), y.as_ivec4());
-        let idx = ty * IVec4::splat(self.params.width as i32) + tx;
-        let z = Vec4::new(
-            depth[idx.x as usize],
-            depth[idx.y as usize],
-            depth[idx.z as usize],
-            depth[idx.w as usize],
-        );
-        let zr = Vec4::splat(plane.0)
-            + Vec4::splat(plane.1) * tx.as_vec4()
-            + Vec4::splat(plane.2) * ty.as_vec4();
-        (z, zr)
+    fn disk<'a>(&self, depth: &'a [f32], r: &Receiver, radius: f32, plane: Plane) -> Disk<'a> {
+        Disk { depth, width: self.params.width, x: r.x, y: r.y, radius, plane }
     }
 
-    fn pcf_loop<const FAST: bool>(&self, depth: &[f32], r: &Receiver, radius: f32) -> f32 {
-        let plane = self.plane(r);
+    /// Lit PCF taps over a disk of `radius` texels.
+    #[inline(always)]
+    fn pcf_count(&self, depth: &[f32], r: &Receiver, radius: f32, plane: Plane) -> u32 {
+        if self.inside(r, radius) {
+            let d = self.disk(depth, r, radius, plane);
+            return if self.float_index {
+                kernel::lit::<true>(&d, &self.pcf_lanes)
+            } else {
+                kernel::lit::<false>(&d, &self.pcf_lanes)
+            };
+        }
         let start = self.params.blocker_taps as usize;
         let taps = &self.taps[start..start + self.params.pcf_taps as usize];
         let mut lit = 0u32;
-        let mut taps = taps;
-        if FAST {
-            let mut chunks = taps.chunks_exact(4);
-            for c in &mut chunks {
-                let (z, zr) = self.fetch4(depth, c, r, radius, plane);
-                lit += z.cmpge(zr).bitmask().count_ones();
-            }
-            taps = chunks.remainder();
-        }
         for o in taps {
-            let (z, zr) = self.fetch::<FAST>(depth, r.x + o.x * radius, r.y + o.y * radius, plane);
+            let (z, zr) = self.fetch(depth, r.x + o.x * radius, r.y + o.y * radius, plane);
             lit += (z >= zr) as u32;
         }
-        lit as f32 / self.params.pcf_taps as f32
+        lit
     }
 
     /// PCF over the PCF taps scaled to `radius` texels: the lit fraction in `[0, 1]`.
@@ -359,46 +345,32 @@ impl Pcss {
         if !self.matches(map) {
             return 1.0;
         }
-        if self.inside(r, radius) {
-            self.pcf_loop::<true>(map.as_slice(), r, radius)
-        } else {
-            self.pcf_loop::<false>(map.as_slice(), r, radius)
-        }
+        let lit = self.pcf_count(map.as_slice(), r, radius, self.plane(r));
+        lit as f32 / self.params.pcf_taps as f32
     }
 
-    fn blocker_loop<const FAST: bool>(
-        &self,
-        depth: &[f32],
-        r: &Receiver,
-        radius: f32,
-    ) -> (f32, u32) {
-        let plane = self.plane(r);
-        let mut sum = 0.0f32;
-        let mut count = 0u32;
-        let mut taps = &self.taps[..self.params.blocker_taps as usize];
-        if FAST {
-            let mut chunks = taps.chunks_exact(4);
-            for c in &mut chunks {
-                let (z, zr) = self.fetch4(depth, c, r, radius, plane);
-                let closer = z.cmplt(zr);
-                let m = closer.bitmask();
-                // Sequential sum, as the scalar loop (adding 0.0 leaves a sum unchanged).
-                let zs = Vec4::select(closer, z, Vec4::ZERO);
-                sum += zs.x;
-                sum += zs.y;
-                sum += zs.z;
-                sum += zs.w;
-                count += m.count_ones();
-            }
-            taps = chunks.remainder();
+    /// Blocker search over a disk of `radius` texels: the blocker depth total (four partial
+    /// sums, see `pcss_kernel`) and the blocker count.
+    #[inline(always)]
+    fn blockers(&self, depth: &[f32], r: &Receiver, radius: f32, plane: Plane) -> (f32, u32) {
+        if self.inside(r, radius) {
+            let d = self.disk(depth, r, radius, plane);
+            let (sum, count) = if self.float_index {
+                kernel::blockers::<true>(&d, &self.blocker_lanes)
+            } else {
+                kernel::blockers::<false>(&d, &self.blocker_lanes)
+            };
+            return (kernel::total(sum), count);
         }
-        for o in taps {
-            let (z, zr) = self.fetch::<FAST>(depth, r.x + o.x * radius, r.y + o.y * radius, plane);
+        let mut part = [0.0f32; 4];
+        let mut count = 0u32;
+        for (i, o) in self.taps[..self.params.blocker_taps as usize].iter().enumerate() {
+            let (z, zr) = self.fetch(depth, r.x + o.x * radius, r.y + o.y * radius, plane);
             let blocker = z < zr;
-            sum += if blocker { z } else { 0.0 };
+            part[i & 3] += if blocker { z } else { 0.0 };
             count += blocker as u32;
         }
-        (sum, count)
+        (kernel::total(Vec4::from_array(part)), count)
     }
 
     /// The blocker search radius in texels for a receiver at depth `z_r`.
@@ -436,17 +408,13 @@ impl Pcss {
         if !self.matches(map) {
             return 1.0;
         }
-        let radius = self.search_radius(r.depth);
         let depth = map.as_slice();
-        let (sum, count) = if self.inside(r, radius) {
-            self.blocker_loop::<true>(depth, r, radius)
-        } else {
-            self.blocker_loop::<false>(depth, r, radius)
-        };
+        let plane = self.plane(r);
+        let (sum, count) = self.blockers(depth, r, self.search_radius(r.depth), plane);
         if count == 0 {
             return 1.0;
         }
         let w = self.penumbra(r.depth, sum / count as f32);
-        self.pcf(map, r, w)
+        self.pcf_count(depth, r, w, plane) as f32 / self.params.pcf_taps as f32
     }
 }

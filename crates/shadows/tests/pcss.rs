@@ -164,14 +164,16 @@ fn naive(p: &Pcss, map: &DepthMap, r: &Receiver) -> [f32; 2] {
             / t.len() as f32
     };
     let search = (q.light_size * r.depth.max(0.0)).clamp(q.min_filter, q.max_filter);
-    let (mut sum, mut n) = (0.0f32, 0u32);
-    for o in &p.taps()[..q.blocker_taps as usize] {
+    // Blocker depths in four partial sums, tap i into sum i mod 4.
+    let (mut part, mut n) = ([0.0f32; 4], 0u32);
+    for (i, o) in p.taps()[..q.blocker_taps as usize].iter().enumerate() {
         let (z, zr) = tap(*o, search);
         if z < zr {
-            sum += z;
+            part[i & 3] += z;
             n += 1;
         }
     }
+    let sum = (part[0] + part[1]) + (part[2] + part[3]);
     let soft = if n == 0 { 1.0 } else { pcf(p.penumbra(r.depth, sum / n as f32)) };
     [pcf(2.5), soft]
 }
@@ -198,6 +200,33 @@ proptest! {
         let [pcf, soft] = naive(&p, &map, &r);
         prop_assert_eq!(p.pcf(&map, &r, 2.5), pcf);
         prop_assert_eq!(p.pcss(&map, &r), soft);
+    }
+}
+
+/// Maps of more than 2^24 texels take the integer-index fast path: still the plain
+/// algorithm's result.
+#[test]
+fn large_maps_equal_the_plain_algorithm() {
+    let (w, h) = (16_400u32, 1_024u32);
+    let mut map = DepthMap::new(w, h).unwrap();
+    for (i, v) in map.as_mut_slice().iter_mut().enumerate() {
+        let (u, t) = ((i % w as usize) as f32, (i / w as usize) as f32);
+        *v = 0.5 + 0.45 * ((u * 0.37).sin() * (t * 0.23).cos());
+    }
+    let p = Pcss::new(LightModel::Directional { light_size: 12.0 }, &PcssSettings::DEFAULT, w, h)
+        .unwrap();
+    for k in 0..400u32 {
+        let x = (k * 7919 % w) as f32 + 0.37;
+        let y = (k * 104_729 % h) as f32 + 0.61;
+        let r = Receiver {
+            x,
+            y,
+            depth: 0.4 + (k % 10) as f32 * 0.05,
+            gradient: Vec2::new(0.001, -0.002),
+        };
+        let [pcf, soft] = naive(&p, &map, &r);
+        assert_eq!(p.pcf(&map, &r, 2.5), pcf, "pcf at {x}, {y}");
+        assert_eq!(p.pcss(&map, &r), soft, "pcss at {x}, {y}");
     }
 }
 
