@@ -10,7 +10,8 @@
 //!   in `f64`, exact at 1e5 m from the origin.
 //! - **Overlapped shadow maps** ([`OverlappedShadowMaps`], thesis 6.3.1): three 512x512 maps
 //!   centred on the camera with growing extents, for points seen only in reflections.
-//! - **Cube shadow maps** for point lights ([`cube_face_view_proj`]).
+//! - **Cube shadow maps** for point lights ([`cube_face_view_proj`]; the six-face wgpu pass is
+//!   `gpu::DepthPass::render_cube`).
 //! - **PCF and PCSS** ([`Pcss`]; Fernando, "Percentage-closer soft shadows", SIGGRAPH 2005
 //!   sketch): blocker search, penumbra `w = (d_r - d_b) * light_size / d_b`, PCF over `w`,
 //!   8..64 Poisson or spiral taps, slope-scaled and receiver-plane depth bias. The same

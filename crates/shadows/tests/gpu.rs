@@ -161,3 +161,63 @@ fn rsm_pass_matches_cpu_rsm() {
     let frac = agree as f64 / cpu.flux.len() as f64;
     assert!(frac > 0.99, "only {frac:.4} of RSM texels agree");
 }
+
+/// The cube pass renders each face as the CPU rasteriser does with the same face matrix: a
+/// light high above `plane_box` (the plane and box in the -Y face) and a quad in front of the
+/// light's +X face; a direction from the light finds its content in the face
+/// `cube_face_of` names.
+#[test]
+fn cube_pass_matches_cpu_rasteriser_per_face() {
+    let Some(ctx) = gpu_test_context() else { return };
+    let scene = PlaneBox::DEFAULT;
+    let (mut pos, _, mut idx) = scene_mesh(&scene);
+    let light = Vec3::new(0.5, 30.0, 0.5);
+    let q = [
+        light + Vec3::new(5.0, -1.0, -1.0),
+        light + Vec3::new(5.0, 1.0, -1.0),
+        light + Vec3::new(5.0, 1.0, 1.0),
+        light + Vec3::new(5.0, -1.0, 1.0),
+    ];
+    let base = pos.len() as u32;
+    pos.extend(q);
+    idx.extend([base, base + 1, base + 2, base, base + 2, base + 3]);
+    let mesh = GpuMesh {
+        positions: &pos,
+        normals: &[],
+        indices: &idx,
+        model: Mat4::IDENTITY,
+        albedo: Vec3::ONE,
+    };
+    let (near, far, size) = (0.5f32, 100.0f32, 128u32);
+    let pass = DepthPass::new(&ctx.device).unwrap();
+    let gpu = pass.render_cube(&ctx.device, &ctx.queue, &[mesh], light, near, far, size).unwrap();
+    let faces = cube_face_view_proj(light, near, far).unwrap();
+    let tris: Vec<[Vec3; 3]> = idx
+        .chunks_exact(3)
+        .map(|t| [pos[t[0] as usize], pos[t[1] as usize], pos[t[2] as usize]])
+        .collect();
+    for (f, m) in faces.iter().enumerate() {
+        let mut cpu = DepthMap::new(size, size).unwrap();
+        rasterize(&mut cpu, None, &m.as_dmat4(), &tris).unwrap();
+        let close = cpu
+            .as_slice()
+            .iter()
+            .zip(gpu[f].as_slice())
+            .filter(|(a, b)| (**a - **b).abs() < 1e-4)
+            .count();
+        let frac = close as f64 / (size * size) as f64;
+        assert!(frac > 0.99, "face {f}: only {frac:.4} of texels agree");
+    }
+    // Content where the selection rule says: straight down and towards +X.
+    let covered = |f: usize| gpu[f].as_slice().iter().filter(|&&z| z < 1.0).count();
+    assert_eq!(cube_face_of(Vec3::NEG_Y), 3);
+    assert_eq!(cube_face_of(Vec3::X), 0);
+    assert!(covered(3) > (size * size / 3) as usize, "-Y face sees the plane");
+    assert!(covered(0) > 100, "+X face sees the quad");
+    for f in [1, 2, 4, 5] {
+        assert_eq!(covered(f), 0, "face {f} sees nothing");
+    }
+    // Bad input is an error, not a panic.
+    assert!(pass.render_cube(&ctx.device, &ctx.queue, &[mesh], light, 0.0, far, size).is_err());
+    assert!(pass.render_cube(&ctx.device, &ctx.queue, &[mesh], light, near, far, 0).is_err());
+}

@@ -203,6 +203,36 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(common::cases()))]
+
+    /// On a tilted plane with a raised block (mostly lit receivers on the stored surface,
+    /// the common case), PCSS equals the plain algorithm, for receivers on, above and below
+    /// the plane.
+    #[test]
+    fn tilted_plane_with_a_block_equals_the_plain_algorithm(
+        ax in -0.004f32..0.004, ay in -0.004f32..0.004, z0 in 0.3f32..0.6,
+        bx in 0u32..200, by in 0u32..200, bw in 1u32..40, lift in 0.0f32..0.2,
+        pts in prop::collection::vec((0.0f32..256.0, 0.0f32..256.0, -1e-4f32..1e-4), 64),
+        size in 0.5f32..60.0, plane in proptest::bool::ANY,
+    ) {
+        let n = 256u32;
+        let mut map = DepthMap::new(n, n).unwrap();
+        for (i, v) in map.as_mut_slice().iter_mut().enumerate() {
+            let (x, y) = ((i as u32 % n) as f32, (i as u32 / n) as f32);
+            let inside = (bx..bx + bw).contains(&(x as u32)) && (by..by + bw).contains(&(y as u32));
+            *v = z0 + ax * (x + 0.5) + ay * (y + 0.5) - if inside { lift } else { 0.0 };
+        }
+        let s = PcssSettings { receiver_plane: plane, ..PcssSettings::DEFAULT };
+        let p = Pcss::new(LightModel::Directional { light_size: size }, &s, n, n).unwrap();
+        for (x, y, dz) in pts {
+            let r = Receiver { x, y, depth: z0 + ax * x + ay * y + dz, gradient: Vec2::new(ax, ay) };
+            let [_, soft] = naive(&p, &map, &r);
+            prop_assert_eq!(p.pcss(&map, &r), soft, "at {}, {}", x, y);
+        }
+    }
+}
+
 /// Maps of more than 2^24 texels take the integer-index fast path: still the plain
 /// algorithm's result.
 #[test]

@@ -1,6 +1,7 @@
 //! The GPU path (feature `gpu`): the WGSL sources exactly as Rust builds them, the structs
-//! shared with them, and wgpu passes that render shadow depth and RSM targets for a list of
-//! meshes with given matrices.
+//! shared with them, and wgpu passes that render shadow depth (one map, or the six faces of a
+//! point light's cube map: [`DepthPass::render_cube`]) and RSM targets for a list of meshes
+//! with given matrices.
 //!
 //! `PCSS_INC_WGSL` is the filter snippet an engine includes in its lighting shader (it calls
 //! `pcss_depth(tx, ty)` and `pcss_tap(i)`, which the including shader defines);

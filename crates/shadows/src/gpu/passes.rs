@@ -319,6 +319,117 @@ impl DepthPass {
         map.as_mut_slice().copy_from_slice(&d);
         Ok(map)
     }
+
+    /// The cube shadow map of a point light (thesis 4.2): renders the six faces of
+    /// [`cube_face_view_proj`](crate::cube_face_view_proj) into one `size x size`
+    /// `Depth32Float` texture of six array layers (cube-compatible, layer = face in the order
+    /// `+X, -X, +Y, -Y, +Z, -Z`), one render pass per layer, and reads the faces back.
+    /// Depth is perspective `[0, 1]`, 0 at `near`.
+    #[allow(clippy::too_many_arguments)] // device, queue, meshes, light, range, size
+    pub fn render_cube(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        meshes: &[GpuMesh<'_>],
+        light_position: Vec3,
+        near: f32,
+        far: f32,
+        size: u32,
+    ) -> Result<[DepthMap; 6], ShadowError> {
+        let faces = crate::cube::cube_face_view_proj(light_position, near, far)?;
+        let empty = DepthMap::new(size, size)?;
+        for m in meshes {
+            check_mesh(m, false)?;
+        }
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let layout = self.pipeline.get_bind_group_layout(0);
+        let cube = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("shadows cube depth"),
+            size: wgpu::Extent3d { width: size, height: size, depth_or_array_layers: 6 },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: DEPTH_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        let mut encoder = device.create_command_encoder(&Default::default());
+        let mut readbacks = Vec::with_capacity(6);
+        for (face, view_proj) in faces.iter().enumerate() {
+            let draws: Vec<Uploaded> = meshes
+                .iter()
+                .map(|m| {
+                    upload(device, &layout, m, bytemuck::bytes_of(&(*view_proj * m.model)), false)
+                })
+                .collect();
+            let view = cube.create_view(&wgpu::TextureViewDescriptor {
+                label: Some("shadows cube face"),
+                dimension: Some(wgpu::TextureViewDimension::D2),
+                base_array_layer: face as u32,
+                array_layer_count: Some(1),
+                ..Default::default()
+            });
+            {
+                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("shadows cube face"),
+                    color_attachments: &[],
+                    depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                        view: &view,
+                        depth_ops: Some(wgpu::Operations {
+                            load: wgpu::LoadOp::Clear(1.0),
+                            store: wgpu::StoreOp::Store,
+                        }),
+                        stencil_ops: None,
+                    }),
+                    timestamp_writes: None,
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
+                pass.set_pipeline(&self.pipeline);
+                for d in &draws {
+                    pass.set_bind_group(0, &d.bind, &[]);
+                    pass.set_vertex_buffer(0, d.vertex.slice(..));
+                    pass.set_index_buffer(d.index.slice(..), wgpu::IndexFormat::Uint32);
+                    pass.draw_indexed(0..d.count, 0, 0..1);
+                }
+            }
+            let row = (size * 4).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+            let buf = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("shadows cube readback"),
+                size: row as u64 * size as u64,
+                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            encoder.copy_texture_to_buffer(
+                wgpu::TexelCopyTextureInfo {
+                    texture: &cube,
+                    mip_level: 0,
+                    origin: wgpu::Origin3d { x: 0, y: 0, z: face as u32 },
+                    aspect: wgpu::TextureAspect::DepthOnly,
+                },
+                wgpu::TexelCopyBufferInfo {
+                    buffer: &buf,
+                    layout: wgpu::TexelCopyBufferLayout {
+                        offset: 0,
+                        bytes_per_row: Some(row),
+                        rows_per_image: Some(size),
+                    },
+                },
+                wgpu::Extent3d { width: size, height: size, depth_or_array_layers: 1 },
+            );
+            readbacks.push((buf, row));
+        }
+        queue.submit([encoder.finish()]);
+        if let Some(e) = pollster::block_on(scope.pop()) {
+            return Err(gpu_err(e));
+        }
+        let mut out = [(); 6].map(|_| empty.clone());
+        for (map, (buf, row)) in out.iter_mut().zip(&readbacks) {
+            let d = read_rows(device, buf, *row, size, size, 1, false)?;
+            map.as_mut_slice().copy_from_slice(&d);
+        }
+        Ok(out)
+    }
 }
 
 /// Uniform block of `rsm.wgsl`.
