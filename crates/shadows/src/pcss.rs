@@ -322,13 +322,19 @@ impl Pcss {
     /// Lit PCF taps over a disk of `radius` texels.
     #[inline(always)]
     fn pcf_count(&self, depth: &[f32], r: &Receiver, radius: f32, plane: Plane) -> u32 {
+        if self.float_index && self.inside(r, radius) {
+            return kernel::lit::<true>(&self.disk(depth, r, radius, plane), &self.pcf_lanes);
+        }
+        self.pcf_count_cold(depth, r, radius, plane)
+    }
+
+    /// The paths off the hot one (kept out of line so the hot loop keeps its registers):
+    /// maps over 2^24 texels, and disks that reach the edge (clamped scalar taps).
+    #[cold]
+    #[inline(never)]
+    fn pcf_count_cold(&self, depth: &[f32], r: &Receiver, radius: f32, plane: Plane) -> u32 {
         if self.inside(r, radius) {
-            let d = self.disk(depth, r, radius, plane);
-            return if self.float_index {
-                kernel::lit::<true>(&d, &self.pcf_lanes)
-            } else {
-                kernel::lit::<false>(&d, &self.pcf_lanes)
-            };
+            return kernel::lit::<false>(&self.disk(depth, r, radius, plane), &self.pcf_lanes);
         }
         let start = self.params.blocker_taps as usize;
         let taps = &self.taps[start..start + self.params.pcf_taps as usize];
@@ -353,13 +359,21 @@ impl Pcss {
     /// sums, see `pcss_kernel`) and the blocker count.
     #[inline(always)]
     fn blockers(&self, depth: &[f32], r: &Receiver, radius: f32, plane: Plane) -> (f32, u32) {
+        if self.float_index && self.inside(r, radius) {
+            let d = self.disk(depth, r, radius, plane);
+            let (sum, count) = kernel::blockers::<true>(&d, &self.blocker_lanes);
+            return (kernel::total(sum), count);
+        }
+        self.blockers_cold(depth, r, radius, plane)
+    }
+
+    /// The blocker search off the hot path (see [`Pcss::pcf_count_cold`]).
+    #[cold]
+    #[inline(never)]
+    fn blockers_cold(&self, depth: &[f32], r: &Receiver, radius: f32, plane: Plane) -> (f32, u32) {
         if self.inside(r, radius) {
             let d = self.disk(depth, r, radius, plane);
-            let (sum, count) = if self.float_index {
-                kernel::blockers::<true>(&d, &self.blocker_lanes)
-            } else {
-                kernel::blockers::<false>(&d, &self.blocker_lanes)
-            };
+            let (sum, count) = kernel::blockers::<false>(&d, &self.blocker_lanes);
             return (kernel::total(sum), count);
         }
         let mut part = [0.0f32; 4];
