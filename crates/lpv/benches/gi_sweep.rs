@@ -1,82 +1,164 @@
-//! lpv's accuracy-vs-time sweep for `cargo xtask bench`.
+//! lpv's accuracy-vs-time sweep for `cargo xtask bench`, against the `reference` path tracer
+//! on the `scene` crate's scenes (see `support/scene_case.rs` for how the inputs are made).
 //!
 //! Headline entries:
-//! - `lpv/update_3x32_rsm256_8it`: injection of 65,536 VPLs (a 256 x 256 "RSM": sun rays
-//!   through the cornell_window window) + 8 propagation iterations in all 3 cascades of 32³,
-//!   2 threads (target < 5 ms; the thesis's GPU: 5.0 ms).
-//! - `lpv/cornell_window_default`: default settings, `rel_rms` of the irradiance at receiver
-//!   points on every interior surface, `sqrt(sum |a - r|² / sum |r|²)` over RGB, against
-//!   `vpl_gather_exact_cornell_window_4096`: the exact one-bounce sum over the same 4,096
-//!   VPLs with ray-box visibility (`lpv::scenes::vpl_gather`; no Monte Carlo noise, only the
-//!   `r >= 0.1 m` singularity clamp), so the error is the volume's own.
-//! - `lpv/leak_two_rooms_no_gv`, `lpv/leak_two_rooms_gv`: metric `dark_over_lit`, the mean
-//!   irradiance at the dark room's receivers over the lit room's (RGB sums), 16 iterations;
-//!   the reference's own ratio (light through the door only) is in the setting
-//!   `reference_ratio` and the note.
+//! - `lpv/update_3x32_rsm256_8it`: injection of the 65,536 VPLs of a 256 x 256 RSM of the
+//!   city (sun's view over the camera's cascades) + 8 propagation iterations in all 3
+//!   cascades of 32³, 2 threads (target < 5 ms; the thesis's GPU: 5.0 ms).
+//! - `lpv/cornell_window_default`: default settings on `cornell_window`, `rel_rms` of the
+//!   irradiance at receivers on every surface seen from the room's centre,
+//!   `sqrt(sum |a - r|² / sum |r|²)` over RGB, against `reference::irradiance` with
+//!   `Component::SunIndirectDiffuse` (one diffuse bounce of sunlight). Settings: the
+//!   best-fit scale `s` (minimising `sum |s a - r|²`: a unit mismatch would show as `s` far
+//!   from 1), the error after that scale, and the reference's own noise floor.
+//! - `lpv/leak_two_rooms_no_gv`, `lpv/leak_two_rooms_gv`: metric `dark_over_lit` on
+//!   `two_rooms`: the mean irradiance at the closed east room's receivers over the lit west
+//!   room's (RGB sums); the reference's ratio (exactly 0: no light path reaches the east
+//!   room) is in the setting `reference_ratio`.
 //!
-//! Sweeps (cornell_window, error as above, time of one update on 2 threads): iterations
-//! 1..32, cells per cascade 16³..64³ (same extent), cascades 1..4, geometry volume on/off;
-//! lookup ns per shaded point on one thread.
+//! Also `lpv/two_rooms_*` and `lpv/city_*` (rel_rms) and the sweeps on `cornell_window`:
+//! iterations 1..32, cells per cascade 16³..64³ (same extent), cascades 1..4, geometry
+//! volume on/off; lookup ns per shaded point on one thread; races of the optimised update
+//! and lookup against the first implementation, interleaved in one process.
 
-use gi_report::{Entry, Sweep, time_ms, time_ns_per_call};
+#[path = "../support/scene_case.rs"]
+mod scene_case;
+
+use gi_report::{Comparison, Entry, Sweep, interleaved, time_ms, time_ns_per_call};
 use glam::Vec3;
-use lpv::scenes::{BoxScene, Receiver, vpl_gather_all};
-use lpv::{Lpv, LpvSettings, Surfel};
+use lpv::{Lpv, LpvSettings, Surfel, Volume, Vpl};
+use scene::Generated;
+use scene_case::{Receiver, SceneCase, rel_rms};
 
 struct Case {
-    scene: BoxScene,
+    case: SceneCase,
+    center: Vec3,
     receivers: Vec<Receiver>,
-    reference: Vec<Vec3>,
+    truth: Vec<reference::Estimate>,
+    vpls: Vec<Vpl>,
     surfels: Vec<Surfel>,
     reference_name: String,
 }
 
 impl Case {
-    fn new(scene: BoxScene, spacing: f32) -> Self {
-        let receivers = scene.receivers(spacing);
-        let reference = vpl_gather_all(&scene, &receivers);
-        let surfels = scene.surfels(0.25);
-        let reference_name = format!("vpl_gather_exact_{}_{}", scene.name, scene.vpls.len());
-        Self { scene, receivers, reference, surfels, reference_name }
+    /// `rooms`: (min, max) of each room; receivers from each room's centre (group = room);
+    /// none: receivers from the scene camera.
+    fn new(which: Generated, rooms: &[(Vec3, Vec3)], rays: usize, samples: u32) -> Self {
+        let case = SceneCase::new(which, 1);
+        let (center, radius, receivers) = if rooms.is_empty() {
+            let eye = case.scene.camera.position;
+            let w = (rays as f32 * 16.0 / 9.0).sqrt().round() as u32;
+            (eye, 40.0, case.camera_receivers(w, (w * 9 / 16).max(1), 20.0))
+        } else {
+            let lo = rooms.iter().fold(Vec3::INFINITY, |a, r| a.min(r.0));
+            let hi = rooms.iter().fold(Vec3::NEG_INFINITY, |a, r| a.max(r.1));
+            let receivers = rooms
+                .iter()
+                .enumerate()
+                .flat_map(|(i, &(a, b))| case.receivers_from(0.5 * (a + b), rays, (a, b), i))
+                .collect();
+            (0.5 * (lo + hi), 0.5 * (hi - lo).length() + 0.5, receivers)
+        };
+        let truth = case.reference(&receivers, samples);
+        let (vpls, rsm_surfels) = case.rsm(center, radius, 256);
+        let mut surfels = case.triangle_surfels(0.25);
+        surfels.extend(rsm_surfels);
+        let reference_name = format!("reference_sun_indirect_{}_{samples}spp", case.name);
+        Self { case, center, receivers, truth, vpls, surfels, reference_name }
     }
 
     fn build(&self, settings: LpvSettings) -> Lpv {
         let mut lpv = Lpv::new(settings).expect("valid settings");
-        let r = &self.scene.rooms;
-        let lo = r.iter().fold(Vec3::INFINITY, |a, b| a.min(b.min));
-        let hi = r.iter().fold(Vec3::NEG_INFINITY, |a, b| a.max(b.max));
-        lpv.follow(0.5 * (lo + hi));
+        lpv.follow(self.center);
         lpv
     }
 
-    fn rel_rms(&self, lpv: &Lpv) -> f64 {
-        let (mut num, mut den) = (0.0f64, 0.0f64);
-        for (r, e) in self.receivers.iter().zip(&self.reference) {
-            let a = lpv.irradiance(r.position, r.normal);
-            num += (a - *e).length_squared() as f64;
-            den += e.length_squared() as f64;
-        }
-        (num / den).sqrt()
+    fn lookup(&self, lpv: &Lpv) -> Vec<Vec3> {
+        self.receivers.iter().map(|r| lpv.irradiance(r.position, r.normal)).collect()
     }
 
-    /// (dark / lit) for the LPV and for the reference.
-    fn leak(&self, lpv: &Lpv) -> (f64, f64) {
-        let (mut l, mut d, mut rl, mut rd) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
-        let (mut nl, mut nd) = (0.0f64, 0.0f64);
-        for (r, e) in self.receivers.iter().zip(&self.reference) {
-            let a = lpv.irradiance(r.position, r.normal).element_sum() as f64;
-            if r.room == self.scene.lit_room {
-                l += a;
-                rl += e.element_sum() as f64;
-                nl += 1.0;
-            } else {
-                d += a;
-                rd += e.element_sum() as f64;
-                nd += 1.0;
-            }
-        }
-        ((d / nd) / (l / nl), (rd / nd) / (rl / nl))
+    /// (rel_rms, best-fit scale, rel_rms after that scale, reference noise floor).
+    fn errors(&self, lpv: &Lpv) -> (f64, f64, f64, f64) {
+        let a = self.lookup(lpv);
+        let (e, s, noise) = rel_rms(&a, &self.truth);
+        let scaled: Vec<Vec3> = a.iter().map(|v| *v * s as f32).collect();
+        (e, s, rel_rms(&scaled, &self.truth).0, noise)
     }
+
+    /// (dark / lit) for the LPV and for the reference (group 0 lit, group 1 dark).
+    fn leak(&self, lpv: &Lpv) -> (f64, f64) {
+        let a = self.lookup(lpv);
+        let mut sums = [[0.0f64; 2]; 2]; // [lpv, reference][lit, dark]
+        let mut counts = [0.0f64; 2];
+        for ((r, a), t) in self.receivers.iter().zip(&a).zip(&self.truth) {
+            let g = r.group.min(1);
+            sums[0][g] += a.element_sum() as f64;
+            sums[1][g] += t.mean.element_sum() as f64;
+            counts[g] += 1.0;
+        }
+        let ratio = |s: [f64; 2]| (s[1] / counts[1]) / (s[0] / counts[0]).max(1e-30);
+        (ratio(sums[0]), ratio(sums[1]))
+    }
+}
+
+fn error_entry(
+    name: String,
+    technique: &str,
+    ms: f64,
+    s: &LpvSettings,
+    c: &Case,
+    lpv: &Lpv,
+) -> Entry {
+    let (e, scale, e_scaled, noise) = c.errors(lpv);
+    Entry::new(name, technique, ms)
+        .setting("scene", c.case.name)
+        .setting("cascades", s.cascades)
+        .setting("resolution", s.resolution)
+        .setting("cell_size", s.base_cell_size)
+        .setting("iterations", s.iterations)
+        .setting("geometry_volume", s.geometry_volume)
+        .setting("vpls", c.vpls.len())
+        .setting("receivers", c.receivers.len())
+        .setting("best_fit_scale", scale)
+        .setting("rel_rms_after_best_fit_scale", e_scaled)
+        .setting("reference_noise_rel_rms", noise)
+        .error("rel_rms", e, &c.reference_name)
+        .threads(2)
+}
+
+/// The first implementation's update (same injection; propagation 6 passes per row) for
+/// the race.
+fn baseline_update(lpv: &Lpv, vpls: &[Vpl]) -> Vec<Volume> {
+    lpv.cascades()
+        .iter()
+        .map(|c| {
+            let mut initial = Volume::new(c.grid.res);
+            lpv::inject(&c.grid, vpls, &mut initial);
+            let mut accum = initial.clone();
+            let mut a = initial;
+            let mut b = Volume::new(c.grid.res);
+            for _ in 0..lpv.settings().iterations {
+                lpv::baseline::propagate_step_per_direction(&a, &mut b, &mut accum);
+                std::mem::swap(&mut a, &mut b);
+            }
+            accum
+        })
+        .collect()
+}
+
+/// The first implementation's lookup (plane-major trilinear sample of every cascade).
+fn baseline_irradiance(lpv: &Lpv, p: Vec3, n: Vec3) -> Vec3 {
+    let n = n.normalize_or_zero();
+    let w = lpv.cascade_weights(p);
+    let mut e = Vec3::ZERO;
+    for (c, &wi) in lpv.cascades().iter().zip(&w) {
+        if wi > 0.0 {
+            let h = c.grid.cell_size;
+            let q = p + n * (lpv.settings().lookup_offset_cells * h);
+            e += wi * lpv::irradiance_from(&lpv::sample_trilinear(&c.grid, &c.volume, q), n, h);
+        }
+    }
+    e
 }
 
 fn main() {
@@ -85,58 +167,63 @@ fn main() {
     let reps = move |full: usize| if quick { (full / 5).max(3) } else { full };
     let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().expect("thread pool");
     let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("thread pool");
+    let samples = if quick { 128 } else { 1024 };
 
-    // Headline speed: 65,536 VPLs, 3 x 32³, 8 iterations.
+    sweep.stage("references");
+    let cw_room = (Vec3::new(0.0, 0.0, -5.5), Vec3::new(5.5, 5.5, 0.0));
+    let cornell = pool.install(|| Case::new(Generated::CornellWindow, &[cw_room], 1024, samples));
+    let west = (Vec3::new(0.0, 0.0, -4.0), Vec3::new(4.0, 3.0, 0.0));
+    let east = (Vec3::new(4.05, 0.0, -4.0), Vec3::new(8.05, 3.0, 0.0));
+    let rooms = pool.install(|| Case::new(Generated::TwoRooms, &[west, east], 768, samples));
+    let city = pool.install(|| Case::new(Generated::City, &[], 1024, samples));
+
+    // Headline speed: a 256² RSM of the city (65,536 VPLs), 3 x 32³, 8 iterations, and the
+    // race against the first implementation.
     sweep.stage("update 3x32 rsm256 8it");
-    let rsm = BoxScene::cornell_window(256);
-    assert_eq!(rsm.vpls.len(), 65_536);
-    let rsm_case = Case {
-        receivers: vec![],
-        reference: vec![],
-        surfels: rsm.surfels(0.25),
-        reference_name: String::new(),
-        scene: rsm,
-    };
     for gv in [false, true] {
         let settings = LpvSettings { geometry_volume: gv, ..LpvSettings::DEFAULT };
-        let mut lpv = rsm_case.build(settings);
-        let (ms, _) = pool
-            .install(|| time_ms(reps(30), || lpv.update(&rsm_case.scene.vpls, &rsm_case.surfels)));
-        let name = if gv {
-            "lpv/update_3x32_rsm256_8it_gv".to_string()
-        } else {
-            "lpv/update_3x32_rsm256_8it".to_string()
-        };
+        let mut lpv = city.build(settings);
+        let (ms, _) = pool.install(|| time_ms(reps(30), || lpv.update(&city.vpls, &city.surfels)));
+        let name = if gv { "lpv/update_3x32_rsm256_8it_gv" } else { "lpv/update_3x32_rsm256_8it" };
         sweep.entry(
             Entry::new(name, "update", ms)
+                .setting("scene", "city")
                 .setting("cascades", 3)
                 .setting("resolution", 32)
-                .setting("vpls", 65_536)
+                .setting("vpls", city.vpls.len())
+                .setting("surfels", city.surfels.len())
                 .setting("iterations", 8)
                 .setting("geometry_volume", gv)
                 .threads(2)
-                .note("target < 5 ms on 2 cores; thesis (GTX 260 GPU, 3 cascades): 5.0 ms; CPU path, machine shared with other jobs"),
+                .note("target < 5 ms on 2 cores; thesis (GTX 260 GPU, 3 cascades): 5.0 ms; CPU path, 2 cores shared with other jobs"),
         );
+        if !gv {
+            let twin = lpv.clone();
+            let (ours, theirs) = pool.install(|| {
+                interleaved(
+                    reps(20),
+                    || {
+                        lpv.update(&city.vpls, &[]);
+                    },
+                    || {
+                        gi_report::black_box(baseline_update(&twin, &city.vpls));
+                    },
+                )
+            });
+            sweep.comparison(
+                Comparison::new("lpv/update_3x32_rsm256_8it_vs_first", ours, theirs, "ms", false)
+                    .note("fused 6-direction propagation vs the first implementation (6 passes per row), interleaved, 2 threads"),
+            );
+        }
     }
-
-    sweep.stage("references");
-    let cornell = Case::new(BoxScene::cornell_window(64), 0.25);
-    let rooms = Case::new(BoxScene::two_rooms(64), 0.25);
 
     // Headline accuracy.
     sweep.stage("cornell_window default");
-    let mut lpv = cornell.build(LpvSettings::DEFAULT);
+    let s = LpvSettings::DEFAULT;
+    let mut lpv = cornell.build(s);
     let (ms, _) =
-        pool.install(|| time_ms(reps(10), || lpv.update(&cornell.scene.vpls, &cornell.surfels)));
-    sweep.entry(
-        Entry::new("lpv/cornell_window_default", "lpv", ms)
-            .setting("cascades", 3)
-            .setting("resolution", 32)
-            .setting("iterations", 8)
-            .setting("geometry_volume", false)
-            .error("rel_rms", cornell.rel_rms(&lpv), &cornell.reference_name)
-            .threads(2),
-    );
+        pool.install(|| time_ms(reps(10), || lpv.update(&cornell.vpls, &cornell.surfels)));
+    sweep.entry(error_entry("lpv/cornell_window_default".into(), "lpv", ms, &s, &cornell, &lpv));
     let receivers = &cornell.receivers;
     let ns = one.install(|| {
         time_ns_per_call(reps(20), 20_000, |i| {
@@ -150,27 +237,52 @@ fn main() {
             .threads(1)
             .note(format!("{ns:.1} ns per shaded point (target < 30 ns on one core)")),
     );
+    let (ours, theirs) = one.install(|| {
+        interleaved(
+            reps(20),
+            || {
+                for r in receivers.iter().cycle().take(20_000) {
+                    gi_report::black_box(lpv.irradiance(r.position, r.normal));
+                }
+            },
+            || {
+                for r in receivers.iter().cycle().take(20_000) {
+                    gi_report::black_box(baseline_irradiance(&lpv, r.position, r.normal));
+                }
+            },
+        )
+    });
+    sweep.comparison(
+        Comparison::new("lpv/lookup_20k_points_vs_first", ours, theirs, "ms", false)
+            .note("cell-major table vs the first plane-major lookup, 20,000 points, interleaved, 1 thread"),
+    );
 
     sweep.stage("two rooms leak");
     for gv in [false, true] {
-        let settings = LpvSettings { geometry_volume: gv, iterations: 16, ..LpvSettings::DEFAULT };
-        let mut lpv = rooms.build(settings);
+        let s = LpvSettings { geometry_volume: gv, ..LpvSettings::DEFAULT };
+        let mut lpv = rooms.build(s);
         let (ms, _) =
-            pool.install(|| time_ms(reps(10), || lpv.update(&rooms.scene.vpls, &rooms.surfels)));
+            pool.install(|| time_ms(reps(10), || lpv.update(&rooms.vpls, &rooms.surfels)));
         let (ratio, reference) = rooms.leak(&lpv);
         let name = if gv { "lpv/leak_two_rooms_gv" } else { "lpv/leak_two_rooms_no_gv" };
         sweep.entry(
             Entry::new(name, if gv { "lpv_gv" } else { "lpv" }, ms)
+                .setting("scene", "two_rooms")
                 .setting("geometry_volume", gv)
-                .setting("iterations", 16)
+                .setting("iterations", s.iterations)
                 .setting("reference_ratio", reference)
                 .error("dark_over_lit", ratio, &rooms.reference_name)
                 .threads(2)
                 .note(format!(
-                    "dark room / lit room mean irradiance: LPV {ratio:.4}, reference {reference:.4} (light through the door only); rel_rms over both rooms {:.3}",
-                    rooms.rel_rms(&lpv)
+                    "closed east room / lit west room mean irradiance: LPV {ratio:.4}, reference {reference:.4}"
                 )),
         );
+        let t = if gv { "lpv_gv" } else { "lpv" };
+        let suffix = if gv { "_gv" } else { "" };
+        sweep.entry(error_entry(format!("lpv/two_rooms_default{suffix}"), t, ms, &s, &rooms, &lpv));
+        let mut lpv = city.build(s);
+        let (ms, _) = pool.install(|| time_ms(reps(5), || lpv.update(&city.vpls, &city.surfels)));
+        sweep.entry(error_entry(format!("lpv/city_default{suffix}"), t, ms, &s, &city, &lpv));
     }
 
     // Sweeps on cornell_window.
@@ -178,17 +290,8 @@ fn main() {
         sweep.stage(&name);
         let mut lpv = cornell.build(s);
         let (ms, _) =
-            pool.install(|| time_ms(reps(5), || lpv.update(&cornell.scene.vpls, &cornell.surfels)));
-        sweep.entry(
-            Entry::new(name, technique, ms)
-                .setting("cascades", s.cascades)
-                .setting("resolution", s.resolution)
-                .setting("cell_size", s.base_cell_size)
-                .setting("iterations", s.iterations)
-                .setting("geometry_volume", s.geometry_volume)
-                .error("rel_rms", cornell.rel_rms(&lpv), &cornell.reference_name)
-                .threads(2),
-        );
+            pool.install(|| time_ms(reps(5), || lpv.update(&cornell.vpls, &cornell.surfels)));
+        sweep.entry(error_entry(name, technique, ms, &s, &cornell, &lpv));
     };
     let iters: &[u32] =
         if quick { &[1, 2, 4, 8, 16, 32] } else { &[1, 2, 3, 4, 6, 8, 12, 16, 24, 32] };
@@ -205,24 +308,25 @@ fn main() {
         }
     }
     let resolutions: &[u32] = if quick { &[16, 32, 64] } else { &[16, 24, 32, 48, 64] };
-    for &res in resolutions {
-        // Same extent (16 m finest cascade), iterations scaled to the same reach (4 m).
-        let s = LpvSettings {
-            resolution: res,
-            base_cell_size: 16.0 / res as f32,
-            iterations: res / 4,
-            ..LpvSettings::DEFAULT
-        };
-        point(&mut sweep, format!("lpv/cornell_window_res{res}_3x{res}_{}it", res / 4), "lpv", s);
+    for gv in [false, true] {
+        for &res in resolutions {
+            // Same extent (16 m finest cascade), iterations scaled to the same reach (4 m).
+            let s = LpvSettings {
+                resolution: res,
+                base_cell_size: 16.0 / res as f32,
+                iterations: res / 4,
+                geometry_volume: gv,
+                ..LpvSettings::DEFAULT
+            };
+            let (t, suffix) = if gv { ("lpv_gv", "_gv") } else { ("lpv", "") };
+            let name = format!("lpv/cornell_window_res{res}_3x{res}_{}it{suffix}", res / 4);
+            point(&mut sweep, name, t, s);
+        }
     }
     for cascades in 1..=4 {
         let s = LpvSettings { cascades, ..LpvSettings::DEFAULT };
-        point(
-            &mut sweep,
-            format!("lpv/cornell_window_cascades{cascades}_{cascades}x32_8it"),
-            "lpv",
-            s,
-        );
+        let name = format!("lpv/cornell_window_cascades{cascades}_{cascades}x32_8it");
+        point(&mut sweep, name, "lpv", s);
     }
     if !quick {
         point(&mut sweep, "lpv/cornell_window_high".into(), "lpv_gv", LpvSettings::high());

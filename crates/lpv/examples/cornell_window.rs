@@ -1,56 +1,64 @@
-//! Renders the indirect light of the `cornell_window` room three times side by side: the
-//! LPV without the geometry volume, with it, and the exact VPL-gather reference. The image
-//! shows `albedo * E / pi` (the indirect radiance of each surface), Reinhard-tonemapped.
+//! Renders the indirect sunlight of the `scene` crate's `cornell_window` three times side by
+//! side, from the scene's camera: the LPV without the geometry volume, with it, and the
+//! `reference` path tracer's one-bounce indirect diffuse (`Component::SunIndirectDiffuse`).
+//! Every panel shows the indirect radiance `albedo * E / pi`, with one exposure (from the
+//! reference's mean) and a Reinhard tone map. The LPV's VPLs come from a 256² CPU RSM of the
+//! scene from the sun (`shadows::Rsm`), see `support/scene_case.rs`.
 //!
-//! `cargo run --release -p lpv --example cornell_window [out.png]`
+//! `cargo run --release -p lpv --example cornell_window [out.png] [spp]`
+
+#[path = "../support/scene_case.rs"]
+mod scene_case;
 
 use glam::Vec3;
-use lpv::scenes::{BoxScene, vpl_gather};
 use lpv::{Lpv, LpvSettings};
 use rayon::prelude::*;
+use reference::{Component, RenderSettings};
+use scene_case::SceneCase;
 
 const W: u32 = 240;
-const H: u32 = 180;
+const H: u32 = 240;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let out = std::env::args().nth(1).unwrap_or_else(|| "cornell_window_lpv.png".into());
-    let scene = BoxScene::cornell_window(64);
-    let surfels = scene.surfels(0.25);
+    let spp: u32 = std::env::args().nth(2).and_then(|s| s.parse().ok()).unwrap_or(256);
+    let case = SceneCase::new(scene::Generated::CornellWindow, 1);
+    let (lo, hi) = (Vec3::new(0.0, 0.0, -5.5), Vec3::new(5.5, 5.5, 0.0));
+    let center = 0.5 * (lo + hi);
+    let (vpls, rsm_surfels) = case.rsm(center, 0.5 * (hi - lo).length() + 0.5, 256);
+    let mut surfels = case.triangle_surfels(0.25);
+    surfels.extend(rsm_surfels);
     let mut lpvs = Vec::new();
     for gv in [false, true] {
         let mut lpv = Lpv::new(LpvSettings { geometry_volume: gv, ..LpvSettings::DEFAULT })?;
-        lpv.follow(Vec3::new(2.5, 1.5, 2.5));
-        lpv.update(&scene.vpls, &surfels);
+        lpv.follow(center);
+        lpv.update(&vpls, &surfels);
         lpvs.push(lpv);
     }
-    // Camera inside the room near the window wall, looking at the back (-z) wall.
-    let eye = Vec3::new(2.5, 1.6, 4.8);
-    let fwd = Vec3::new(0.0, -0.15, -1.0).normalize();
-    let right = fwd.cross(Vec3::Y).normalize();
-    let up = right.cross(fwd);
-    let tan = (0.5f32 * 75f32.to_radians()).tan();
-    // (albedo, position, normal) per pixel.
+    let camera = reference::camera_from_scene(&case.scene);
+    // (diffuse reflectance, position, normal towards the eye) per pixel.
     let hits: Vec<Option<(Vec3, Vec3, Vec3)>> = (0..W * H)
         .into_par_iter()
         .map(|i| {
-            let (x, y) = (i % W, i / W);
-            let u = (2.0 * (x as f32 + 0.5) / W as f32 - 1.0) * tan * W as f32 / H as f32;
-            let v = (1.0 - 2.0 * (y as f32 + 0.5) / H as f32) * tan;
-            let d = (fwd + u * right + v * up).normalize();
-            scene.trace(eye, d, 1e-4, 100.0).map(|(t, n, k)| (scene.albedo[k], eye + t * d, n))
+            let d = camera.direction((i % W) as f32 + 0.5, (i / W) as f32 + 0.5, W, H);
+            let h = case.world.intersect(camera.position, d, f32::INFINITY)?;
+            let n = if h.normal.dot(d) > 0.0 { -h.normal } else { h.normal };
+            Some((case.world.shade(&h).diffuse_reflectance(), h.position, n))
         })
         .collect();
-    let shade = |f: &(dyn Fn(Vec3, Vec3) -> Vec3 + Sync)| -> Vec<Vec3> {
+    let shade = |lpv: &Lpv| -> Vec<Vec3> {
         hits.par_iter()
-            .map(|h| h.map_or(Vec3::ZERO, |(a, p, n)| a * f(p, n) / std::f32::consts::PI))
+            .map(|h| {
+                h.map_or(Vec3::ZERO, |(a, p, n)| a * lpv.irradiance(p, n) / std::f32::consts::PI)
+            })
             .collect()
     };
-    let panels = [
-        shade(&|p, n| lpvs[0].irradiance(p, n)),
-        shade(&|p, n| lpvs[1].irradiance(p, n)),
-        shade(&|p, n| vpl_gather(&scene, &scene.vpls, p, n)),
-    ];
-    // One exposure for all three, from the reference's mean.
+    let settings = RenderSettings::DEFAULT
+        .with_component(Component::SunIndirectDiffuse)
+        .with_size(W, H)
+        .with_spp(spp);
+    let truth = reference::render(&case.world, camera, settings, false)?.mean().pixels;
+    let panels = [shade(&lpvs[0]), shade(&lpvs[1]), truth];
     let mean: f32 =
         panels[2].iter().map(|c| c.element_sum() / 3.0).sum::<f32>() / panels[2].len() as f32;
     let exposure = 0.5 / mean.max(1e-12);
@@ -65,9 +73,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
     img.save(&out)?;
+    let rel = |p: &[Vec3]| {
+        let num: f64 =
+            p.iter().zip(&panels[2]).map(|(a, r)| (*a - *r).length_squared() as f64).sum();
+        let den: f64 = panels[2].iter().map(|r| r.length_squared() as f64).sum();
+        (num / den.max(1e-30)).sqrt()
+    };
     println!(
-        "wrote {out}: LPV without GV | LPV with GV | reference (exact VPL gather, {} VPLs)",
-        scene.vpls.len()
+        "wrote {out}: LPV without GV (image rel_rms {:.3}) | LPV with GV ({:.3}) | reference \
+         (sun indirect diffuse, {spp} spp); {} VPLs from a 256² RSM",
+        rel(&panels[0]),
+        rel(&panels[1]),
+        vpls.len()
     );
     Ok(())
 }

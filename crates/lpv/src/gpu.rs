@@ -304,6 +304,7 @@ impl GpuLpv {
             c.volume =
                 self.update_cascade(device, queue, &c.grid, &up, faces.as_ref(), s.iterations)?;
         }
+        lpv.refresh_tables();
         Ok(())
     }
 

@@ -60,6 +60,8 @@
 //! assert!(ceiling.x > 0.01 && ceiling.x < 0.5, "{ceiling}");
 //! ```
 
+#[doc(hidden)]
+pub mod baseline;
 mod error;
 mod geometry;
 mod grid;

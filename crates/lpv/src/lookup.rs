@@ -81,3 +81,52 @@ pub fn cascade_weight(grid: &Grid, p: Vec3, blend_cells: f32) -> f32 {
     }
     if blend_cells <= 0.0 { 1.0 } else { (m / blend_cells).min(1.0) }
 }
+
+/// A cascade's coefficients cell-major (12 contiguous floats per cell, `[z][y][x]`), the
+/// layout the CPU lookup reads: the 8 cells of a trilinear sample are 4 pairs of adjacent
+/// 96-byte runs instead of 96 floats spread over 12 planes.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(crate) struct CellMajor {
+    pub res: usize,
+    pub cells: Vec<[f32; COEFFS]>,
+}
+
+impl CellMajor {
+    pub fn from_volume(v: &Volume) -> Self {
+        let n = v.res as usize;
+        let n2 = n * n;
+        let mut cells = vec![[0.0f32; COEFFS]; n * n2];
+        for (z, slab) in cells.chunks_exact_mut(n2).enumerate() {
+            let src = &v.data[z * COEFFS * n2..(z + 1) * COEFFS * n2];
+            for (k, plane) in src.chunks_exact(n2).enumerate() {
+                for (cell, &value) in slab.iter_mut().zip(plane) {
+                    cell[k] = value;
+                }
+            }
+        }
+        Self { res: n, cells }
+    }
+
+    /// The same as [`sample_trilinear`] on the volume this was made from.
+    #[inline]
+    pub fn sample(&self, grid: &Grid, p: Vec3) -> [f32; COEFFS] {
+        let n = self.res;
+        let u = grid.to_cell_space(p) - 0.5;
+        let hi = (n - 2) as f32;
+        let i0 = u.floor().clamp(Vec3::ZERO, Vec3::splat(hi));
+        let t = (u - i0).clamp(Vec3::ZERO, Vec3::ONE);
+        let (x, y, z) = (i0.x as usize, i0.y as usize, i0.z as usize);
+        let (sx, sy, sz) = (1.0 - t.x, 1.0 - t.y, 1.0 - t.z);
+        let wyz = [sy * sz, t.y * sz, sy * t.z, t.y * t.z];
+        let mut out = [0.0f32; COEFFS];
+        for (j, w) in wyz.into_iter().enumerate() {
+            let base = ((z + (j >> 1)) * n + y + (j & 1)) * n + x;
+            let [a, b] = &self.cells[base..base + 2] else { return out };
+            let (w0, w1) = (w * sx, w * t.x);
+            for k in 0..COEFFS {
+                out[k] += w0 * a[k] + w1 * b[k];
+            }
+        }
+        out
+    }
+}

@@ -4,7 +4,7 @@ use crate::error::LpvError;
 use crate::geometry::GeometryVolume;
 use crate::grid::{Grid, Volume};
 use crate::inject::{InjectStats, inject};
-use crate::lookup::{cascade_weight, irradiance_from, radiance_from, sample_trilinear};
+use crate::lookup::{CellMajor, cascade_weight, irradiance_from, radiance_from, sample_trilinear};
 use crate::propagate::propagate;
 use crate::settings::LpvSettings;
 use crate::vpl::{Surfel, Vpl};
@@ -31,6 +31,8 @@ pub struct UpdateStats {
 pub struct Lpv {
     settings: LpvSettings,
     cascades: Vec<Cascade>,
+    /// Each cascade's volume cell-major, for the CPU lookup (rebuilt by every update).
+    tables: Vec<CellMajor>,
 }
 
 impl Lpv {
@@ -43,8 +45,9 @@ impl Lpv {
                 volume: Volume::new(settings.resolution),
                 geometry: None,
             })
-            .collect();
-        Ok(Self { settings, cascades })
+            .collect::<Vec<_>>();
+        let tables = cascades.iter().map(|c| CellMajor::from_volume(&c.volume)).collect();
+        Ok(Self { settings, cascades, tables })
     }
 
     pub fn settings(&self) -> &LpvSettings {
@@ -67,12 +70,13 @@ impl Lpv {
         if !camera.is_finite() {
             return;
         }
-        for c in &mut self.cascades {
+        for (c, t) in self.cascades.iter_mut().zip(&mut self.tables) {
             let g = Grid::snapped(camera, c.grid.cell_size, c.grid.res);
             if g != c.grid {
                 c.grid = g;
                 c.volume.clear();
                 c.geometry = None;
+                t.cells.fill([0.0; crate::grid::COEFFS]);
             }
         }
     }
@@ -89,7 +93,17 @@ impl Lpv {
             let faces = c.geometry.as_ref().map(GeometryVolume::faces);
             c.volume = propagate(&initial, iterations, faces.as_ref());
         }
+        self.refresh_tables();
         stats
+    }
+
+    /// Rebuilds the lookup tables from the volumes (after an update).
+    pub(crate) fn refresh_tables(&mut self) {
+        use rayon::prelude::*;
+        self.cascades
+            .par_iter()
+            .map(|c| CellMajor::from_volume(&c.volume))
+            .collect_into_vec(&mut self.tables);
     }
 
     /// Blend weight of each cascade at `p` (finest first; they sum to at most 1, and to 0
@@ -117,11 +131,11 @@ impl Lpv {
         let n = sh_math::normalize_dir(normal).unwrap_or(Vec3::ZERO);
         let w = self.cascade_weights(p);
         let mut e = Vec3::ZERO;
-        for (c, &wi) in self.cascades.iter().zip(&w) {
+        for ((c, t), &wi) in self.cascades.iter().zip(&self.tables).zip(&w) {
             if wi > 0.0 {
                 let h = c.grid.cell_size;
                 let q = p + n * (self.settings.lookup_offset_cells * h);
-                e += wi * irradiance_from(&sample_trilinear(&c.grid, &c.volume, q), n, h);
+                e += wi * irradiance_from(&t.sample(&c.grid, q), n, h);
             }
         }
         e

@@ -21,47 +21,16 @@ const DS: f32 = FACE_SOLID_ANGLE_SIDE;
 /// Re-emission: a lobe of flux F towards axis e adds `F Y00` to c0 and `F K1 / 3` to c_e.
 const RE_A: f32 = K1 / 3.0;
 // The no-occlusion step is linear; its coefficients (see `step_linear`).
-const C00: f32 = Y00 * Y00 * (DM + 4.0 * DS);
-const C0A: f32 = Y00 * K1 * (DM + 8.0 * DS * INV_SQRT5);
-const CA0: f32 = RE_A * DM * Y00;
-const CAA: f32 = RE_A * DM * K1;
-const CPP: f32 = RE_A * 2.0 * DS * INV_SQRT5 * K1;
+pub(crate) const C00: f32 = Y00 * Y00 * (DM + 4.0 * DS);
+pub(crate) const C0A: f32 = Y00 * K1 * (DM + 8.0 * DS * INV_SQRT5);
+pub(crate) const CA0: f32 = RE_A * DM * Y00;
+pub(crate) const CAA: f32 = RE_A * DM * K1;
+pub(crate) const CPP: f32 = RE_A * 2.0 * DS * INV_SQRT5 * K1;
 
 /// SH coefficient slot of an axis: x -> 3, y -> 1, z -> 2 (order `Y00, y, z, x`).
 pub(crate) const AXIS_COEF: [usize; 3] = [3, 1, 2];
 /// The two axes perpendicular to each axis.
 pub(crate) const PERP: [[usize; 2]; 3] = [[1, 2], [0, 2], [0, 1]];
-
-fn four(s: &mut [f32], n: usize) -> [&mut [f32]; 4] {
-    let (a, rest) = s.split_at_mut(n);
-    let (b, rest) = rest.split_at_mut(n);
-    let (c, d) = rest.split_at_mut(n);
-    [a, b, c, &mut d[..n]]
-}
-
-/// One direction without occlusion, for one channel, over a row: linear in the source.
-#[inline(always)]
-fn step_linear(d: [&mut [f32]; 4], s: [&[f32]; 4], axis: usize, sigma: f32) {
-    let [d0, d1, d2, d3] = d;
-    let mut dd = [Some(d0), Some(d1), Some(d2), Some(d3)];
-    let a = AXIS_COEF[axis];
-    let [p, q] = PERP[axis].map(|x| AXIS_COEF[x]);
-    let d0 = dd[0].take().unwrap_or_default();
-    let da = dd[a].take().unwrap_or_default();
-    let dp = dd[p].take().unwrap_or_default();
-    let dq = dd[q].take().unwrap_or_default();
-    let len = d0.len();
-    let (da, dp, dq) = (&mut da[..len], &mut dp[..len], &mut dq[..len]);
-    let (s0, sa, sp, sq) = (&s[0][..len], &s[a][..len], &s[p][..len], &s[q][..len]);
-    let c0a = C0A * sigma;
-    let ca0 = CA0 * sigma;
-    for i in 0..len {
-        d0[i] += C00 * s0[i] + c0a * sa[i];
-        da[i] += ca0 * s0[i] + CAA * sa[i];
-        dp[i] += CPP * sp[i];
-        dq[i] += CPP * sq[i];
-    }
-}
 
 #[inline(always)]
 fn transmittance(f: [f32; 4], w: [f32; 3]) -> f32 {
@@ -134,67 +103,12 @@ pub fn propagate_step(
     assert_eq!(src.res, dst.res, "propagate_step: volumes of different sizes");
     let n = src.res as usize;
     let sl = src.slice_len();
-    let n2 = n * n;
+    let zeros = vec![0.0f32; n];
     let body = |z: usize, out: &mut [f32], acc: Option<&mut [f32]>| {
-        let mut row = vec![0.0f32; COEFFS * n];
-        for y in 0..n {
-            row.fill(0.0);
-            for (axis, sigma) in
-                [(0usize, 1.0f32), (0, -1.0), (1, 1.0), (1, -1.0), (2, 1.0), (2, -1.0)]
-            {
-                // Source cell = dest - sigma * e_axis.
-                let (zs, ys) = match axis {
-                    2 if sigma > 0.0 && z == 0 => continue,
-                    2 if sigma < 0.0 && z + 1 == n => continue,
-                    1 if sigma > 0.0 && y == 0 => continue,
-                    1 if sigma < 0.0 && y + 1 == n => continue,
-                    2 => (if sigma > 0.0 { z - 1 } else { z + 1 }, y),
-                    1 => (z, if sigma > 0.0 { y - 1 } else { y + 1 }),
-                    _ => (z, y),
-                };
-                // x ranges: dest [dx0, dx0+len), source [sx0, sx0+len).
-                let (dx0, sx0, len) = match (axis, sigma > 0.0) {
-                    (0, true) => (1, 0, n - 1),
-                    (0, false) => (0, 1, n - 1),
-                    _ => (0, 0, n),
-                };
-                let srow = |k: usize| {
-                    let o = (zs * COEFFS + k) * n2 + ys * n + sx0;
-                    &src.data[o..o + len]
-                };
-                match blocking {
-                    None => {
-                        for c in 0..3 {
-                            let d = four(&mut row[c * 4 * n..(c + 1) * 4 * n], n)
-                                .map(|r| &mut r[dx0..dx0 + len]);
-                            let s =
-                                [srow(c * 4), srow(c * 4 + 1), srow(c * 4 + 2), srow(c * 4 + 3)];
-                            step_linear(d, s, axis, sigma);
-                        }
-                    }
-                    Some(b) => {
-                        // The shared face is the low face (on `axis`) of the higher cell.
-                        let (fz, fy, fx0) = if sigma > 0.0 { (z, y, dx0) } else { (zs, ys, sx0) };
-                        let frow = |k: usize| {
-                            let o = (fz * COEFFS + axis * 4 + k) * n2 + fy * n + fx0;
-                            &b.data[o..o + len]
-                        };
-                        let s: [&[f32]; COEFFS] = std::array::from_fn(srow);
-                        step_blocked(
-                            &mut row,
-                            s,
-                            [frow(0), frow(1), frow(2), frow(3)],
-                            n,
-                            dx0,
-                            axis,
-                            sigma,
-                        );
-                    }
-                }
-            }
-            for k in 0..COEFFS {
-                out[k * n2 + y * n..k * n2 + y * n + n].copy_from_slice(&row[k * n..k * n + n]);
-            }
+        if let Some(b) = blocking {
+            blocked_slice(src, b, z, out);
+        } else {
+            linear_slice(src, z, out, &zeros);
         }
         if let Some(acc) = acc {
             for (a, o) in acc.iter_mut().zip(out.iter()) {
@@ -212,6 +126,114 @@ pub fn propagate_step(
                 .for_each(|(z, (out, a))| body(z, out, Some(a)));
         }
         None => dst.data.par_chunks_mut(sl).enumerate().for_each(|(z, out)| body(z, out, None)),
+    }
+}
+
+/// One z slice of a step with occlusion: per row, the 6 directions one after another.
+fn blocked_slice(src: &Volume, b: &FaceBlocking, z: usize, out: &mut [f32]) {
+    let n = src.res as usize;
+    let n2 = n * n;
+    let mut row = vec![0.0f32; COEFFS * n];
+    for y in 0..n {
+        row.fill(0.0);
+        for (axis, sigma) in [(0usize, 1.0f32), (0, -1.0), (1, 1.0), (1, -1.0), (2, 1.0), (2, -1.0)]
+        {
+            // Source cell = dest - sigma * e_axis.
+            let (zs, ys) = match axis {
+                2 if sigma > 0.0 && z == 0 => continue,
+                2 if sigma < 0.0 && z + 1 == n => continue,
+                1 if sigma > 0.0 && y == 0 => continue,
+                1 if sigma < 0.0 && y + 1 == n => continue,
+                2 => (if sigma > 0.0 { z - 1 } else { z + 1 }, y),
+                1 => (z, if sigma > 0.0 { y - 1 } else { y + 1 }),
+                _ => (z, y),
+            };
+            // x ranges: dest [dx0, dx0+len), source [sx0, sx0+len).
+            let (dx0, sx0, len) = match (axis, sigma > 0.0) {
+                (0, true) => (1, 0, n - 1),
+                (0, false) => (0, 1, n - 1),
+                _ => (0, 0, n),
+            };
+            let srow = |k: usize| {
+                let o = (zs * COEFFS + k) * n2 + ys * n + sx0;
+                &src.data[o..o + len]
+            };
+            // The shared face is the low face (on `axis`) of the higher cell.
+            let (fz, fy, fx0) = if sigma > 0.0 { (z, y, dx0) } else { (zs, ys, sx0) };
+            let frow = |k: usize| {
+                let o = (fz * COEFFS + axis * 4 + k) * n2 + fy * n + fx0;
+                &b.data[o..o + len]
+            };
+            let s: [&[f32]; COEFFS] = std::array::from_fn(srow);
+            step_blocked(&mut row, s, [frow(0), frow(1), frow(2), frow(3)], n, dx0, axis, sigma);
+        }
+        for k in 0..COEFFS {
+            out[k * n2 + y * n..k * n2 + y * n + n].copy_from_slice(&row[k * n..k * n + n]);
+        }
+    }
+}
+
+/// One z slice of a step without occlusion, all 6 directions fused: every output
+/// coefficient is written once, from the 6 neighbour rows (zero rows beyond the border).
+///
+/// With `m`/`p` the neighbour below/above along an axis, per channel:
+/// `d0 = C00 sum s0 + C0A ((xm3 - xp3) + (ym1 - yp1) + (zm2 - zp2))`, and for each axis `a`
+/// with perpendicular axes `b`, `c`: `d_a = CA0 (am0 - ap0) + CAA (am_a + ap_a) + CPP (bm_a +
+/// bp_a + cm_a + cp_a)` (coefficient slots: x = 3, y = 1, z = 2).
+fn linear_slice<'a>(src: &'a Volume, z: usize, out: &mut [f32], zeros: &'a [f32]) {
+    let n = src.res as usize;
+    let n2 = n * n;
+    let sl = COEFFS * n2;
+    let slice = |zz: usize| &src.data[zz * sl..(zz + 1) * sl];
+    let here = slice(z);
+    let below = (z > 0).then(|| slice(z - 1));
+    let above = (z + 1 < n).then(|| slice(z + 1));
+    fn rows<'a>(s: Option<&'a [f32]>, zeros: &'a [f32], n: usize, k: usize, y: usize) -> &'a [f32] {
+        match s {
+            Some(s) => &s[k * n * n + y * n..k * n * n + y * n + n],
+            None => &zeros[..n],
+        }
+    }
+    let row = |s: Option<&'a [f32]>, k: usize, y: usize| rows(s, zeros, n, k, y);
+    let mut pad =
+        [vec![0.0f32; n + 2], vec![0.0f32; n + 2], vec![0.0f32; n + 2], vec![0.0f32; n + 2]];
+    let mut planes: Vec<&mut [f32]> = out.chunks_exact_mut(n2).collect();
+    for y in 0..n {
+        let ym_s = (y > 0).then_some(here);
+        let yp_s = (y + 1 < n).then_some(here);
+        for c in 0..3 {
+            let k0 = c * 4;
+            for (k, p) in pad.iter_mut().enumerate() {
+                p[1..n + 1].copy_from_slice(row(Some(here), k0 + k, y));
+            }
+            let xm: [&[f32]; 4] = std::array::from_fn(|k| &pad[k][..n]);
+            let xp: [&[f32]; 4] = std::array::from_fn(|k| &pad[k][2..n + 2]);
+            let ym: [&[f32]; 4] = std::array::from_fn(|k| row(ym_s, k0 + k, y.wrapping_sub(1)));
+            let yp: [&[f32]; 4] = std::array::from_fn(|k| row(yp_s, k0 + k, y + 1));
+            let zm: [&[f32]; 4] = std::array::from_fn(|k| row(below, k0 + k, y));
+            let zp: [&[f32]; 4] = std::array::from_fn(|k| row(above, k0 + k, y));
+            let [o0, o1, o2, o3] = &mut planes[k0..k0 + 4] else { unreachable!() };
+            let (o0, o1, o2, o3) = (
+                &mut o0[y * n..y * n + n],
+                &mut o1[y * n..y * n + n],
+                &mut o2[y * n..y * n + n],
+                &mut o3[y * n..y * n + n],
+            );
+            for i in 0..n {
+                let sum0 = xm[0][i] + xp[0][i] + ym[0][i] + yp[0][i] + zm[0][i] + zp[0][i];
+                let odd = (xm[3][i] - xp[3][i]) + (ym[1][i] - yp[1][i]) + (zm[2][i] - zp[2][i]);
+                o0[i] = C00 * sum0 + C0A * odd;
+                o3[i] = CA0 * (xm[0][i] - xp[0][i])
+                    + CAA * (xm[3][i] + xp[3][i])
+                    + CPP * (ym[3][i] + yp[3][i] + zm[3][i] + zp[3][i]);
+                o1[i] = CA0 * (ym[0][i] - yp[0][i])
+                    + CAA * (ym[1][i] + yp[1][i])
+                    + CPP * (xm[1][i] + xp[1][i] + zm[1][i] + zp[1][i]);
+                o2[i] = CA0 * (zm[0][i] - zp[0][i])
+                    + CAA * (zm[2][i] + zp[2][i])
+                    + CPP * (xm[2][i] + xp[2][i] + ym[2][i] + yp[2][i]);
+            }
+        }
     }
 }
 

@@ -1,0 +1,203 @@
+//! The `scene` crate's scenes as LPV inputs and the `reference` path tracer as their truth,
+//! shared by the sweep (`benches/gi_sweep.rs`) and the example (`examples/cornell_window.rs`)
+//! through `#[path]` (the library itself depends only on `sh_math`).
+//!
+//! - Truth: `reference::irradiance` with `Component::SunIndirectDiffuse` (sunlight after
+//!   exactly one diffuse bounce, two-sided surfaces, sun disk with shadows) at receiver points.
+//! - LPV input: a CPU reflective shadow map of the scene's triangles from the sun
+//!   (`shadows::Rsm::render`, light colour = the reference world's sun irradiance, albedo =
+//!   the reference material's diffuse reflectance at the triangle's centroid, textures
+//!   included), one VPL per covered texel (flux = irradiance x albedo x texel area).
+//! - Geometry volume input: surfels on every triangle's wound front side (what a G-buffer
+//!   sees; every triangle, an idealisation of a camera's view) plus one per RSM texel (the
+//!   side the sun sees, area = texel area / cos).
+//! - Receivers: hit points of rays from a point inside a room (Fibonacci directions) or from
+//!   the scene camera (a pixel grid), normal turned towards the ray origin.
+
+#![allow(dead_code)] // each including target uses a part
+
+use glam::{Vec2, Vec3};
+use lpv::{Surfel, Vpl};
+use reference::{Component, QueryPoint, QuerySettings, SceneLighting, SurfaceHit, World};
+use scene::Generated;
+
+/// A receiver point with its room (0 when the scene has no rooms).
+#[derive(Clone, Copy, Debug)]
+pub struct Receiver {
+    pub position: Vec3,
+    pub normal: Vec3,
+    pub group: usize,
+}
+
+pub struct SceneCase {
+    pub name: &'static str,
+    pub scene: scene::Scene,
+    pub world: World,
+    pub triangles: Vec<[Vec3; 3]>,
+    /// Diffuse reflectance per triangle (reference material, texture at the centroid).
+    pub albedo: Vec<Vec3>,
+    /// Unit vector towards the sun.
+    pub to_sun: Vec3,
+    /// Sun irradiance on a plane facing it (the reference world's, after the atmosphere).
+    pub sun_irradiance: Vec3,
+}
+
+impl SceneCase {
+    pub fn new(which: Generated, seed: u64) -> Self {
+        let scene = which.build(seed);
+        let world = reference::world_from_scene(&scene, &SceneLighting::low())
+            .expect("the generated scene converts");
+        let tris = scene.triangles();
+        let triangles: Vec<[Vec3; 3]> = (0..tris.indices.len()).map(|t| tris.triangle(t)).collect();
+        let albedo = (0..triangles.len())
+            .map(|t| {
+                let material = scene.meshes[tris.mesh_ids[t] as usize].material.0;
+                let h = SurfaceHit {
+                    t: 0.0,
+                    position: Vec3::ZERO,
+                    normal: Vec3::Y,
+                    triangle: t as u32,
+                    material,
+                    barycentrics: Vec2::splat(1.0 / 3.0),
+                };
+                world.shade(&h).diffuse_reflectance()
+            })
+            .collect();
+        let sun = world.sun().expect("a sunlit scene");
+        Self {
+            name: which.name(),
+            to_sun: sun.direction,
+            sun_irradiance: sun.irradiance,
+            scene,
+            world,
+            triangles,
+            albedo,
+        }
+    }
+
+    /// A `res²` RSM over the sphere (`center`, `radius`): the VPLs (one per covered texel)
+    /// and the RSM's surfels.
+    pub fn rsm(&self, center: Vec3, radius: f32, res: u32) -> (Vec<Vpl>, Vec<Surfel>) {
+        let basis = shadows::LightBasis::new(-self.to_sun).expect("sun direction");
+        let view = shadows::ShadowView::fit_sphere(
+            basis,
+            center.as_dvec3(),
+            radius as f64,
+            res,
+            200.0,
+            false,
+        );
+        let (rsm, _) =
+            shadows::Rsm::render(&view, &self.triangles, &self.albedo, self.sun_irradiance)
+                .expect("RSM");
+        let texel_area = (view.texel_size * view.texel_size) as f32;
+        let mut vpls = Vec::new();
+        let mut surfels = Vec::new();
+        for i in 0..rsm.flux.len() {
+            let n = rsm.normal[i];
+            if n == Vec3::ZERO {
+                continue;
+            }
+            let p = rsm.position[i];
+            vpls.push(Vpl::new(p, n, rsm.flux[i]));
+            let cos = n.dot(self.to_sun).abs().max(0.1);
+            surfels.push(Surfel::new(p, n, texel_area / cos));
+        }
+        (vpls, surfels)
+    }
+
+    /// Surfels on the front (wound) side of every triangle, about `spacing` apart.
+    pub fn triangle_surfels(&self, spacing: f32) -> Vec<Surfel> {
+        let mut out = Vec::new();
+        for t in &self.triangles {
+            let (e1, e2) = (t[1] - t[0], t[2] - t[0]);
+            let c = e1.cross(e2);
+            let area = 0.5 * c.length();
+            let Some(n) = c.try_normalize() else { continue };
+            let k = ((e1.length().max(e2.length()) / spacing).ceil() as u32).max(1);
+            // k² sub-triangles' centroids (barycentric grid), each with area / k².
+            let a = area / (k * k) as f32;
+            for i in 0..k {
+                for j in 0..k - i {
+                    let (u, v) =
+                        ((i as f32 + 1.0 / 3.0) / k as f32, (j as f32 + 1.0 / 3.0) / k as f32);
+                    out.push(Surfel::new(t[0] + e1 * u + e2 * v, n, a));
+                    if i + j + 1 < k {
+                        let (u, v) =
+                            ((i as f32 + 2.0 / 3.0) / k as f32, (j as f32 + 2.0 / 3.0) / k as f32);
+                        out.push(Surfel::new(t[0] + e1 * u + e2 * v, n, a));
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// Receivers on the surfaces seen from `origin` along `count` Fibonacci directions,
+    /// kept when inside `bounds` (min, max).
+    pub fn receivers_from(
+        &self,
+        origin: Vec3,
+        count: usize,
+        bounds: (Vec3, Vec3),
+        group: usize,
+    ) -> Vec<Receiver> {
+        let golden = std::f32::consts::PI * (3.0 - 5f32.sqrt());
+        (0..count)
+            .filter_map(|i| {
+                let z = 1.0 - 2.0 * (i as f32 + 0.5) / count as f32;
+                let r = (1.0 - z * z).max(0.0).sqrt();
+                let phi = golden * i as f32;
+                let d = Vec3::new(r * phi.cos(), z, r * phi.sin());
+                self.hit(origin, d, group)
+            })
+            .filter(|r| {
+                let e = Vec3::splat(1e-3);
+                r.position.cmpge(bounds.0 - e).all() && r.position.cmple(bounds.1 + e).all()
+            })
+            .collect()
+    }
+
+    /// Receivers seen by the scene camera through a `w x h` pixel grid, within `max_dist`.
+    pub fn camera_receivers(&self, w: u32, h: u32, max_dist: f32) -> Vec<Receiver> {
+        let cam = reference::camera_from_scene(&self.scene);
+        (0..w * h)
+            .filter_map(|i| {
+                let d = cam.direction((i % w) as f32 + 0.5, (i / w) as f32 + 0.5, w, h);
+                self.hit(cam.position, d, 0)
+            })
+            .filter(|r| (r.position - cam.position).length() <= max_dist)
+            .collect()
+    }
+
+    fn hit(&self, origin: Vec3, d: Vec3, group: usize) -> Option<Receiver> {
+        let h = self.world.intersect(origin, d, f32::INFINITY)?;
+        let n = if h.normal.dot(d) > 0.0 { -h.normal } else { h.normal };
+        Some(Receiver { position: h.position, normal: n, group })
+    }
+
+    /// The truth at the receivers: mean and standard error of the one-bounce sun irradiance.
+    pub fn reference(&self, receivers: &[Receiver], samples: u32) -> Vec<reference::Estimate> {
+        let points: Vec<QueryPoint> =
+            receivers.iter().map(|r| QueryPoint::new(r.position, r.normal)).collect();
+        let settings = QuerySettings { samples, ..QuerySettings::DEFAULT };
+        reference::irradiance(&self.world, Component::SunIndirectDiffuse, &points, &settings)
+            .expect("reference query")
+    }
+}
+
+/// `sqrt(sum |a - r|² / sum |r|²)` over RGB, and the best-fit scale `s` minimising
+/// `sum |s a - r|²`, and the noise floor `sqrt(sum se² / sum |r|²)` of the reference.
+pub fn rel_rms(lpv: &[Vec3], truth: &[reference::Estimate]) -> (f64, f64, f64) {
+    let (mut num, mut den, mut ar, mut aa, mut se) = (0.0f64, 0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    for (a, t) in lpv.iter().zip(truth) {
+        let (a, r) = (a.as_dvec3(), t.mean.as_dvec3());
+        num += (a - r).length_squared();
+        den += r.length_squared();
+        ar += a.dot(r);
+        aa += a.length_squared();
+        se += t.std_error.as_dvec3().length_squared();
+    }
+    let den = den.max(1e-30);
+    ((num / den).sqrt(), if aa > 0.0 { ar / aa } else { 0.0 }, (se / den).sqrt())
+}
