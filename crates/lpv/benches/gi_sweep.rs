@@ -48,7 +48,7 @@ impl Case {
         let (center, radius, receivers) = if rooms.is_empty() {
             let eye = case.scene.camera.position;
             let w = (rays as f32 * 16.0 / 9.0).sqrt().round() as u32;
-            (eye, 40.0, case.camera_receivers(w, (w * 9 / 16).max(1), 20.0))
+            (eye, 30.0, case.camera_receivers(w, (w * 9 / 16).max(1), 20.0))
         } else {
             let lo = rooms.iter().fold(Vec3::INFINITY, |a, r| a.min(r.0));
             let hi = rooms.iter().fold(Vec3::NEG_INFINITY, |a, r| a.max(r.1));

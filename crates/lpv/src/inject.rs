@@ -79,22 +79,28 @@ pub fn inject(grid: &Grid, vpls: &[Vpl], volume: &mut Volume) -> InjectStats {
     let chunk_len = slices_per_chunk * volume.slice_len();
     volume.data.par_chunks_mut(chunk_len).enumerate().for_each(|(ci, chunk)| {
         let z0 = ci * slices_per_chunk;
-        let z1 = z0 + chunk.len() / (COEFFS * n2);
+        let cells = chunk.len() / COEFFS;
+        let first = z0 * n2;
+        // Bin into a cell-major buffer (one 48-byte run per VPL instead of 12 writes
+        // n² floats apart), in input order, then add it plane by plane.
+        let mut bins = vec![[0.0f32; COEFFS]; cells];
         for &(cell, nrm, flux) in &prepared {
-            if cell >= OUT {
+            let Some(local) = (cell as usize).checked_sub(first) else { continue };
+            if cell >= OUT || local >= cells {
                 continue;
             }
-            let cell = cell as usize;
-            let z = cell / n2;
-            if z < z0 || z >= z1 {
-                continue;
-            }
-            let yx = cell % n2;
-            let base = (z - z0) * COEFFS * n2 + yx;
             let s = lobe_scalar(nrm);
+            let b = &mut bins[local];
             for (c, f) in [flux.x, flux.y, flux.z].into_iter().enumerate() {
                 for k in 0..4 {
-                    chunk[base + (c * 4 + k) * n2] += s.c[k] * f;
+                    b[c * 4 + k] += s.c[k] * f;
+                }
+            }
+        }
+        for (slab, bins) in chunk.chunks_exact_mut(COEFFS * n2).zip(bins.chunks_exact(n2)) {
+            for (k, plane) in slab.chunks_exact_mut(n2).enumerate() {
+                for (v, b) in plane.iter_mut().zip(bins) {
+                    *v += b[k];
                 }
             }
         }
