@@ -61,7 +61,7 @@ impl Case {
         };
         let truth = case.reference(&receivers, samples);
         let (vpls, rsm_surfels) = case.rsm(center, radius, 256);
-        let mut surfels = case.triangle_surfels(0.25);
+        let mut surfels = case.triangle_surfels(0.25, center, 32.0);
         surfels.extend(rsm_surfels);
         let reference_name = format!("reference_sun_indirect_{}_{samples}spp", case.name);
         Self { case, center, receivers, truth, vpls, surfels, reference_name }
@@ -117,6 +117,7 @@ fn error_entry(
         .setting("cell_size", s.base_cell_size)
         .setting("iterations", s.iterations)
         .setting("geometry_volume", s.geometry_volume)
+        .setting("lookup_offset_cells", s.lookup_offset_cells)
         .setting("vpls", c.vpls.len())
         .setting("receivers", c.receivers.len())
         .setting("best_fit_scale", scale)
@@ -126,14 +127,14 @@ fn error_entry(
         .threads(2)
 }
 
-/// The first implementation's update (same injection; propagation 6 passes per row) for
-/// the race.
+/// The first implementation's update (scattered injection; propagation 6 passes per row)
+/// for the race.
 fn baseline_update(lpv: &Lpv, vpls: &[Vpl]) -> Vec<Volume> {
     lpv.cascades()
         .iter()
         .map(|c| {
             let mut initial = Volume::new(c.grid.res);
-            lpv::inject(&c.grid, vpls, &mut initial);
+            lpv::baseline::inject_scattered(&c.grid, vpls, &mut initial);
             let mut accum = initial.clone();
             let mut a = initial;
             let mut b = Volume::new(c.grid.res);
@@ -212,7 +213,7 @@ fn main() {
             });
             sweep.comparison(
                 Comparison::new("lpv/update_3x32_rsm256_8it_vs_first", ours, theirs, "ms", false)
-                    .note("fused 6-direction propagation vs the first implementation (6 passes per row), interleaved, 2 threads"),
+                    .note("binned injection + fused 6-direction propagation vs the first implementation (scattered injection, 6 passes per row), interleaved, 2 threads"),
             );
         }
     }
@@ -327,6 +328,18 @@ fn main() {
         let s = LpvSettings { cascades, ..LpvSettings::DEFAULT };
         let name = format!("lpv/cornell_window_cascades{cascades}_{cascades}x32_8it");
         point(&mut sweep, name, "lpv", s);
+    }
+    // The lookup offset along the normal (self-illumination against reach).
+    for gv in [false, true] {
+        for off in [0.0f32, 1.0, 1.5] {
+            let s = LpvSettings {
+                lookup_offset_cells: off,
+                geometry_volume: gv,
+                ..LpvSettings::DEFAULT
+            };
+            let (t, suffix) = if gv { ("lpv_gv", "_gv") } else { ("lpv", "") };
+            point(&mut sweep, format!("lpv/cornell_window_lookup_offset{off}{suffix}"), t, s);
+        }
     }
     if !quick {
         point(&mut sweep, "lpv/cornell_window_high".into(), "lpv_gv", LpvSettings::high());

@@ -26,7 +26,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let (lo, hi) = (Vec3::new(0.0, 0.0, -5.5), Vec3::new(5.5, 5.5, 0.0));
     let center = 0.5 * (lo + hi);
     let (vpls, rsm_surfels) = case.rsm(center, 0.5 * (hi - lo).length() + 0.5, 256);
-    let mut surfels = case.triangle_surfels(0.25);
+    let mut surfels = case.triangle_surfels(0.25, center, 32.0);
     surfels.extend(rsm_surfels);
     let mut lpvs = Vec::new();
     for gv in [false, true] {

@@ -1,9 +1,12 @@
-//! The first CPU implementation of the no-occlusion propagation step (6 passes per row,
-//! one per direction), kept only so the sweep can race it against the fused step in one
+//! The first CPU implementation of injection (scattered writes) and of the no-occlusion
+//! propagation step (6 passes per row, one per direction), kept only so the sweep can race it against the fused step in one
 //! process. Same arithmetic as [`crate::propagate_step`] up to float summation order.
 
-use crate::grid::{COEFFS, Volume};
+use crate::grid::{COEFFS, Grid, Volume};
+use crate::inject::{InjectStats, lobe_scalar};
 use crate::propagate::{AXIS_COEF, C00, C0A, CA0, CAA, CPP, PERP};
+use crate::vpl::Vpl;
+use glam::Vec3;
 use rayon::prelude::*;
 
 fn four(s: &mut [f32], n: usize) -> [&mut [f32]; 4] {
@@ -89,4 +92,57 @@ pub fn propagate_step_per_direction(src: &Volume, dst: &mut Volume, accum: &mut 
         .zip(accum.data.par_chunks_mut(sl))
         .enumerate()
         .for_each(|(z, (out, a))| body(z, out, a));
+}
+
+/// The first injection: 12 scattered plane-major writes per VPL (see [`crate::inject`]).
+#[doc(hidden)]
+pub fn inject_scattered(grid: &Grid, vpls: &[Vpl], volume: &mut Volume) -> InjectStats {
+    debug_assert_eq!(volume.res, grid.res);
+    const SKIP: u32 = u32::MAX;
+    const OUT: u32 = u32::MAX - 1;
+    let prepared: Vec<(u32, Vec3, Vec3)> = vpls
+        .par_iter()
+        .map(|v| match v.sanitized() {
+            None => (SKIP, Vec3::ZERO, Vec3::ZERO),
+            Some((n, flux)) => match grid.cell_of(v.position + 0.5 * grid.cell_size * n) {
+                Some(c) => (grid.linear(c) as u32, n, flux),
+                None => (OUT, n, flux),
+            },
+        })
+        .collect();
+    let mut stats = InjectStats::default();
+    for (c, _, _) in &prepared {
+        match *c {
+            SKIP => stats.skipped += 1,
+            OUT => stats.outside += 1,
+            _ => stats.injected += 1,
+        }
+    }
+    let n = grid.res as usize;
+    let n2 = n * n;
+    let slices_per_chunk = n.div_ceil(rayon::current_num_threads().max(1));
+    let chunk_len = slices_per_chunk * volume.slice_len();
+    volume.data.par_chunks_mut(chunk_len).enumerate().for_each(|(ci, chunk)| {
+        let z0 = ci * slices_per_chunk;
+        let z1 = z0 + chunk.len() / (COEFFS * n2);
+        for &(cell, nrm, flux) in &prepared {
+            if cell >= OUT {
+                continue;
+            }
+            let cell = cell as usize;
+            let z = cell / n2;
+            if z < z0 || z >= z1 {
+                continue;
+            }
+            let yx = cell % n2;
+            let base = (z - z0) * COEFFS * n2 + yx;
+            let s = lobe_scalar(nrm);
+            for (c, f) in [flux.x, flux.y, flux.z].into_iter().enumerate() {
+                for k in 0..4 {
+                    chunk[base + (c * 4 + k) * n2] += s.c[k] * f;
+                }
+            }
+        }
+    });
+    stats
 }

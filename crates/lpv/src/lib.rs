@@ -31,10 +31,31 @@
 //! never negative. SH convention: `sh_math`'s (no Condon-Shortley phase, order `Y00, y, z, x`).
 //!
 //! The CPU path (rayon over z slices of a structure-of-arrays layout, rows along x) is
-//! deterministic whatever the thread count. Feature `gpu` adds the same inject, propagate and
-//! lookup as WGSL compute shaders (`shaders/lpv/`), module `gpu`. Module [`scenes`] holds
-//! small box scenes and an exact VPL-gather reference used by the tests, the sweep and the
-//! example.
+//! deterministic whatever the thread count: injection bins each slab's VPLs cell-major and
+//! adds them plane by plane, the no-occlusion step computes all 6 directions of a row in one
+//! fused pass, and the lookup reads a cell-major copy of each cascade (12 contiguous floats
+//! per cell). Feature `gpu` adds the same inject, propagate and lookup as WGSL compute
+//! shaders (`shaders/lpv/`), module `gpu`. Module [`scenes`] holds small box scenes and an
+//! exact VPL-gather reference used by the tests.
+//!
+//! **What limits accuracy** (measured by `benches/gi_sweep.rs` against the `reference` path
+//! tracer's one-bounce sunlight on the `scene` crate's `cornell_window`, `two_rooms` and
+//! city, with VPLs from a CPU RSM of the whole scene; see its entries):
+//! - *Units are right*: an exact gather over the same RSM VPLs (with the path tracer's
+//!   visibility) matches the reference to its noise (best-fit scale 0.99); the LPV's error
+//!   is the volume's.
+//! - *Propagation is diffusive*: of the flux a cell sends, only about 32% reaches the
+//!   neighbour the lobe points at, 4 x 17% go sideways and 1.4% back (2-band lobes cannot be
+//!   narrower than the cardioid without going negative). Summed over iterations the light
+//!   behaves more like diffusion (density about `1/r`) than transport (`1/r²`), so the error
+//!   grows with the iteration count; it is inherent to 2-band LPVs, not a bug, and is why
+//!   iterations must stay near the distance light should travel, in cells.
+//! - *Self-illumination*: a lobe's back half lights the surface it came from, about
+//!   `albedo E_sun / 12` on a fully lit cell, where the truth is often near zero (a sunlit
+//!   box top facing an unlit ceiling reads 0.089 against 0).
+//! - *Leaking*: the RSM sees the outside of closed rooms (roof, sunlit outer walls: about
+//!   20x the flux that enters `cornell_window` through its window); without the geometry
+//!   volume that light propagates straight through the walls.
 //!
 //! ```
 //! use glam::Vec3;

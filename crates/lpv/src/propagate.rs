@@ -39,12 +39,58 @@ fn transmittance(f: [f32; 4], w: [f32; 3]) -> f32 {
     1.0 - b.clamp(0.0, 1.0)
 }
 
-/// One direction with occlusion by the face blocking `f` (4 planes), all 3 channels.
+/// Transmittances of every face for each of the 6 directions (3 axes x 2 signs) and its 5
+/// sub-directions (the main one, then the 4 side ones), computed once per update from the
+/// face blocking (it does not change between iterations). Layout: slot
+/// `(axis * 2 + (sigma < 0)) * 5 + j` of cell `(x, y, z)`'s low face at
+/// `((z * 30 + slot) * n + y) * n + x`.
+pub(crate) struct FaceTransmit {
+    data: Vec<f32>,
+}
+
+const SLOTS: usize = 30;
+
+impl FaceTransmit {
+    pub(crate) fn new(b: &FaceBlocking) -> Self {
+        let n = b.res as usize;
+        let n2 = n * n;
+        let mut data = vec![0.0f32; n * n2 * SLOTS];
+        data.par_chunks_mut(SLOTS * n2).enumerate().for_each(|(z, out)| {
+            for axis in 0..3 {
+                let perp = PERP[axis];
+                for (si, sigma) in [1.0f32, -1.0].into_iter().enumerate() {
+                    let mut e = [0.0f32; 3];
+                    e[axis] = sigma;
+                    let mut dirs = [e; 5];
+                    for (j, &pa) in perp.iter().enumerate() {
+                        for (k, sgn) in [1.0f32, -1.0].into_iter().enumerate() {
+                            let mut w = [0.0f32; 3];
+                            w[axis] = 2.0 * sigma * INV_SQRT5;
+                            w[pa] = sgn * INV_SQRT5;
+                            dirs[1 + j * 2 + k] = w;
+                        }
+                    }
+                    for i in 0..n2 {
+                        let f: [f32; 4] =
+                            std::array::from_fn(|k| b.data[(z * COEFFS + axis * 4 + k) * n2 + i]);
+                        for (j, w) in dirs.iter().enumerate() {
+                            out[((axis * 2 + si) * 5 + j) * n2 + i] = transmittance(f, *w);
+                        }
+                    }
+                }
+            }
+        });
+        Self { data }
+    }
+}
+
+/// One direction with occlusion (`t`: the 5 transmittance rows of the shared faces), all 3
+/// channels.
 #[inline(always)]
 fn step_blocked(
     dst: &mut [f32],
     src: [&[f32]; COEFFS],
-    f: [&[f32]; 4],
+    t: [&[f32]; 5],
     n: usize,
     x0: usize,
     axis: usize,
@@ -54,20 +100,9 @@ fn step_blocked(
     let a = AXIS_COEF[axis];
     let perp = PERP[axis];
     let [p, q] = perp.map(|x| AXIS_COEF[x]);
-    let mut e = [0.0f32; 3];
-    e[axis] = sigma;
     for i in 0..len {
-        let fi = [f[0][i], f[1][i], f[2][i], f[3][i]];
-        let t_main = transmittance(fi, e);
-        let mut ts = [0.0f32; 4];
-        for (j, &pa) in perp.iter().enumerate() {
-            for (k, sgn) in [1.0f32, -1.0].into_iter().enumerate() {
-                let mut w = [0.0f32; 3];
-                w[axis] = 2.0 * sigma * INV_SQRT5;
-                w[pa] = sgn * INV_SQRT5;
-                ts[j * 2 + k] = transmittance(fi, w);
-            }
-        }
+        let t_main = t[0][i];
+        let ts = [t[1][i], t[2][i], t[3][i], t[4][i]];
         for c in 0..3 {
             let s = |k: usize| src[c * 4 + k][i];
             let av = Y00 * s(0);
@@ -100,6 +135,16 @@ pub fn propagate_step(
     blocking: Option<&FaceBlocking>,
     accum: Option<&mut Volume>,
 ) {
+    let table = blocking.map(FaceTransmit::new);
+    step(src, dst, table.as_ref(), accum);
+}
+
+fn step(
+    src: &Volume,
+    dst: &mut Volume,
+    blocking: Option<&FaceTransmit>,
+    accum: Option<&mut Volume>,
+) {
     assert_eq!(src.res, dst.res, "propagate_step: volumes of different sizes");
     let n = src.res as usize;
     let sl = src.slice_len();
@@ -130,7 +175,7 @@ pub fn propagate_step(
 }
 
 /// One z slice of a step with occlusion: per row, the 6 directions one after another.
-fn blocked_slice(src: &Volume, b: &FaceBlocking, z: usize, out: &mut [f32]) {
+fn blocked_slice(src: &Volume, b: &FaceTransmit, z: usize, out: &mut [f32]) {
     let n = src.res as usize;
     let n2 = n * n;
     let mut row = vec![0.0f32; COEFFS * n];
@@ -160,12 +205,13 @@ fn blocked_slice(src: &Volume, b: &FaceBlocking, z: usize, out: &mut [f32]) {
             };
             // The shared face is the low face (on `axis`) of the higher cell.
             let (fz, fy, fx0) = if sigma > 0.0 { (z, y, dx0) } else { (zs, ys, sx0) };
-            let frow = |k: usize| {
-                let o = (fz * COEFFS + axis * 4 + k) * n2 + fy * n + fx0;
+            let slot = (axis * 2 + usize::from(sigma < 0.0)) * 5;
+            let trow = |j: usize| {
+                let o = (fz * SLOTS + slot + j) * n2 + fy * n + fx0;
                 &b.data[o..o + len]
             };
             let s: [&[f32]; COEFFS] = std::array::from_fn(srow);
-            step_blocked(&mut row, s, [frow(0), frow(1), frow(2), frow(3)], n, dx0, axis, sigma);
+            step_blocked(&mut row, s, std::array::from_fn(trow), n, dx0, axis, sigma);
         }
         for k in 0..COEFFS {
             out[k * n2 + y * n..k * n2 + y * n + n].copy_from_slice(&row[k * n..k * n + n]);
@@ -219,19 +265,26 @@ fn linear_slice<'a>(src: &'a Volume, z: usize, out: &mut [f32], zeros: &'a [f32]
                 &mut o2[y * n..y * n + n],
                 &mut o3[y * n..y * n + n],
             );
+            let (o0, o1, o2, o3) = (&mut o0[..n], &mut o1[..n], &mut o2[..n], &mut o3[..n]);
+            let [xm0, xm1, xm2, xm3] = xm.map(|r| &r[..n]);
+            let [xp0, xp1, xp2, xp3] = xp.map(|r| &r[..n]);
+            let [ym0, ym1, ym2, ym3] = ym.map(|r| &r[..n]);
+            let [yp0, yp1, yp2, yp3] = yp.map(|r| &r[..n]);
+            let [zm0, zm1, zm2, zm3] = zm.map(|r| &r[..n]);
+            let [zp0, zp1, zp2, zp3] = zp.map(|r| &r[..n]);
             for i in 0..n {
-                let sum0 = xm[0][i] + xp[0][i] + ym[0][i] + yp[0][i] + zm[0][i] + zp[0][i];
-                let odd = (xm[3][i] - xp[3][i]) + (ym[1][i] - yp[1][i]) + (zm[2][i] - zp[2][i]);
+                let sum0 = xm0[i] + xp0[i] + ym0[i] + yp0[i] + zm0[i] + zp0[i];
+                let odd = (xm3[i] - xp3[i]) + (ym1[i] - yp1[i]) + (zm2[i] - zp2[i]);
                 o0[i] = C00 * sum0 + C0A * odd;
-                o3[i] = CA0 * (xm[0][i] - xp[0][i])
-                    + CAA * (xm[3][i] + xp[3][i])
-                    + CPP * (ym[3][i] + yp[3][i] + zm[3][i] + zp[3][i]);
-                o1[i] = CA0 * (ym[0][i] - yp[0][i])
-                    + CAA * (ym[1][i] + yp[1][i])
-                    + CPP * (xm[1][i] + xp[1][i] + zm[1][i] + zp[1][i]);
-                o2[i] = CA0 * (zm[0][i] - zp[0][i])
-                    + CAA * (zm[2][i] + zp[2][i])
-                    + CPP * (xm[2][i] + xp[2][i] + ym[2][i] + yp[2][i]);
+                o3[i] = CA0 * (xm0[i] - xp0[i])
+                    + CAA * (xm3[i] + xp3[i])
+                    + CPP * (ym3[i] + yp3[i] + zm3[i] + zp3[i]);
+                o1[i] = CA0 * (ym0[i] - yp0[i])
+                    + CAA * (ym1[i] + yp1[i])
+                    + CPP * (xm1[i] + xp1[i] + zm1[i] + zp1[i]);
+                o2[i] = CA0 * (zm0[i] - zp0[i])
+                    + CAA * (zm2[i] + zp2[i])
+                    + CPP * (xm2[i] + xp2[i] + ym2[i] + yp2[i]);
             }
         }
     }
@@ -244,8 +297,9 @@ pub fn propagate(initial: &Volume, iterations: u32, blocking: Option<&FaceBlocki
     let mut accum = initial.clone();
     let mut a = initial.clone();
     let mut b = Volume::new(initial.res);
+    let table = blocking.map(FaceTransmit::new);
     for _ in 0..iterations {
-        propagate_step(&a, &mut b, blocking, Some(&mut accum));
+        step(&a, &mut b, table.as_ref(), Some(&mut accum));
         std::mem::swap(&mut a, &mut b);
     }
     accum

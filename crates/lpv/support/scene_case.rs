@@ -106,28 +106,48 @@ impl SceneCase {
         (vpls, surfels)
     }
 
-    /// Surfels on the front (wound) side of every triangle, about `spacing` apart.
-    pub fn triangle_surfels(&self, spacing: f32) -> Vec<Surfel> {
+    /// Surfels on the front (wound) side of every triangle that reaches into the cube of
+    /// half-size `half` around `center`, about `spacing` apart.
+    pub fn triangle_surfels(&self, spacing: f32, center: Vec3, half: f32) -> Vec<Surfel> {
         let mut out = Vec::new();
+        let push = |out: &mut Vec<Surfel>, s: Surfel| {
+            if (s.position - center).abs().max_element() <= half {
+                out.push(s);
+            }
+        };
         for t in &self.triangles {
-            let (e1, e2) = (t[1] - t[0], t[2] - t[0]);
+            let lo = t[0].min(t[1]).min(t[2]);
+            let hi = t[0].max(t[1]).max(t[2]);
+            if lo.cmpgt(center + half).any() || hi.cmplt(center - half).any() {
+                continue;
+            }
+            // The longest edge first, then a grid along it and across it (the height), so
+            // a sliver gets about area / spacing² surfels, not (edge / spacing)².
+            let edges = [(t[1] - t[0]).length(), (t[2] - t[1]).length(), (t[0] - t[2]).length()];
+            let r = (0..3).max_by(|&i, &j| edges[i].total_cmp(&edges[j])).unwrap_or(0);
+            let (p0, p1, p2) = (t[r], t[(r + 1) % 3], t[(r + 2) % 3]);
+            let (e1, e2) = (p1 - p0, p2 - p0);
             let c = e1.cross(e2);
             let area = 0.5 * c.length();
             let Some(n) = c.try_normalize() else { continue };
-            let k = ((e1.length().max(e2.length()) / spacing).ceil() as u32).max(1);
-            // k² sub-triangles' centroids (barycentric grid), each with area / k².
-            let a = area / (k * k) as f32;
-            for i in 0..k {
-                for j in 0..k - i {
-                    let (u, v) =
-                        ((i as f32 + 1.0 / 3.0) / k as f32, (j as f32 + 1.0 / 3.0) / k as f32);
-                    out.push(Surfel::new(t[0] + e1 * u + e2 * v, n, a));
-                    if i + j + 1 < k {
-                        let (u, v) =
-                            ((i as f32 + 2.0 / 3.0) / k as f32, (j as f32 + 2.0 / 3.0) / k as f32);
-                        out.push(Surfel::new(t[0] + e1 * u + e2 * v, n, a));
+            let len = e1.length();
+            let ku = ((len / spacing).ceil() as u32).max(1);
+            let kv = ((2.0 * area / len / spacing).ceil() as u32).max(1);
+            let mut pts = Vec::new();
+            for i in 0..ku {
+                for j in 0..kv {
+                    let (u, v) = ((i as f32 + 0.5) / ku as f32, (j as f32 + 0.5) / kv as f32);
+                    if u + v < 1.0 {
+                        pts.push(p0 + e1 * u + e2 * v);
                     }
                 }
+            }
+            if pts.is_empty() {
+                pts.push((p0 + p1 + p2) / 3.0);
+            }
+            let a = area / pts.len() as f32;
+            for p in pts {
+                push(&mut out, Surfel::new(p, n, a));
             }
         }
         out
