@@ -148,12 +148,16 @@ fn step(
     assert_eq!(src.res, dst.res, "propagate_step: volumes of different sizes");
     let n = src.res as usize;
     let sl = src.slice_len();
-    let zeros = vec![0.0f32; n];
+    let zeros = vec![0.0f32; n * n];
+    let masks = [
+        (0..n * n).map(|i| if i % n == 0 { 0.0 } else { 1.0 }).collect::<Vec<f32>>(),
+        (0..n * n).map(|i| if i % n == n - 1 { 0.0 } else { 1.0 }).collect::<Vec<f32>>(),
+    ];
     let body = |z: usize, out: &mut [f32], acc: Option<&mut [f32]>| {
         if let Some(b) = blocking {
             blocked_slice(src, b, z, out);
         } else {
-            linear_slice(src, z, out, &zeros);
+            linear_slice(src, z, out, &zeros, &masks);
         }
         if let Some(acc) = acc {
             for (a, o) in acc.iter_mut().zip(out.iter()) {
@@ -220,72 +224,60 @@ fn blocked_slice(src: &Volume, b: &FaceTransmit, z: usize, out: &mut [f32]) {
 }
 
 /// One z slice of a step without occlusion, all 6 directions fused: every output
-/// coefficient is written once, from the 6 neighbour rows (zero rows beyond the border).
+/// coefficient is written once, from the 6 neighbours (zero beyond the border).
 ///
 /// With `m`/`p` the neighbour below/above along an axis, per channel:
 /// `d0 = C00 sum s0 + C0A ((xm3 - xp3) + (ym1 - yp1) + (zm2 - zp2))`, and for each axis `a`
 /// with perpendicular axes `b`, `c`: `d_a = CA0 (am0 - ap0) + CAA (am_a + ap_a) + CPP (bm_a +
 /// bp_a + cm_a + cp_a)` (coefficient slots: x = 3, y = 1, z = 2).
-fn linear_slice<'a>(src: &'a Volume, z: usize, out: &mut [f32], zeros: &'a [f32]) {
+///
+/// The whole `n x n` plane is one loop: each source plane is copied with `n` zeros before
+/// and after it, so the y neighbours are the elements `n` before/after and the x neighbours
+/// the elements 1 before/after, masked to zero at the row ends.
+fn linear_slice(src: &Volume, z: usize, out: &mut [f32], zeros: &[f32], masks: &[Vec<f32>; 2]) {
     let n = src.res as usize;
     let n2 = n * n;
     let sl = COEFFS * n2;
-    let slice = |zz: usize| &src.data[zz * sl..(zz + 1) * sl];
-    let here = slice(z);
-    let below = (z > 0).then(|| slice(z - 1));
-    let above = (z + 1 < n).then(|| slice(z + 1));
-    fn rows<'a>(s: Option<&'a [f32]>, zeros: &'a [f32], n: usize, k: usize, y: usize) -> &'a [f32] {
-        match s {
-            Some(s) => &s[k * n * n + y * n..k * n * n + y * n + n],
-            None => &zeros[..n],
-        }
-    }
-    let row = |s: Option<&'a [f32]>, k: usize, y: usize| rows(s, zeros, n, k, y);
-    let mut pad =
-        [vec![0.0f32; n + 2], vec![0.0f32; n + 2], vec![0.0f32; n + 2], vec![0.0f32; n + 2]];
+    let plane = |zz: usize, k: usize| &src.data[zz * sl + k * n2..zz * sl + (k + 1) * n2];
+    let (mlo, mhi) = (&masks[0][..n2], &masks[1][..n2]);
+    let mut ext = [
+        vec![0.0f32; n2 + 2 * n],
+        vec![0.0f32; n2 + 2 * n],
+        vec![0.0f32; n2 + 2 * n],
+        vec![0.0f32; n2 + 2 * n],
+    ];
     let mut planes: Vec<&mut [f32]> = out.chunks_exact_mut(n2).collect();
-    for y in 0..n {
-        let ym_s = (y > 0).then_some(here);
-        let yp_s = (y + 1 < n).then_some(here);
-        for c in 0..3 {
-            let k0 = c * 4;
-            for (k, p) in pad.iter_mut().enumerate() {
-                p[1..n + 1].copy_from_slice(row(Some(here), k0 + k, y));
-            }
-            let xm: [&[f32]; 4] = std::array::from_fn(|k| &pad[k][..n]);
-            let xp: [&[f32]; 4] = std::array::from_fn(|k| &pad[k][2..n + 2]);
-            let ym: [&[f32]; 4] = std::array::from_fn(|k| row(ym_s, k0 + k, y.wrapping_sub(1)));
-            let yp: [&[f32]; 4] = std::array::from_fn(|k| row(yp_s, k0 + k, y + 1));
-            let zm: [&[f32]; 4] = std::array::from_fn(|k| row(below, k0 + k, y));
-            let zp: [&[f32]; 4] = std::array::from_fn(|k| row(above, k0 + k, y));
-            let [o0, o1, o2, o3] = &mut planes[k0..k0 + 4] else { unreachable!() };
-            let (o0, o1, o2, o3) = (
-                &mut o0[y * n..y * n + n],
-                &mut o1[y * n..y * n + n],
-                &mut o2[y * n..y * n + n],
-                &mut o3[y * n..y * n + n],
-            );
-            let (o0, o1, o2, o3) = (&mut o0[..n], &mut o1[..n], &mut o2[..n], &mut o3[..n]);
-            let [xm0, xm1, xm2, xm3] = xm.map(|r| &r[..n]);
-            let [xp0, xp1, xp2, xp3] = xp.map(|r| &r[..n]);
-            let [ym0, ym1, ym2, ym3] = ym.map(|r| &r[..n]);
-            let [yp0, yp1, yp2, yp3] = yp.map(|r| &r[..n]);
-            let [zm0, zm1, zm2, zm3] = zm.map(|r| &r[..n]);
-            let [zp0, zp1, zp2, zp3] = zp.map(|r| &r[..n]);
-            for i in 0..n {
-                let sum0 = xm0[i] + xp0[i] + ym0[i] + yp0[i] + zm0[i] + zp0[i];
-                let odd = (xm3[i] - xp3[i]) + (ym1[i] - yp1[i]) + (zm2[i] - zp2[i]);
-                o0[i] = C00 * sum0 + C0A * odd;
-                o3[i] = CA0 * (xm0[i] - xp0[i])
-                    + CAA * (xm3[i] + xp3[i])
-                    + CPP * (ym3[i] + yp3[i] + zm3[i] + zp3[i]);
-                o1[i] = CA0 * (ym0[i] - yp0[i])
-                    + CAA * (ym1[i] + yp1[i])
-                    + CPP * (xm1[i] + xp1[i] + zm1[i] + zp1[i]);
-                o2[i] = CA0 * (zm0[i] - zp0[i])
-                    + CAA * (zm2[i] + zp2[i])
-                    + CPP * (xm2[i] + xp2[i] + ym2[i] + yp2[i]);
-            }
+    for c in 0..3 {
+        let k0 = c * 4;
+        for (k, e) in ext.iter_mut().enumerate() {
+            e[n..n + n2].copy_from_slice(plane(z, k0 + k));
+        }
+        let zm: [&[f32]; 4] =
+            std::array::from_fn(|k| if z > 0 { plane(z - 1, k0 + k) } else { &zeros[..n2] });
+        let zp: [&[f32]; 4] =
+            std::array::from_fn(|k| if z + 1 < n { plane(z + 1, k0 + k) } else { &zeros[..n2] });
+        let [zm0, zm1, zm2, zm3] = zm.map(|r| &r[..n2]);
+        let [zp0, zp1, zp2, zp3] = zp.map(|r| &r[..n2]);
+        let [xm0, xm1, xm2, xm3] = std::array::from_fn(|k| &ext[k][n - 1..n - 1 + n2]);
+        let [xp0, xp1, xp2, xp3] = std::array::from_fn(|k| &ext[k][n + 1..n + 1 + n2]);
+        let [ym0, ym1, ym2, ym3] = std::array::from_fn(|k| &ext[k][..n2]);
+        let [yp0, yp1, yp2, yp3] = std::array::from_fn(|k| &ext[k][2 * n..2 * n + n2]);
+        let [o0, o1, o2, o3] = &mut planes[k0..k0 + 4] else { unreachable!() };
+        let (o0, o1, o2, o3) = (&mut o0[..n2], &mut o1[..n2], &mut o2[..n2], &mut o3[..n2]);
+        for i in 0..n2 {
+            let (lo, hi) = (mlo[i], mhi[i]);
+            let (a0, a1, a2, a3) = (xm0[i] * lo, xm1[i] * lo, xm2[i] * lo, xm3[i] * lo);
+            let (b0, b1, b2, b3) = (xp0[i] * hi, xp1[i] * hi, xp2[i] * hi, xp3[i] * hi);
+            let sum0 = a0 + b0 + ym0[i] + yp0[i] + zm0[i] + zp0[i];
+            let odd = (a3 - b3) + (ym1[i] - yp1[i]) + (zm2[i] - zp2[i]);
+            o0[i] = C00 * sum0 + C0A * odd;
+            o3[i] = CA0 * (a0 - b0) + CAA * (a3 + b3) + CPP * (ym3[i] + yp3[i] + zm3[i] + zp3[i]);
+            o1[i] = CA0 * (ym0[i] - yp0[i])
+                + CAA * (ym1[i] + yp1[i])
+                + CPP * (a1 + b1 + zm1[i] + zp1[i]);
+            o2[i] = CA0 * (zm0[i] - zp0[i])
+                + CAA * (zm2[i] + zp2[i])
+                + CPP * (a2 + b2 + ym2[i] + yp2[i]);
         }
     }
 }
