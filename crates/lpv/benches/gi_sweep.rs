@@ -226,18 +226,27 @@ fn main() {
         pool.install(|| time_ms(reps(10), || lpv.update(&cornell.vpls, &cornell.surfels)));
     sweep.entry(error_entry("lpv/cornell_window_default".into(), "lpv", ms, &s, &cornell, &lpv));
     let receivers = &cornell.receivers;
-    let ns = one.install(|| {
-        time_ns_per_call(reps(20), 20_000, |i| {
-            let r = &receivers[i % receivers.len()];
-            lpv.irradiance(r.position, r.normal)
-        })
-    });
-    sweep.entry(
-        Entry::new("lpv/lookup_irradiance_ns", "lookup", ns * 1e-6)
-            .setting("ns_per_point", ns)
-            .threads(1)
-            .note(format!("{ns:.1} ns per shaded point (target < 30 ns on one core)")),
-    );
+    // Shaded points as a renderer visits them (the scene camera's pixels in raster order),
+    // and scattered (the receivers, which jump around the room).
+    let raster: Vec<Receiver> = cornell.case.camera_receivers(320, 320, f32::INFINITY);
+    for (points, name, what) in [
+        (&raster, "lpv/lookup_irradiance_ns", "raster order, 320x320 camera pixels"),
+        (receivers, "lpv/lookup_irradiance_ns_scattered", "scattered receivers"),
+    ] {
+        let ns = one.install(|| {
+            time_ns_per_call(reps(20), 20_000, |i| {
+                let r = &points[i % points.len()];
+                lpv.irradiance(r.position, r.normal)
+            })
+        });
+        sweep.entry(
+            Entry::new(name, "lookup", ns * 1e-6)
+                .setting("ns_per_point", ns)
+                .setting("order", what)
+                .threads(1)
+                .note(format!("{ns:.1} ns per shaded point, {what} (target < 30 ns on one core)")),
+        );
+    }
     let (ours, theirs) = one.install(|| {
         interleaved(
             reps(20),
