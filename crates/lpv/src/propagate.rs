@@ -39,16 +39,22 @@ fn transmittance(f: [f32; 4], w: [f32; 3]) -> f32 {
     1.0 - b.clamp(0.0, 1.0)
 }
 
-/// Transmittances of every face for each of the 6 directions (3 axes x 2 signs) and its 5
-/// sub-directions (the main one, then the 4 side ones), computed once per update from the
-/// face blocking (it does not change between iterations). Layout: slot
-/// `(axis * 2 + (sigma < 0)) * 5 + j` of cell `(x, y, z)`'s low face at
-/// `((z * 30 + slot) * n + y) * n + x`.
+/// Transmittances for every destination cell and each of the 6 directions it gathers
+/// from (3 axes x 2 signs) and their 5 sub-directions (the main one, then the 4 side ones),
+/// through the face it shares with that source: computed once per update from the face
+/// blocking (it does not change between iterations). Slot `(axis * 2 + (sigma < 0)) * 5 + j`
+/// of destination cell `(x, y, z)` at `((z * 30 + slot) * n + y) * n + x`; zero where the
+/// source lies outside the volume.
 pub(crate) struct FaceTransmit {
     data: Vec<f32>,
 }
 
 const SLOTS: usize = 30;
+
+/// Propagated coefficients below this (W/sr in the VPLs' flux units) are set to zero, and
+/// face transmittances below [`TINY_T`] too, so no step ever computes with subnormal floats.
+pub const TINY: f32 = 1e-20;
+const TINY_T: f32 = 1e-6;
 
 impl FaceTransmit {
     pub(crate) fn new(b: &FaceBlocking) -> Self {
@@ -71,56 +77,30 @@ impl FaceTransmit {
                         }
                     }
                     for i in 0..n2 {
+                        let (x, y) = (i % n, i / n);
+                        // The shared face is the low face (on `axis`) of the higher cell.
+                        let face = if si == 0 {
+                            Some((z, i))
+                        } else {
+                            match axis {
+                                0 => (x + 1 < n).then_some((z, i + 1)),
+                                1 => (y + 1 < n).then_some((z, i + n)),
+                                _ => (z + 1 < n).then_some((z + 1, i)),
+                            }
+                        };
+                        let Some((fz, fi)) = face else { continue };
                         let f: [f32; 4] =
-                            std::array::from_fn(|k| b.data[(z * COEFFS + axis * 4 + k) * n2 + i]);
+                            std::array::from_fn(|k| b.data[(fz * COEFFS + axis * 4 + k) * n2 + fi]);
                         for (j, w) in dirs.iter().enumerate() {
-                            out[((axis * 2 + si) * 5 + j) * n2 + i] = transmittance(f, *w);
+                            let t = transmittance(f, *w);
+                            out[((axis * 2 + si) * 5 + j) * n2 + i] =
+                                if t < TINY_T { 0.0 } else { t };
                         }
                     }
                 }
             }
         });
         Self { data }
-    }
-}
-
-/// One direction with occlusion (`t`: the 5 transmittance rows of the shared faces), all 3
-/// channels.
-#[inline(always)]
-fn step_blocked(
-    dst: &mut [f32],
-    src: [&[f32]; COEFFS],
-    t: [&[f32]; 5],
-    n: usize,
-    x0: usize,
-    axis: usize,
-    sigma: f32,
-) {
-    let len = src[0].len();
-    let a = AXIS_COEF[axis];
-    let perp = PERP[axis];
-    let [p, q] = perp.map(|x| AXIS_COEF[x]);
-    for i in 0..len {
-        let t_main = t[0][i];
-        let ts = [t[1][i], t[2][i], t[3][i], t[4][i]];
-        for c in 0..3 {
-            let s = |k: usize| src[c * 4 + k][i];
-            let av = Y00 * s(0);
-            let ba = K1 * s(a) * sigma;
-            let (bp, bq) = (K1 * s(p) * INV_SQRT5, K1 * s(q) * INV_SQRT5);
-            let base = av + 2.0 * INV_SQRT5 * ba;
-            // Non-negative lobes make every flux >= 0; the clamps only remove rounding.
-            let fm = DM * t_main * (av + ba).max(0.0);
-            let fpp = DS * ts[0] * (base + bp).max(0.0);
-            let fpm = DS * ts[1] * (base - bp).max(0.0);
-            let fqp = DS * ts[2] * (base + bq).max(0.0);
-            let fqm = DS * ts[3] * (base - bq).max(0.0);
-            let o = c * 4 * n + x0 + i;
-            dst[o] += Y00 * (fm + fpp + fpm + fqp + fqm);
-            dst[o + a * n] += RE_A * sigma * fm;
-            dst[o + p * n] += RE_A * (fpp - fpm);
-            dst[o + q * n] += RE_A * (fqp - fqm);
-        }
     }
 }
 
@@ -152,12 +132,20 @@ fn step(
     let masks = [
         (0..n * n).map(|i| if i % n == 0 { 0.0 } else { 1.0 }).collect::<Vec<f32>>(),
         (0..n * n).map(|i| if i % n == n - 1 { 0.0 } else { 1.0 }).collect::<Vec<f32>>(),
+        vec![1.0f32; n * n],
     ];
     let body = |z: usize, out: &mut [f32], acc: Option<&mut [f32]>| {
         if let Some(b) = blocking {
-            blocked_slice(src, b, z, out);
+            blocked_slice(src, b, z, out, &zeros, &masks);
         } else {
             linear_slice(src, z, out, &zeros, &masks);
+        }
+        // Light far down the falloff would become subnormal floats, which x86 computes
+        // about 100x slower; nothing below TINY matters (see its doc).
+        for v in out.iter_mut() {
+            if v.abs() < TINY {
+                *v = 0.0;
+            }
         }
         if let Some(acc) = acc {
             for (a, o) in acc.iter_mut().zip(out.iter()) {
@@ -178,47 +166,80 @@ fn step(
     }
 }
 
-/// One z slice of a step with occlusion: per row, the 6 directions one after another.
-fn blocked_slice(src: &Volume, b: &FaceTransmit, z: usize, out: &mut [f32]) {
+/// One z slice of a step with occlusion, direction by direction over whole `n x n` planes
+/// (sources shifted as in [`linear_slice`]; transmittances read at the destination).
+fn blocked_slice(
+    src: &Volume,
+    tr: &FaceTransmit,
+    z: usize,
+    out: &mut [f32],
+    zeros: &[f32],
+    masks: &[Vec<f32>; 3],
+) {
     let n = src.res as usize;
     let n2 = n * n;
-    let mut row = vec![0.0f32; COEFFS * n];
-    for y in 0..n {
-        row.fill(0.0);
-        for (axis, sigma) in [(0usize, 1.0f32), (0, -1.0), (1, 1.0), (1, -1.0), (2, 1.0), (2, -1.0)]
-        {
-            // Source cell = dest - sigma * e_axis.
-            let (zs, ys) = match axis {
-                2 if sigma > 0.0 && z == 0 => continue,
-                2 if sigma < 0.0 && z + 1 == n => continue,
-                1 if sigma > 0.0 && y == 0 => continue,
-                1 if sigma < 0.0 && y + 1 == n => continue,
-                2 => (if sigma > 0.0 { z - 1 } else { z + 1 }, y),
-                1 => (z, if sigma > 0.0 { y - 1 } else { y + 1 }),
-                _ => (z, y),
+    let sl = COEFFS * n2;
+    let plane = |zz: usize, k: usize| &src.data[zz * sl + k * n2..zz * sl + (k + 1) * n2];
+    let ext: Vec<Vec<f32>> = (0..COEFFS)
+        .map(|k| {
+            let mut e = vec![0.0f32; n2 + 2 * n];
+            e[n..n + n2].copy_from_slice(plane(z, k));
+            e
+        })
+        .collect();
+    out.fill(0.0);
+    let mut planes: Vec<&mut [f32]> = out.chunks_exact_mut(n2).collect();
+    for (axis, si) in [(0usize, 0usize), (0, 1), (1, 0), (1, 1), (2, 0), (2, 1)] {
+        let sigma = if si == 0 { 1.0f32 } else { -1.0 };
+        let source = |k: usize| -> &[f32] {
+            match (axis, si) {
+                (0, 0) => &ext[k][n - 1..n - 1 + n2],
+                (0, _) => &ext[k][n + 1..n + 1 + n2],
+                (1, 0) => &ext[k][..n2],
+                (1, _) => &ext[k][2 * n..2 * n + n2],
+                (_, 0) if z > 0 => plane(z - 1, k),
+                (_, 1) if z + 1 < n => plane(z + 1, k),
+                _ => &zeros[..n2],
+            }
+        };
+        let mask = match (axis, si) {
+            (0, 0) => &masks[0][..n2],
+            (0, _) => &masks[1][..n2],
+            _ => &masks[2][..n2],
+        };
+        let slot = (axis * 2 + si) * 5;
+        let t: [&[f32]; 5] = std::array::from_fn(|j| {
+            let o = (z * SLOTS + slot + j) * n2;
+            &tr.data[o..o + n2]
+        });
+        let [t0, t1, t2, t3, t4] = t;
+        let a = AXIS_COEF[axis];
+        let [p, q] = PERP[axis].map(|x| AXIS_COEF[x]);
+        for c in 0..3 {
+            let k0 = c * 4;
+            let (s0, sa, sp, sq) = (source(k0), source(k0 + a), source(k0 + p), source(k0 + q));
+            let (s0, sa, sp, sq) = (&s0[..n2], &sa[..n2], &sp[..n2], &sq[..n2]);
+            let Ok([o0, oa, op, oq]) = planes.get_disjoint_mut([k0, k0 + a, k0 + p, k0 + q]) else {
+                unreachable!()
             };
-            // x ranges: dest [dx0, dx0+len), source [sx0, sx0+len).
-            let (dx0, sx0, len) = match (axis, sigma > 0.0) {
-                (0, true) => (1, 0, n - 1),
-                (0, false) => (0, 1, n - 1),
-                _ => (0, 0, n),
-            };
-            let srow = |k: usize| {
-                let o = (zs * COEFFS + k) * n2 + ys * n + sx0;
-                &src.data[o..o + len]
-            };
-            // The shared face is the low face (on `axis`) of the higher cell.
-            let (fz, fy, fx0) = if sigma > 0.0 { (z, y, dx0) } else { (zs, ys, sx0) };
-            let slot = (axis * 2 + usize::from(sigma < 0.0)) * 5;
-            let trow = |j: usize| {
-                let o = (fz * SLOTS + slot + j) * n2 + fy * n + fx0;
-                &b.data[o..o + len]
-            };
-            let s: [&[f32]; COEFFS] = std::array::from_fn(srow);
-            step_blocked(&mut row, s, std::array::from_fn(trow), n, dx0, axis, sigma);
-        }
-        for k in 0..COEFFS {
-            out[k * n2 + y * n..k * n2 + y * n + n].copy_from_slice(&row[k * n..k * n + n]);
+            let (o0, oa, op, oq) = (&mut o0[..n2], &mut oa[..n2], &mut op[..n2], &mut oq[..n2]);
+            for i in 0..n2 {
+                let m = mask[i];
+                let av = Y00 * s0[i] * m;
+                let ba = K1 * sa[i] * sigma * m;
+                let (bp, bq) = (K1 * sp[i] * INV_SQRT5 * m, K1 * sq[i] * INV_SQRT5 * m);
+                let base = av + 2.0 * INV_SQRT5 * ba;
+                // Non-negative lobes make every flux >= 0; the clamps only remove rounding.
+                let fm = DM * t0[i] * (av + ba).max(0.0);
+                let fpp = DS * t1[i] * (base + bp).max(0.0);
+                let fpm = DS * t2[i] * (base - bp).max(0.0);
+                let fqp = DS * t3[i] * (base + bq).max(0.0);
+                let fqm = DS * t4[i] * (base - bq).max(0.0);
+                o0[i] += Y00 * (fm + fpp + fpm + fqp + fqm);
+                oa[i] += RE_A * sigma * fm;
+                op[i] += RE_A * (fpp - fpm);
+                oq[i] += RE_A * (fqp - fqm);
+            }
         }
     }
 }
@@ -234,7 +255,7 @@ fn blocked_slice(src: &Volume, b: &FaceTransmit, z: usize, out: &mut [f32]) {
 /// The whole `n x n` plane is one loop: each source plane is copied with `n` zeros before
 /// and after it, so the y neighbours are the elements `n` before/after and the x neighbours
 /// the elements 1 before/after, masked to zero at the row ends.
-fn linear_slice(src: &Volume, z: usize, out: &mut [f32], zeros: &[f32], masks: &[Vec<f32>; 2]) {
+fn linear_slice(src: &Volume, z: usize, out: &mut [f32], zeros: &[f32], masks: &[Vec<f32>; 3]) {
     let n = src.res as usize;
     let n2 = n * n;
     let sl = COEFFS * n2;
