@@ -4,6 +4,7 @@
 //!   whole workspace's tests with all features (GPU tests included).
 //! - `cargo xtask bench [--quick] [--json PATH] [--only CRATE]`: every crate's accuracy-vs-time
 //!   sweep, merged into `target/gi-report/` (report.json, report.md, one SVG per technique).
+//! - `cargo xtask render [ARGS]`: the engine's main job (see `serein-render --help`).
 //! - `cargo xtask report`: redraws report.md and the charts from an existing report.json.
 
 mod bench;
@@ -49,6 +50,15 @@ enum Command {
     Report,
     /// Validate every top-level WGSL file under shaders/ with naga.
     Shaders,
+    /// Render a scene with the engine (release build of `serein-render`): with no arguments
+    /// the city at 1600x900 at 17:30 into target/render/. `cargo xtask render --help-render`
+    /// lists the options (--scene, --time, --date, --size, --preset, --frames, --out,
+    /// --reference SPP).
+    Render {
+        /// Arguments for serein-render.
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+        args: Vec<String>,
+    },
 }
 
 fn main() -> anyhow::Result<()> {
@@ -57,8 +67,23 @@ fn main() -> anyhow::Result<()> {
         Command::Test { test_args } => test::run(&root, &test_args),
         Command::Bench { quick, json, only } => bench::run(&root, quick, json, &only),
         Command::Report => report::redraw(&root.join("target/gi-report")),
+        Command::Render { args } => render(&root, &args),
         Command::Shaders => shaders::validate_all(&root).map(|n| println!("{n} shaders valid")),
     }
+}
+
+/// `cargo run --release -p engine --bin serein-render -- ARGS` (`--help-render` becomes
+/// `--help`).
+fn render(root: &std::path::Path, args: &[String]) -> anyhow::Result<()> {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let args: Vec<&str> =
+        args.iter().map(|a| if a == "--help-render" { "--help" } else { a.as_str() }).collect();
+    run_cmd(
+        std::process::Command::new(cargo)
+            .current_dir(root)
+            .args(["run", "--release", "-q", "-p", "engine", "--bin", "serein-render", "--"])
+            .args(args),
+    )
 }
 
 /// The workspace root: the parent of this crate's manifest directory.

@@ -32,9 +32,15 @@ impl GpuContext {
 
     async fn new_async() -> Result<Self, GpuError> {
         let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle());
-        let mut adapters = instance.enumerate_adapters(wgpu::Backends::all()).await;
+        // `WGPU_BACKEND=vulkan|gl|metal|dx12` restricts the search (a backend the machine
+        // lacks then gives `NoAdapter`, which is how the "no adapter" path is tested).
+        let backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::all());
+        let mut adapters = instance.enumerate_adapters(backends).await;
         if adapters.is_empty() {
-            return Err(GpuError::NoAdapter("enumerate_adapters returned none".into()));
+            return Err(GpuError::NoAdapter(format!(
+                "no adapter among the backends {backends:?} (WGPU_BACKEND={})",
+                std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "unset".into())
+            )));
         }
         // Prefer real GPUs, then Vulkan (lavapipe) over GL: GL lacks some compute limits.
         adapters.sort_by_key(|a| {
@@ -63,6 +69,8 @@ impl GpuContext {
                 max_buffer_size: adapter.limits().max_buffer_size,
                 ..limits
             },
+            // Timestamp queries where the adapter has them (per-pass GPU times).
+            required_features: adapter.features() & wgpu::Features::TIMESTAMP_QUERY,
             ..Default::default()
         };
         let (device, queue) = adapter

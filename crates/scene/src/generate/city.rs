@@ -339,7 +339,9 @@ fn build(seed: u64) -> Result<Scene, SceneError> {
         );
         scene.point_lights.push(PointLight::new(
             format!("lamp_{i}"),
-            base + Vec3::Y * 4.9,
+            // The bulb hangs under the lamp head, beside the post (not inside it, where
+            // a shadow-casting light would be occluded in every direction).
+            base + Vec3::new(0.17, 4.9, 0.0),
             Vec3::new(60.0, 48.0, 30.0),
             15.0,
         ));

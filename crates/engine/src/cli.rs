@@ -1,0 +1,192 @@
+//! What `serein-render` (and `cargo xtask render`) does: load a scene, render frames, write
+//! the image, the report and, on request, the reference image and the error figures.
+
+use crate::report::{RunInfo, write_report};
+use crate::{EngineError, Preset, Renderer, Settings};
+use std::path::{Path, PathBuf};
+
+/// Options of one render (the command line's, parsed).
+#[derive(Clone, Debug)]
+pub struct RenderJob {
+    /// `city` (or another generated scene's name) or a path to .gltf/.glb/.obj/.toml.
+    pub scene: String,
+    /// Local time `HH:MM` at the scene's place (with `utc_offset_h`), if set.
+    pub time: Option<String>,
+    /// `YYYY-MM-DD`, if set.
+    pub date: Option<String>,
+    pub utc_offset_h: f64,
+    pub width: u32,
+    pub height: u32,
+    pub preset: Preset,
+    pub frames: u32,
+    pub out: PathBuf,
+    /// Samples per pixel of the reference image, if wanted.
+    pub reference_spp: Option<u32>,
+    pub seed: u64,
+    pub progress: bool,
+}
+
+impl Default for RenderJob {
+    fn default() -> Self {
+        Self {
+            scene: "city".into(),
+            time: None,
+            date: None,
+            utc_offset_h: 1.0,
+            width: 1600,
+            height: 900,
+            preset: Preset::Default,
+            frames: 24,
+            out: PathBuf::from("target/render"),
+            reference_spp: None,
+            seed: 1,
+            progress: true,
+        }
+    }
+}
+
+/// `WxH` to `(W, H)`.
+pub fn parse_size(s: &str) -> Result<(u32, u32), EngineError> {
+    let bad = || EngineError::Settings(format!("size {s:?}: expected WIDTHxHEIGHT, e.g. 1600x900"));
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
+    Ok((w.trim().parse().map_err(|_| bad())?, h.trim().parse().map_err(|_| bad())?))
+}
+
+fn parse_time(s: &str) -> Result<f64, EngineError> {
+    let bad = || EngineError::Settings(format!("time {s:?}: expected HH:MM"));
+    let (h, m) = s.split_once(':').ok_or_else(bad)?;
+    let (h, m): (f64, f64) = (h.parse().map_err(|_| bad())?, m.parse().map_err(|_| bad())?);
+    if !(0.0..24.0).contains(&h) || !(0.0..60.0).contains(&m) {
+        return Err(bad());
+    }
+    Ok(h + m / 60.0)
+}
+
+fn parse_date(s: &str) -> Result<scene::CivilDate, EngineError> {
+    let bad = || EngineError::Settings(format!("date {s:?}: expected YYYY-MM-DD"));
+    let p: Vec<&str> = s.split('-').collect();
+    if p.len() != 3 {
+        return Err(bad());
+    }
+    let y: i32 = p[0].parse().map_err(|_| bad())?;
+    let m: u32 = p[1].parse().map_err(|_| bad())?;
+    let d: u32 = p[2].parse().map_err(|_| bad())?;
+    if !(1..=12).contains(&m) || !(1..=31).contains(&d) {
+        return Err(bad());
+    }
+    Ok(scene::CivilDate::new(y, m, d))
+}
+
+/// Loads the job's scene: a generated scene by name, else a file.
+pub fn load_scene(job: &RenderJob) -> Result<scene::Scene, EngineError> {
+    let mut s = match scene::Generated::from_name(&job.scene) {
+        Some(g) => g.build(job.seed),
+        None => scene::load(Path::new(&job.scene))?,
+    };
+    if job.time.is_some() || job.date.is_some() {
+        let sun = s.sun.get_or_insert_with(|| {
+            scene::Sun::at_time(scene::CivilDate::new(2024, 6, 21), 16.5, 38.72, -9.14)
+        });
+        let (mut date, mut utc, lat, lon) = match sun.position {
+            scene::SunPosition::Time { date, utc_hours, latitude_deg, longitude_deg } => {
+                (date, utc_hours, latitude_deg, longitude_deg)
+            }
+            scene::SunPosition::Direction(_) => {
+                (scene::CivilDate::new(2024, 6, 21), 16.5, 38.72, -9.14)
+            }
+        };
+        if let Some(t) = &job.time {
+            utc = parse_time(t)? - job.utc_offset_h;
+        }
+        if let Some(d) = &job.date {
+            date = parse_date(d)?;
+        }
+        sun.position = scene::SunPosition::Time {
+            date,
+            utc_hours: utc,
+            latitude_deg: lat,
+            longitude_deg: lon,
+        };
+    }
+    Ok(s)
+}
+
+/// Renders the job and writes `frame.exr`, `frame.png`, `report.md`, `report.json`,
+/// `timeline.svg` (and `reference.exr`, `reference.png`, `difference.png` with a reference).
+pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
+    let scene = load_scene(job)?;
+    let name = scene.name.clone();
+    let settings = Settings::preset(job.preset, job.width, job.height);
+    let mut renderer = Renderer::new(scene, settings)?;
+    std::fs::create_dir_all(&job.out).map_err(|e| crate::renderer::io_err(&job.out, e))?;
+    let bar = progress_bar(job.progress, job.frames as u64, "frames");
+    let mut frame_ms = Vec::new();
+    let mut traced = 0;
+    for _ in 0..job.frames.max(1) {
+        let f = renderer.render_frame()?;
+        frame_ms.push(f.wall_ms);
+        traced += usize::from(f.ray_traced);
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    // The reported frame: the camera moved by 1 cm, so every per-frame pass runs (as in a
+    // walk-through, the thesis's Table 7.1) while the sky stays cached.
+    let mut cam = *renderer.camera();
+    cam.position += cam.forward * 0.01;
+    renderer.set_camera(cam);
+    let frame = renderer.render_frame()?;
+    traced += usize::from(frame.ray_traced);
+    frame_ms.push(frame.wall_ms);
+    frame.write_exr(job.out.join("frame.exr"))?;
+    frame.write_png(job.out.join("frame.png"))?;
+    let errors = match job.reference_spp {
+        Some(spp) => {
+            Some(crate::compare::against_reference(&renderer, &frame, spp, &job.out, job.progress)?)
+        }
+        None => None,
+    };
+    let mut notes: Vec<String> = frame
+        .needs
+        .iter()
+        .iter()
+        .map(|(n, need)| {
+            format!("{n}: {} ({})", if need.needed { "needed" } else { "not needed" }, need.reason)
+        })
+        .collect();
+    notes.push(format!("sky volume complete: {}", renderer.sky_volume_complete()));
+    notes.push(format!(
+        "the passes table is of frame {}: after {} frames of a still camera the camera moved 1 cm, \
+         so every per-frame pass ran while the sky map and sky volume were reused",
+        frame_ms.len() - 1,
+        job.frames.max(1)
+    ));
+    let info = RunInfo {
+        scene: name,
+        width: job.width,
+        height: job.height,
+        preset: job.preset.to_string(),
+        adapter: renderer.adapter().to_string(),
+        software_adapter: renderer.is_software(),
+        frames: frame_ms.len(),
+        threads: rayon::current_num_threads(),
+        frame_ms,
+        ray_traced_frames: traced,
+        errors: errors.map(|e| serde_json::to_value(e).unwrap_or_default()),
+        notes,
+    };
+    write_report(&job.out, &info, &frame.report)?;
+    Ok(info)
+}
+
+pub(crate) fn progress_bar(on: bool, len: u64, what: &str) -> indicatif::ProgressBar {
+    if !on {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(len);
+    if let Ok(style) = indicatif::ProgressStyle::with_template(&format!(
+        "{{bar:40}} {{pos}}/{{len}} {what} {{eta}}"
+    )) {
+        bar.set_style(style);
+    }
+    bar
+}

@@ -1,0 +1,122 @@
+//! The engine's image against the `reference` path tracer's image of the same view.
+
+use crate::renderer::io_err;
+use crate::{EngineError, Frame, Renderer};
+use reference::{Image, RenderSettings, SceneLighting};
+use std::path::Path;
+
+/// Reference pixels brighter than this many times the reference's mean luminance are
+/// clamped (in both images) for `rel_rms_clamped`: a few sun glints and fireflies otherwise
+/// dominate the relative RMS of a whole frame.
+pub const FIREFLY_CLAMP: f32 = 10.0;
+
+/// Error figures of one frame.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct ReferenceErrors {
+    /// `sqrt(sum |a - r|² / sum |r|²)` over RGB.
+    pub rel_rms: f64,
+    /// The same with both images clamped at [`FIREFLY_CLAMP`] times the mean luminance.
+    pub rel_rms_clamped: f64,
+    /// Mean of per-pixel relative luminance differences (gi_report's metric).
+    pub mean_rel_luminance: f64,
+    /// Mean luminance of the engine's image over the reference's.
+    pub luminance_ratio: f64,
+    /// The reference's mean relative standard error (its own noise).
+    pub reference_rel_std_error: f64,
+    pub reference_spp: u32,
+    pub reference_ms: f64,
+}
+
+/// Renders the reference of `scene` from `camera` at `width x height` with `spp` samples.
+pub fn reference_image(
+    scene: &scene::Scene,
+    camera: &scene::Camera,
+    width: u32,
+    height: u32,
+    spp: u32,
+    progress: bool,
+) -> Result<(Image, f64, f64), EngineError> {
+    let t0 = std::time::Instant::now();
+    let tech = |e| EngineError::technique("reference", e);
+    let world = reference::world_from_scene(scene, &SceneLighting::DEFAULT).map_err(tech)?;
+    let mut cam_scene = scene.clone();
+    cam_scene.camera = *camera;
+    let cam = reference::camera_from_scene(&cam_scene);
+    let settings = RenderSettings::DEFAULT.with_size(width, height).with_spp(spp.max(1));
+    let r = reference::render(&world, cam, settings, progress).map_err(tech)?;
+    Ok((r.mean(), r.mean_rel_std_error(), t0.elapsed().as_secs_f64() * 1e3))
+}
+
+fn luminance(p: glam::Vec3) -> f32 {
+    0.2126 * p.x + 0.7152 * p.y + 0.0722 * p.z
+}
+
+fn clamped(im: &Image, cap: f32) -> Image {
+    let mut out = im.clone();
+    for p in &mut out.pixels {
+        let l = luminance(*p);
+        if l > cap {
+            *p *= cap / l;
+        }
+    }
+    out
+}
+
+/// The error figures of `approx` against `reference`.
+pub fn errors(
+    approx: &Image,
+    reference: &Image,
+    rel_std_error: f64,
+    spp: u32,
+    ms: f64,
+) -> Result<ReferenceErrors, EngineError> {
+    let tech = |e| EngineError::technique("reference", e);
+    let e = reference::compare(approx, reference, None).map_err(tech)?;
+    let mean_r = luminance(reference.mean()).max(1e-12);
+    let cap = FIREFLY_CLAMP * mean_r;
+    let c =
+        reference::compare(&clamped(approx, cap), &clamped(reference, cap), None).map_err(tech)?;
+    Ok(ReferenceErrors {
+        rel_rms: e.rel_rms,
+        rel_rms_clamped: c.rel_rms,
+        mean_rel_luminance: e.mean_rel_luminance,
+        luminance_ratio: (luminance(approx.mean()) / mean_r) as f64,
+        reference_rel_std_error: rel_std_error,
+        reference_spp: spp,
+        reference_ms: ms,
+    })
+}
+
+/// Renders the reference of the renderer's current view, writes `reference.exr`,
+/// `reference.png` and `difference.png` (absolute difference, same exposure) into `out`,
+/// and returns the errors of `frame`.
+pub fn against_reference(
+    renderer: &Renderer,
+    frame: &Frame,
+    spp: u32,
+    out: &Path,
+    progress: bool,
+) -> Result<ReferenceErrors, EngineError> {
+    let (reference, rse, ms) = reference_image(
+        renderer.scene(),
+        renderer.camera(),
+        frame.width,
+        frame.height,
+        spp,
+        progress,
+    )?;
+    let approx = frame.image();
+    let tech = |e| EngineError::technique("reference", e);
+    let exposure = reference.auto_exposure();
+    let p = out.join("reference.exr");
+    reference.write_exr(&p).map_err(|e| io_err(&p, e))?;
+    let p = out.join("reference.png");
+    reference.write_png(&p, exposure).map_err(|e| io_err(&p, e))?;
+    let mut diff = reference::difference_image(&approx, &reference).map_err(tech)?;
+    for px in &mut diff.pixels {
+        *px = px.abs();
+    }
+    let p = out.join("difference.png");
+    diff.write_png(&p, exposure).map_err(|e| io_err(&p, e))?;
+    errors(&approx, &reference, rse, spp, ms)
+}

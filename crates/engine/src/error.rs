@@ -1,0 +1,39 @@
+//! The engine's typed errors.
+
+/// Everything that can stop a frame or a renderer from being made.
+#[derive(Debug, thiserror::Error)]
+pub enum EngineError {
+    /// No wgpu adapter: neither a GPU nor Mesa's software rasterisers.
+    #[error(
+        "no GPU adapter found ({0}); on a machine without a GPU install Mesa's Vulkan lavapipe \
+         (apt-get install mesa-vulkan-drivers) or make sure llvmpipe (GL) is available"
+    )]
+    NoAdapter(String),
+    /// The scene could not be loaded or is invalid.
+    #[error("scene: {0}")]
+    Scene(#[from] scene::SceneError),
+    /// A wgpu error (validation, out of memory, lost device).
+    #[error("GPU: {0}")]
+    Gpu(String),
+    /// The ray tracer could not be built.
+    #[error("ray tracer: {0}")]
+    Trace(#[from] kdtree_tracer::Error),
+    /// A technique crate refused its input.
+    #[error("{technique}: {message}")]
+    Technique { technique: &'static str, message: String },
+    /// A pass of the frame failed.
+    #[error("pass '{pass}' failed: {message}")]
+    Pass { pass: String, message: String },
+    /// Invalid settings.
+    #[error("settings: {0}")]
+    Settings(String),
+    /// Writing an output file failed.
+    #[error("writing {path}: {message}")]
+    Io { path: String, message: String },
+}
+
+impl EngineError {
+    pub(crate) fn technique(technique: &'static str, e: impl std::fmt::Display) -> Self {
+        Self::Technique { technique, message: e.to_string() }
+    }
+}

@@ -1,0 +1,41 @@
+//! The per-frame uniform every engine shader reads (`Frame` in `common.inc.wgsl`).
+
+use bytemuck::{Pod, Zeroable};
+use glam::{Mat4, Vec3};
+
+pub(crate) const FLAG_SKY: u32 = 1;
+pub(crate) const FLAG_BLINN: u32 = 2;
+pub(crate) const FLAG_LPV: u32 = 4;
+pub(crate) const FLAG_SKY_VOLUME: u32 = 8;
+pub(crate) const FLAG_SHADOWS: u32 = 16;
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct FrameUniform {
+    pub view_proj: [[f32; 4]; 4],
+    pub inv_view_proj: [[f32; 4]; 4],
+    pub camera_pos: [f32; 4],
+    pub camera_fwd: [f32; 4],
+    pub sun_dir: [f32; 4],
+    pub sun_irradiance: [f32; 4],
+    pub size: [u32; 4],
+    pub params: [f32; 4],
+    pub csm: [u32; 4],
+    pub light_rot: [[f32; 4]; 3],
+}
+const _: () = assert!(std::mem::size_of::<FrameUniform>() == 288);
+
+impl FrameUniform {
+    /// The camera part; lights, flags and shadow data are filled by the renderer.
+    pub fn new(camera: &scene::Camera, width: u32, height: u32) -> Self {
+        let vp: Mat4 = camera.view_projection();
+        Self {
+            view_proj: vp.to_cols_array_2d(),
+            inv_view_proj: vp.inverse().to_cols_array_2d(),
+            camera_pos: camera.position.extend(camera.near).to_array(),
+            camera_fwd: camera.forward.normalize_or(Vec3::NEG_Z).extend(camera.far).to_array(),
+            size: [width, height, 0, 0],
+            ..Default::default()
+        }
+    }
+}

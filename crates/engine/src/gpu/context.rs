@@ -1,0 +1,55 @@
+//! The device: the best adapter there is (a GPU, or Mesa's lavapipe / llvmpipe on the CPU).
+
+use crate::EngineError;
+use std::sync::{Arc, Mutex};
+
+/// Device, queue and what the adapter is. Uncaptured wgpu errors are collected and turned
+/// into [`EngineError::Gpu`] at the end of the frame instead of aborting the process.
+pub struct Gpu {
+    pub device: wgpu::Device,
+    pub queue: wgpu::Queue,
+    pub adapter: String,
+    pub software: bool,
+    pub timestamps: bool,
+    errors: Arc<Mutex<Vec<String>>>,
+}
+
+impl Gpu {
+    /// Opens the best adapter (honours `WGPU_BACKEND`-style selection through wgpu's
+    /// defaults).
+    pub fn new() -> Result<Self, EngineError> {
+        let ctx = gpu_harness::GpuContext::new().map_err(|e| match e {
+            gpu_harness::GpuError::NoAdapter(m) => EngineError::NoAdapter(m),
+            other => EngineError::Gpu(other.to_string()),
+        })?;
+        let adapter = ctx.describe();
+        let software = ctx.is_software();
+        let errors = Arc::new(Mutex::new(Vec::new()));
+        let sink = Arc::clone(&errors);
+        ctx.device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
+            if let Ok(mut v) = sink.lock() {
+                v.push(e.to_string());
+            }
+        }));
+        let timestamps = ctx.device.features().contains(wgpu::Features::TIMESTAMP_QUERY);
+        Ok(Self { device: ctx.device, queue: ctx.queue, adapter, software, timestamps, errors })
+    }
+
+    /// The first wgpu error reported since the last call, if any.
+    pub fn take_error(&self) -> Result<(), EngineError> {
+        let mut v =
+            self.errors.lock().map_err(|_| EngineError::Gpu("error sink poisoned".into()))?;
+        match v.drain(..).next() {
+            Some(e) => Err(EngineError::Gpu(e)),
+            None => Ok(()),
+        }
+    }
+
+    /// Waits until the queue is idle.
+    pub fn wait(&self) -> Result<(), EngineError> {
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map(|_| ())
+            .map_err(|e| EngineError::Gpu(e.to_string()))
+    }
+}

@@ -1,0 +1,14 @@
+//! The wgpu side of the engine: the device, the scene's buffers and textures, the render
+//! targets, and small helpers every pass uses.
+
+mod context;
+mod scene;
+mod targets;
+mod timer;
+mod util;
+
+pub use context::Gpu;
+pub use scene::SceneBuffers;
+pub use targets::{GBUFFER_FORMATS, GBufferTargets, HDR_FORMAT};
+pub use timer::TimestampTimer;
+pub(crate) use util::*;

@@ -1,0 +1,251 @@
+//! The scene on the GPU: one world-space vertex buffer, one index buffer, draws grouped by
+//! material, a material table and the textures (linear RGBA16F with their mip chains).
+
+use super::util::{buffer_init, storage};
+use bytemuck::{Pod, Zeroable};
+use glam::Vec3;
+
+/// One vertex (world space; scenes are static, so transforms are applied at upload).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct Vertex {
+    pub position: [f32; 3],
+    pub normal: [f32; 3],
+    pub uv: [f32; 2],
+    pub material: u32,
+}
+const _: () = assert!(std::mem::size_of::<Vertex>() == 36);
+
+/// A material as the shaders read it (`Material` in `shaders/engine/common.inc.wgsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuMaterial {
+    /// Albedo RGB, glossiness.
+    pub albedo: [f32; 4],
+    /// Specular power, reflectivity, transparency, index of refraction.
+    pub params: [f32; 4],
+    /// Emission RGB, alpha cutoff (0: no alpha test).
+    pub emission: [f32; 4],
+    /// Has an albedo texture, has an alpha mask, unused x2.
+    pub flags: [u32; 4],
+}
+const _: () = assert!(std::mem::size_of::<GpuMaterial>() == 64);
+
+impl GpuMaterial {
+    pub fn new(m: &scene::Material) -> Self {
+        Self {
+            albedo: m.albedo.extend(m.glossiness).to_array(),
+            params: [m.specular_power, m.reflectivity, m.transparency, m.ior],
+            emission: m.emission.extend(m.alpha_mask.map_or(0.0, |a| a.cutoff)).to_array(),
+            flags: [u32::from(m.albedo_texture.is_some()), u32::from(m.alpha_mask.is_some()), 0, 0],
+        }
+    }
+}
+
+/// A run of triangles with one material.
+#[derive(Clone, Copy, Debug)]
+pub struct Draw {
+    pub first_index: u32,
+    pub index_count: u32,
+    pub material: u32,
+}
+
+/// Everything the raster passes need of the scene.
+pub struct SceneBuffers {
+    pub vertices: wgpu::Buffer,
+    pub indices: wgpu::Buffer,
+    pub draws: Vec<Draw>,
+    pub materials: wgpu::Buffer,
+    pub material_table: Vec<GpuMaterial>,
+    /// One bind group per material (albedo texture, alpha texture, sampler), group 1 of the
+    /// G-buffer pipeline.
+    pub material_groups: Vec<wgpu::BindGroup>,
+    pub material_layout: wgpu::BindGroupLayout,
+    pub triangle_count: usize,
+    /// World-space triangles for CPU-side techniques (RSM culling, LPV surfels).
+    pub world_positions: Vec<Vec3>,
+    pub world_normals: Vec<Vec3>,
+    pub index_list: Vec<u32>,
+}
+
+impl SceneBuffers {
+    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, scene: &scene::Scene) -> Self {
+        let mut order: Vec<usize> = (0..scene.meshes.len()).collect();
+        order.sort_by_key(|&i| scene.meshes[i].material.0);
+        let mut vertices = Vec::new();
+        let mut indices: Vec<u32> = Vec::new();
+        let mut draws: Vec<Draw> = Vec::new();
+        for &i in &order {
+            let m = &scene.meshes[i];
+            let base = vertices.len() as u32;
+            let nm = m.normal_matrix();
+            for (k, p) in m.positions.iter().enumerate() {
+                let n = m.normals.get(k).map_or(Vec3::Y, |&n| (nm * n).normalize_or(Vec3::Y));
+                let uv = m.uvs.get(k).copied().unwrap_or_default();
+                vertices.push(Vertex {
+                    position: m.transform.transform_point3(*p).to_array(),
+                    normal: n.to_array(),
+                    uv: uv.to_array(),
+                    material: m.material.0,
+                });
+            }
+            let first = indices.len() as u32;
+            indices.extend(m.indices.iter().flatten().map(|&j| base + j));
+            let count = indices.len() as u32 - first;
+            match draws.last_mut() {
+                Some(d) if d.material == m.material.0 => d.index_count += count,
+                _ => draws.push(Draw {
+                    first_index: first,
+                    index_count: count,
+                    material: m.material.0,
+                }),
+            }
+        }
+        let material_table: Vec<GpuMaterial> =
+            scene.materials.iter().map(GpuMaterial::new).collect();
+        let textures: Vec<wgpu::TextureView> =
+            scene.textures.iter().map(|t| upload_texture(device, queue, t)).collect();
+        let white = upload_texture(
+            device,
+            queue,
+            &scene::Texture::solid("white", glam::Vec4::ONE).expect("a solid texture is valid"),
+        );
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("material sampler"),
+            address_mode_u: wgpu::AddressMode::Repeat,
+            address_mode_v: wgpu::AddressMode::Repeat,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            mipmap_filter: wgpu::MipmapFilterMode::Linear,
+            anisotropy_clamp: 4,
+            ..Default::default()
+        });
+        let tex_entry = |binding| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+            count: None,
+        };
+        let material_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("material textures"),
+            entries: &[
+                tex_entry(0),
+                tex_entry(1),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 2,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    count: None,
+                },
+            ],
+        });
+        let view_of = |id: Option<scene::TextureId>| {
+            id.and_then(|t| textures.get(t.index())).unwrap_or(&white)
+        };
+        let material_groups = scene
+            .materials
+            .iter()
+            .map(|m| {
+                device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("material"),
+                    layout: &material_layout,
+                    entries: &[
+                        wgpu::BindGroupEntry {
+                            binding: 0,
+                            resource: wgpu::BindingResource::TextureView(view_of(m.albedo_texture)),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 1,
+                            resource: wgpu::BindingResource::TextureView(view_of(
+                                m.alpha_mask.map(|a| a.texture),
+                            )),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 2,
+                            resource: wgpu::BindingResource::Sampler(&sampler),
+                        },
+                    ],
+                })
+            })
+            .collect();
+        let world_positions: Vec<Vec3> = vertices.iter().map(|v| Vec3::from(v.position)).collect();
+        let world_normals: Vec<Vec3> = vertices.iter().map(|v| Vec3::from(v.normal)).collect();
+        Self {
+            vertices: buffer_init(
+                device,
+                "vertices",
+                bytemuck::cast_slice(&vertices),
+                wgpu::BufferUsages::VERTEX,
+            ),
+            indices: buffer_init(
+                device,
+                "indices",
+                bytemuck::cast_slice(&indices),
+                wgpu::BufferUsages::INDEX,
+            ),
+            draws,
+            materials: storage(device, "materials", bytemuck::cast_slice(&material_table)),
+            material_table,
+            material_groups,
+            material_layout,
+            triangle_count: indices.len() / 3,
+            world_positions,
+            world_normals,
+            index_list: indices,
+        }
+    }
+
+    /// The vertex layout of [`Vertex`] (positions only when `positions_only`).
+    pub fn vertex_layout(positions_only: bool) -> wgpu::VertexBufferLayout<'static> {
+        const ALL: [wgpu::VertexAttribute; 4] =
+            wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Uint32];
+        wgpu::VertexBufferLayout {
+            array_stride: std::mem::size_of::<Vertex>() as u64,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: if positions_only { &ALL[..1] } else { &ALL },
+        }
+    }
+}
+
+fn upload_texture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    t: &scene::Texture,
+) -> wgpu::TextureView {
+    let (w, h) = (t.width().max(1), t.height().max(1));
+    let levels = t.levels.len().max(1) as u32;
+    let texture = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(&t.name),
+        size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+        mip_level_count: levels,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba16Float,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    for (i, level) in t.levels.iter().enumerate() {
+        let data: Vec<half::f16> =
+            level.texels.iter().flat_map(|c| c.to_array().map(half::f16::from_f32)).collect();
+        queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &texture,
+                mip_level: i as u32,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            bytemuck::cast_slice(&data),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(level.width * 8),
+                rows_per_image: Some(level.height),
+            },
+            wgpu::Extent3d { width: level.width, height: level.height, depth_or_array_layers: 1 },
+        );
+    }
+    texture.create_view(&Default::default())
+}

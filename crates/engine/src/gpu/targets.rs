@@ -1,0 +1,80 @@
+//! The render targets of one view size: the G-buffer (thesis Table 3.1, formats for wgpu),
+//! the depth buffer, the lit HDR image and the combined HDR image.
+
+/// HDR accumulation format (thesis 3.7).
+pub const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+
+/// G-buffer formats in attachment order: albedo + glossiness, shading normal + specular
+/// power, geometry normal + material id, linear depth (0: nothing drawn).
+pub const GBUFFER_FORMATS: [wgpu::TextureFormat; 4] = [
+    wgpu::TextureFormat::Rgba8Unorm,
+    wgpu::TextureFormat::Rgba16Float,
+    wgpu::TextureFormat::Rgba16Float,
+    wgpu::TextureFormat::R32Float,
+];
+
+pub struct GBufferTargets {
+    pub width: u32,
+    pub height: u32,
+    pub albedo: wgpu::TextureView,
+    pub normal: wgpu::TextureView,
+    pub geometry: wgpu::TextureView,
+    pub depth: wgpu::TextureView,
+    pub zbuffer: wgpu::TextureView,
+    pub lit_texture: wgpu::Texture,
+    pub lit: wgpu::TextureView,
+    pub combined_texture: wgpu::Texture,
+    pub combined: wgpu::TextureView,
+}
+
+fn target(
+    device: &wgpu::Device,
+    label: &str,
+    w: u32,
+    h: u32,
+    format: wgpu::TextureFormat,
+) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+            | wgpu::TextureUsages::TEXTURE_BINDING
+            | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    })
+}
+
+impl GBufferTargets {
+    pub fn new(device: &wgpu::Device, width: u32, height: u32) -> Self {
+        let view =
+            |label, f| target(device, label, width, height, f).create_view(&Default::default());
+        let combined_texture = target(device, "combined", width, height, HDR_FORMAT);
+        let lit_texture = target(device, "lit", width, height, HDR_FORMAT);
+        Self {
+            width,
+            height,
+            albedo: view("albedo", GBUFFER_FORMATS[0]),
+            normal: view("normal", GBUFFER_FORMATS[1]),
+            geometry: view("geometry", GBUFFER_FORMATS[2]),
+            depth: view("linear depth", GBUFFER_FORMATS[3]),
+            zbuffer: view("z-buffer", wgpu::TextureFormat::Depth32Float),
+            lit: lit_texture.create_view(&Default::default()),
+            lit_texture,
+            combined: combined_texture.create_view(&Default::default()),
+            combined_texture,
+        }
+    }
+
+    pub fn pixels(&self) -> usize {
+        self.width as usize * self.height as usize
+    }
+
+    /// Quarter resolution of the ray casting buffer: half width by half height.
+    pub fn quarter(&self) -> (u32, u32) {
+        (self.width.div_ceil(2), self.height.div_ceil(2))
+    }
+}

@@ -1,0 +1,110 @@
+//! Per-pass GPU times from wgpu timestamp queries, for `frame_scheduler`'s report and
+//! timeline. Each GPU pass is bracketed by two empty compute passes that write a timestamp
+//! at their start/end (only `TIMESTAMP_QUERY` is needed, not timestamps inside encoders);
+//! the queue executes in order, so the bracket encloses everything the pass submitted.
+
+use frame_scheduler::{GpuSample, GpuTimer, GpuTimingSupport, PassId};
+
+/// Passes per frame that can be timed.
+const MAX_PASSES: u32 = 32;
+
+pub struct TimestampTimer<'a> {
+    device: &'a wgpu::Device,
+    queue: &'a wgpu::Queue,
+    set: Option<wgpu::QuerySet>,
+    resolve: Option<wgpu::Buffer>,
+    passes: Vec<PassId>,
+}
+
+impl<'a> TimestampTimer<'a> {
+    /// A timer on `device` (which measures nothing when it lacks `TIMESTAMP_QUERY`).
+    pub fn new(device: &'a wgpu::Device, queue: &'a wgpu::Queue) -> Self {
+        let on = device.features().contains(wgpu::Features::TIMESTAMP_QUERY);
+        let set = on.then(|| {
+            device.create_query_set(&wgpu::QuerySetDescriptor {
+                label: Some("pass timestamps"),
+                ty: wgpu::QueryType::Timestamp,
+                count: MAX_PASSES * 2,
+            })
+        });
+        let resolve = on.then(|| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("timestamps"),
+                size: MAX_PASSES as u64 * 16,
+                usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            })
+        });
+        Self { device, queue, set, resolve, passes: Vec::new() }
+    }
+
+    fn stamp(&self, index: u32, end: bool) {
+        let Some(set) = &self.set else { return };
+        let mut enc = self.device.create_command_encoder(&Default::default());
+        {
+            let writes = wgpu::ComputePassTimestampWrites {
+                query_set: set,
+                beginning_of_pass_write_index: (!end).then_some(index),
+                end_of_pass_write_index: end.then_some(index),
+            };
+            let _pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("timestamp"),
+                timestamp_writes: Some(writes),
+            });
+        }
+        self.queue.submit([enc.finish()]);
+    }
+}
+
+impl GpuTimer for TimestampTimer<'_> {
+    fn support(&self) -> GpuTimingSupport {
+        match self.set {
+            Some(_) => GpuTimingSupport::Supported { method: "wgpu timestamp queries".into() },
+            None => {
+                GpuTimingSupport::Unsupported { reason: "adapter lacks TIMESTAMP_QUERY".into() }
+            }
+        }
+    }
+
+    fn begin_frame(&mut self, _frame: u64) {
+        self.passes.clear();
+    }
+
+    fn begin_pass(&mut self, pass: PassId, _name: &str) {
+        if (self.passes.len() as u32) < MAX_PASSES {
+            self.stamp(self.passes.len() as u32 * 2, false);
+            self.passes.push(pass);
+        }
+    }
+
+    fn end_pass(&mut self, pass: PassId) {
+        if let Some(i) = self.passes.iter().rposition(|&p| p == pass) {
+            self.stamp(i as u32 * 2 + 1, true);
+        }
+    }
+
+    fn end_frame(&mut self) -> Vec<GpuSample> {
+        let (Some(set), Some(resolve)) = (&self.set, &self.resolve) else { return Vec::new() };
+        if self.passes.is_empty() {
+            return Vec::new();
+        }
+        let n = self.passes.len() as u32 * 2;
+        let mut enc = self.device.create_command_encoder(&Default::default());
+        enc.resolve_query_set(set, 0..n, resolve, 0);
+        let Ok(bytes) = super::read_back(self.device, self.queue, enc, resolve, n as u64 * 8)
+        else {
+            return Vec::new();
+        };
+        let ticks: Vec<u64> = bytemuck::pod_collect_to_vec(&bytes);
+        let period = self.queue.get_timestamp_period() as f64 * 1e-6;
+        self.passes
+            .iter()
+            .enumerate()
+            .map(|(i, &pass)| GpuSample {
+                pass,
+                ms: ticks[2 * i + 1].saturating_sub(ticks[2 * i]) as f64 * period,
+                start_ms: None,
+            })
+            .collect()
+    }
+}

@@ -1,0 +1,192 @@
+//! Buffer, texture and pipeline helpers shared by the passes.
+
+use crate::EngineError;
+use wgpu::util::DeviceExt;
+
+/// A buffer initialised with `bytes` (at least 16 bytes, as empty storage is invalid).
+pub(crate) fn buffer_init(
+    device: &wgpu::Device,
+    label: &str,
+    bytes: &[u8],
+    usage: wgpu::BufferUsages,
+) -> wgpu::Buffer {
+    let mut padded;
+    let contents = if bytes.len() < 16 || bytes.len() % 4 != 0 {
+        padded = bytes.to_vec();
+        padded.resize(bytes.len().max(16).next_multiple_of(4), 0);
+        &padded[..]
+    } else {
+        bytes
+    };
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents,
+        usage,
+    })
+}
+
+pub(crate) fn storage(device: &wgpu::Device, label: &str, bytes: &[u8]) -> wgpu::Buffer {
+    buffer_init(
+        device,
+        label,
+        bytes,
+        wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
+    )
+}
+
+pub(crate) fn uniform(device: &wgpu::Device, label: &str, bytes: &[u8]) -> wgpu::Buffer {
+    buffer_init(device, label, bytes, wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST)
+}
+
+/// An uninitialised storage buffer of `size` bytes.
+pub(crate) fn storage_empty(device: &wgpu::Device, label: &str, size: u64) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: size.max(16).next_multiple_of(4),
+        usage: wgpu::BufferUsages::STORAGE
+            | wgpu::BufferUsages::COPY_DST
+            | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    })
+}
+
+/// Copies `size` bytes of `src` to a mappable buffer, submits `encoder`, waits, returns them.
+pub(crate) fn read_back(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    mut encoder: wgpu::CommandEncoder,
+    src: &wgpu::Buffer,
+    size: u64,
+) -> Result<Vec<u8>, EngineError> {
+    let staging = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("readback"),
+        size: size.max(4),
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    encoder.copy_buffer_to_buffer(src, 0, &staging, 0, size);
+    queue.submit([encoder.finish()]);
+    map_read(device, &staging, size)
+}
+
+fn map_read(
+    device: &wgpu::Device,
+    staging: &wgpu::Buffer,
+    size: u64,
+) -> Result<Vec<u8>, EngineError> {
+    let slice = staging.slice(..size);
+    let (tx, rx) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| EngineError::Gpu(e.to_string()))?;
+    rx.recv()
+        .map_err(|e| EngineError::Gpu(e.to_string()))?
+        .map_err(|e| EngineError::Gpu(e.to_string()))?;
+    let data = slice.get_mapped_range().map_err(|e| EngineError::Gpu(e.to_string()))?.to_vec();
+    staging.unmap();
+    Ok(data)
+}
+
+/// Reads a whole 2D texture (`bytes_per_texel` per texel) back, rows unpadded.
+pub(crate) fn read_texture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    texture: &wgpu::Texture,
+    bytes_per_texel: u32,
+) -> Result<Vec<u8>, EngineError> {
+    let (w, h) = (texture.width(), texture.height());
+    let row = (w * bytes_per_texel).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+    let size = (row * h) as u64;
+    let staging = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("texture readback"),
+        size,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let mut enc = device.create_command_encoder(&Default::default());
+    enc.copy_texture_to_buffer(
+        texture.as_image_copy(),
+        wgpu::TexelCopyBufferInfo {
+            buffer: &staging,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(row),
+                rows_per_image: Some(h),
+            },
+        },
+        wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+    );
+    queue.submit([enc.finish()]);
+    let padded = map_read(device, &staging, size)?;
+    let tight = (w * bytes_per_texel) as usize;
+    let mut out = Vec::with_capacity(tight * h as usize);
+    for y in 0..h as usize {
+        out.extend_from_slice(&padded[y * row as usize..y * row as usize + tight]);
+    }
+    Ok(out)
+}
+
+/// A shader module; WGSL errors surface as [`EngineError::Gpu`] with the shader's name.
+pub(crate) fn shader(
+    device: &wgpu::Device,
+    label: &str,
+    source: &str,
+) -> Result<wgpu::ShaderModule, EngineError> {
+    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    });
+    match pollster::block_on(scope.pop()) {
+        Some(e) => Err(EngineError::Gpu(format!("shader {label}: {e}"))),
+        None => Ok(module),
+    }
+}
+
+/// A compute pipeline with an automatic layout.
+pub(crate) fn compute_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    source: &str,
+    entry: &str,
+) -> Result<wgpu::ComputePipeline, EngineError> {
+    let module = shader(device, label, source)?;
+    Ok(device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(label),
+        layout: None,
+        module: &module,
+        entry_point: Some(entry),
+        compilation_options: Default::default(),
+        cache: None,
+    }))
+}
+
+/// A bind group of `pipeline`'s group `group` from resources in binding order.
+pub(crate) fn bind_group(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    resources: &[wgpu::BindingResource<'_>],
+) -> wgpu::BindGroup {
+    let entries: Vec<wgpu::BindGroupEntry<'_>> = resources
+        .iter()
+        .enumerate()
+        .map(|(i, r)| wgpu::BindGroupEntry { binding: i as u32, resource: r.clone() })
+        .collect();
+    device.create_bind_group(&wgpu::BindGroupDescriptor { label: None, layout, entries: &entries })
+}
+
+/// One dispatch of `pipeline` with `bind` as group 0.
+pub(crate) fn dispatch(
+    enc: &mut wgpu::CommandEncoder,
+    pipeline: &wgpu::ComputePipeline,
+    bind: &wgpu::BindGroup,
+    groups: [u32; 3],
+) {
+    let mut pass = enc.begin_compute_pass(&Default::default());
+    pass.set_pipeline(pipeline);
+    pass.set_bind_group(0, bind, &[]);
+    pass.dispatch_workgroups(groups[0].max(1), groups[1].max(1), groups[2].max(1));
+}

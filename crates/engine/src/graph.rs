@@ -1,0 +1,356 @@
+//! The frame graph: every pass of the pipeline declared once with the condition under which
+//! it runs (from `scene::SceneNeeds`), the inputs and keys whose change makes it run again,
+//! and a body that calls the pass's plain function. `frame_scheduler` decides, runs (the CPU
+//! ray tracing on a worker thread while the GPU lights the view) and reports.
+
+use crate::frame::{FLAG_BLINN, FLAG_LPV, FLAG_SHADOWS, FLAG_SKY, FLAG_SKY_VOLUME, FrameUniform};
+use crate::gpu::read_texture;
+use crate::passes::lighting::LightingInputs;
+use crate::passes::raycast::RayBatch;
+use crate::settings::Specular;
+use crate::state::{FrameCtx, poisoned};
+use crate::trace::{TraceLighting, TraceSettings, trace_rays};
+use frame_scheduler::{Budget, FrameGraph, PassId, PassResult, Res, quantise_dir};
+use glam::Vec3;
+
+/// Traced radiance per ray of the batch.
+pub struct Traced(pub Vec<Vec3>);
+
+/// The frame as read back: linear HDR RGBA.
+pub struct HdrFrame {
+    pub width: u32,
+    pub height: u32,
+    pub pixels: Vec<[f32; 4]>,
+}
+
+/// Handles to the graph's resources the renderer reads.
+pub struct Outputs {
+    pub hdr: Res<HdrFrame>,
+    pub sky_volume: PassId,
+}
+
+/// Stable pass names (the report and the tests use them).
+pub mod pass {
+    pub const SKY_MAP: &str = "sky map";
+    pub const SKY_VOLUME: &str = "sky volume";
+    pub const SHADOW_MAPS: &str = "shadow maps";
+    pub const POINT_SHADOWS: &str = "point shadows";
+    pub const GBUFFER: &str = "g-buffer";
+    pub const LPV: &str = "rsm + lpv";
+    pub const RAY_CASTING: &str = "ray casting buffer";
+    pub const RAY_TRACING: &str = "ray tracing";
+    pub const LIGHTING: &str = "lighting";
+    pub const COMBINE: &str = "traced upload + combine";
+    pub const READBACK: &str = "readback";
+}
+
+fn camera_key(c: &FrameCtx) -> [i64; 6] {
+    let p = quantise_dir(c.camera.position.to_array(), 1e-3);
+    let f = quantise_dir(c.camera.forward.to_array(), 1e-5);
+    [p[0], p[1], p[2], f[0], f[1], f[2]]
+}
+
+fn sun_key(c: &FrameCtx) -> Option<[i64; 3]> {
+    c.sun.map(|s| quantise_dir(s.dir.to_array(), 1e-3))
+}
+
+/// Writes the frame uniform for this frame's camera, sun and enabled techniques.
+fn write_frame_uniform(c: &FrameCtx) {
+    let s = &c.state;
+    let set = &s.settings;
+    let mut u = FrameUniform::new(&c.camera, set.width, set.height);
+    if let Some(sun) = c.sun.filter(|_| c.needs.sun_lighting.needed) {
+        u.sun_dir = sun.dir.extend(1.0).to_array();
+        u.sun_irradiance = sun.irradiance.extend(sun.angular_radius).to_array();
+    }
+    let mut flags = 0;
+    if s.sky.is_some() && c.needs.sky_lighting.needed {
+        flags |= FLAG_SKY | FLAG_SKY_VOLUME;
+    }
+    if c.needs.indirect_lpv.needed {
+        flags |= FLAG_LPV;
+    }
+    if set.specular == Specular::BlinnPhong {
+        flags |= FLAG_BLINN;
+    }
+    let maps = s.shadow_maps.lock().ok();
+    let cube_size =
+        s.point_shadows.lock().ok().and_then(|c| c.as_ref().map(|c| c.size)).unwrap_or(0);
+    u.csm[2] = cube_size;
+    if let Some(m) = maps.as_ref().and_then(|m| m.as_ref()).filter(|_| c.needs.sun_shadows.needed) {
+        flags |= FLAG_SHADOWS;
+        u.csm = [m.count, m.resolution, cube_size, 0];
+        u.light_rot = m.light_rot;
+    }
+    let sky_size = s.sky.as_ref().and_then(|k| k.read().ok()).map_or(0, |k| k.map_size());
+    u.size = [set.width, set.height, s.scene_lights(), flags];
+    u.params = [set.ssao_radius, set.ssao_samples as f32, sky_size as f32, c.frame as f32];
+    s.gpu.queue.write_buffer(&s.frame, 0, bytemuck::bytes_of(&u));
+}
+
+/// Declares the pipeline.
+pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, Outputs) {
+    let mut g = FrameGraph::<FrameCtx>::new();
+    let sky_map = g.resource::<u64>("sky map");
+    let sky_vol = g.resource::<u64>("sky volume");
+    let shadow = g.resource::<u64>("sun shadow maps");
+    let gbuf = g.resource::<u64>("g-buffer");
+    let cubes = g.resource::<u64>("point-light cube maps");
+    let lpv = g.resource::<u64>("lpv");
+    let batch = g.resource::<RayBatch>("ray batch");
+    let traced = g.resource::<Traced>("traced radiance");
+    let lit = g.resource::<u64>("lit view");
+    let combined = g.resource::<u64>("combined view");
+    let hdr = g.resource::<HdrFrame>("hdr frame");
+    g.output(hdr);
+
+    g.sync_point(pass::SKY_MAP)
+        .writes(sky_map)
+        .run_if("the scene shows the sky and the sun is up", |c: &FrameCtx| {
+            c.state.sky.is_some() && c.needs.sky_lighting.needed
+        })
+        .key("sun direction (0.06 deg)", sun_key)
+        .run(move |io| -> PassResult {
+            let c = io.ctx();
+            let dir = c.sun.map_or(Vec3::Y, |s| s.dir);
+            if let Some(sky) = &c.state.sky {
+                sky.write().map_err(poisoned)?.build_map(&c.state.gpu, dir)?;
+            }
+            io.put(sky_map, c.frame)?;
+            Ok(())
+        });
+
+    let sky_volume = g
+        .gpu_pass(pass::SKY_VOLUME)
+        .reads(sky_map)
+        .writes(sky_vol)
+        .run_if("the scene shows the sky and the sun is up", |c: &FrameCtx| {
+            c.state.sky.is_some() && c.needs.sky_lighting.needed
+        })
+        .cached()
+        .amortised(sky_layers, Budget::Units(layers_per_frame))
+        .run(move |io| -> PassResult {
+            let c = io.ctx();
+            let layer = io.unit().map_or(0, |u| u.index);
+            if let Some(sky) = &c.state.sky {
+                sky.write().map_err(poisoned)?.fill_layers(&c.state.gpu, layer..layer + 1)?;
+            }
+            io.put(sky_vol, c.frame)?;
+            Ok(())
+        });
+
+    g.gpu_pass(pass::SHADOW_MAPS)
+        .writes(shadow)
+        .run_if("the sun casts shadows in view", |c: &FrameCtx| {
+            c.needs.sun_shadows.needed && c.sun.is_some()
+        })
+        .key("camera", camera_key)
+        .key("sun direction", sun_key)
+        .run(move |io| -> PassResult {
+            let c = io.ctx();
+            let s = &c.state;
+            let sun = c.sun.ok_or_else(|| crate::EngineError::Settings("no sun".into()))?;
+            let maps = s.shadow.render(
+                &s.gpu,
+                &s.scene,
+                &c.camera,
+                sun.dir,
+                sun.angular_radius,
+                &s.settings,
+            )?;
+            *s.shadow_maps.lock().map_err(poisoned)? = Some(maps);
+            io.put(shadow, c.frame)?;
+            Ok(())
+        });
+
+    g.gpu_pass(pass::POINT_SHADOWS)
+        .writes(cubes)
+        .run_if("a shadow-casting point light reaches geometry in view", |c: &FrameCtx| {
+            c.needs.point_light_shadows.needed
+        })
+        .cached()
+        .run(move |io| -> PassResult {
+            let c = io.ctx();
+            let s = &c.state;
+            let size = s.settings.point_shadow_resolution;
+            let cube = s.point_shadow.render(&s.gpu, &s.scene, &s.point_lights, size)?;
+            s.gpu.queue.write_buffer(&s.lights, 0, bytemuck::cast_slice(&cube.lights));
+            *s.point_shadows.lock().map_err(poisoned)? = Some(cube);
+            io.put(cubes, c.frame)?;
+            Ok(())
+        });
+
+    g.gpu_pass(pass::GBUFFER).writes(gbuf).key("camera", camera_key).run(move |io| -> PassResult {
+        let c = io.ctx();
+        let s = &c.state;
+        write_frame_uniform(c);
+        let mut enc = s.gpu.device.create_command_encoder(&Default::default());
+        s.gbuffer.record(&s.gpu.device, &mut enc, &s.targets, &s.frame, &s.scene);
+        s.gpu.queue.submit([enc.finish()]);
+        io.put(gbuf, c.frame)?;
+        Ok(())
+    });
+
+    g.gpu_pass(pass::LPV)
+        .writes(lpv)
+        .run_if("the sun lights diffuse surfaces (one indirect bounce)", |c: &FrameCtx| {
+            c.needs.indirect_lpv.needed && c.sun.is_some()
+        })
+        .key("camera cell (1 m)", |c: &FrameCtx| quantise_dir(c.camera.position.to_array(), 1.0))
+        .key("sun direction", sun_key)
+        .run(move |io| -> PassResult {
+            let c = io.ctx();
+            let sun = c.sun.ok_or_else(|| crate::EngineError::Settings("no sun".into()))?;
+            let mut l = c.state.lpv.write().map_err(poisoned)?;
+            l.update(&c.state.gpu, c.camera.position, sun.dir, sun.irradiance)?;
+            io.put(lpv, c.frame)?;
+            Ok(())
+        });
+
+    g.sync_point(pass::RAY_CASTING)
+        .reads(gbuf)
+        .reads(sky_vol)
+        .reads(lpv)
+        .writes(batch)
+        .run_if("a mirror or glass surface is in view", |c: &FrameCtx| c.needs.ray_tracing())
+        .cached()
+        .run(move |io| -> PassResult {
+            let c = io.ctx();
+            let s = &c.state;
+            write_frame_uniform(c);
+            let b = s.raycast.run(
+                &s.gpu.device,
+                &s.gpu.queue,
+                &s.targets,
+                &s.frame,
+                &s.scene.materials,
+            )?;
+            io.put(batch, b)?;
+            Ok(())
+        });
+
+    g.cpu_job(pass::RAY_TRACING)
+        .reads(batch)
+        .writes(traced)
+        .run_if("a mirror or glass surface is in view", |c: &FrameCtx| c.needs.ray_tracing())
+        .cached()
+        .run(move |io| -> PassResult {
+            let c = io.ctx();
+            let s = &c.state;
+            let b = io.read(batch)?;
+            let sky_guard = match &s.sky {
+                Some(k) => Some(k.read().map_err(poisoned)?),
+                None => None,
+            };
+            let lpv_guard = s.lpv.read().map_err(poisoned)?;
+            let use_lpv = c.needs.indirect_lpv.needed;
+            let use_sky = c.needs.sky_lighting.needed;
+            let sky_fn = |d: Vec3| {
+                sky_guard.as_ref().filter(|_| use_sky).map_or(Vec3::ZERO, |k| k.radiance(d))
+            };
+            let ambient = |p: Vec3, n: Vec3| {
+                let mut e = Vec3::ZERO;
+                if let Some(k) = sky_guard.as_ref().filter(|_| use_sky) {
+                    e += k.volume.irradiance(p, n);
+                }
+                if use_lpv {
+                    e += lpv_guard.lpv.irradiance(p, n);
+                }
+                e
+            };
+            let lighting = TraceLighting {
+                sun: c.sun.filter(|_| c.needs.sun_lighting.needed).map(|s| (s.dir, s.irradiance)),
+                point_lights: &s.point_lights,
+                sky: &sky_fn,
+                ambient: &ambient,
+            };
+            let settings = TraceSettings { max_depth: s.settings.trace_depth, alpha_test: true };
+            let radiance = trace_rays(&s.trace, &lighting, &b.rays, &settings);
+            io.put(traced, Traced(radiance))?;
+            Ok(())
+        });
+
+    g.gpu_pass(pass::LIGHTING)
+        .reads(gbuf)
+        .reads(shadow)
+        .reads(cubes)
+        .reads(sky_vol)
+        .reads(lpv)
+        .writes(lit)
+        .cached()
+        .run(move |io| -> PassResult {
+            let c = io.ctx();
+            let s = &c.state;
+            write_frame_uniform(c);
+            let maps = s.shadow_maps.lock().map_err(poisoned)?;
+            let sky = match &s.sky {
+                Some(k) => Some(k.read().map_err(poisoned)?),
+                None => None,
+            };
+            let lpv_state = s.lpv.read().map_err(poisoned)?;
+            let cube = s.point_shadows.lock().map_err(poisoned)?;
+            let inputs = LightingInputs {
+                frame: &s.frame,
+                shadows: maps.as_ref().filter(|_| c.needs.sun_shadows.needed),
+                shadow_fallback: &s.shadow_fallback,
+                sky: sky.as_deref(),
+                sky_volume: c.needs.sky_lighting.needed && sky.is_some(),
+                lpv: Some(&*lpv_state).filter(|_| c.needs.indirect_lpv.needed),
+                materials: &s.scene.materials,
+                lights: &s.lights,
+                cube_depths: cube.as_ref().map_or(&s.no_cube_depths, |c| &c.depths),
+            };
+            let mut enc = s.gpu.device.create_command_encoder(&Default::default());
+            s.lighting.record(&s.gpu.device, &mut enc, &s.targets, &inputs);
+            s.gpu.queue.submit([enc.finish()]);
+            io.put(lit, c.frame)?;
+            Ok(())
+        });
+
+    g.sync_point(pass::COMBINE)
+        .reads(lit)
+        .reads(batch)
+        .reads(traced)
+        .writes(combined)
+        .run_if("a mirror or glass surface is in view", |c: &FrameCtx| c.needs.ray_tracing())
+        .cached()
+        .run(move |io| -> PassResult {
+            let c = io.ctx();
+            let s = &c.state;
+            let (b, t) = (io.read(batch)?, io.read(traced)?);
+            s.combine.upload(&s.gpu.queue, b, &t.0);
+            let mut enc = s.gpu.device.create_command_encoder(&Default::default());
+            s.combine.record(
+                &s.gpu.device,
+                &mut enc,
+                &s.targets,
+                &s.frame,
+                &s.scene.materials,
+                &s.raycast,
+            );
+            s.gpu.queue.submit([enc.finish()]);
+            io.put(combined, c.frame)?;
+            Ok(())
+        });
+
+    g.sync_point(pass::READBACK).reads(lit).reads(combined).writes(hdr).cached().run(
+        move |io| -> PassResult {
+            let c = io.ctx();
+            let s = &c.state;
+            let t = &s.targets;
+            let texture = if io.try_read(combined).is_some() && c.needs.ray_tracing() {
+                &t.combined_texture
+            } else {
+                &t.lit_texture
+            };
+            let bytes = read_texture(&s.gpu.device, &s.gpu.queue, texture, 8)?;
+            let halves: Vec<half::f16> = bytemuck::pod_collect_to_vec(&bytes);
+            let pixels =
+                halves.chunks_exact(4).map(|h| [h[0], h[1], h[2], h[3]].map(f32::from)).collect();
+            s.gpu.take_error()?;
+            io.put(hdr, HdrFrame { width: t.width, height: t.height, pixels })?;
+            Ok(())
+        },
+    );
+    (g, Outputs { hdr, sky_volume })
+}

@@ -1,0 +1,129 @@
+//! G-buffer pass (thesis 3.2, Table 3.1): rasterises the opaque and alpha-tested geometry.
+
+use crate::EngineError;
+use crate::gpu::{GBUFFER_FORMATS, GBufferTargets, SceneBuffers, bind_group, shader};
+
+pub struct GBufferPass {
+    pipeline: wgpu::RenderPipeline,
+}
+
+impl GBufferPass {
+    pub fn new(device: &wgpu::Device, scene: &SceneBuffers) -> Result<Self, EngineError> {
+        let module = shader(device, "gbuffer", &crate::shaders::gbuffer())?;
+        let frame_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("gbuffer frame"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Storage { read_only: true },
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+            ],
+        });
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("gbuffer"),
+            bind_group_layouts: &[Some(&frame_layout), Some(&scene.material_layout)],
+            immediate_size: 0,
+        });
+        let targets: Vec<Option<wgpu::ColorTargetState>> =
+            GBUFFER_FORMATS.iter().map(|&f| Some(f.into())).collect();
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("gbuffer"),
+            layout: Some(&layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[Some(SceneBuffers::vertex_layout(false))],
+            },
+            primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: wgpu::TextureFormat::Depth32Float,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &targets,
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        Ok(Self { pipeline })
+    }
+
+    /// Records the pass into `enc`.
+    pub fn record(
+        &self,
+        device: &wgpu::Device,
+        enc: &mut wgpu::CommandEncoder,
+        targets: &GBufferTargets,
+        frame: &wgpu::Buffer,
+        scene: &SceneBuffers,
+    ) {
+        let frame_group = bind_group(
+            device,
+            &self.pipeline.get_bind_group_layout(0),
+            &[frame.as_entire_binding(), scene.materials.as_entire_binding()],
+        );
+        let clear = |view| {
+            Some(wgpu::RenderPassColorAttachment {
+                view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    store: wgpu::StoreOp::Store,
+                },
+            })
+        };
+        let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("gbuffer"),
+            color_attachments: &[
+                clear(&targets.albedo),
+                clear(&targets.normal),
+                clear(&targets.geometry),
+                clear(&targets.depth),
+            ],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &targets.zbuffer,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &frame_group, &[]);
+        pass.set_vertex_buffer(0, scene.vertices.slice(..));
+        pass.set_index_buffer(scene.indices.slice(..), wgpu::IndexFormat::Uint32);
+        for d in &scene.draws {
+            pass.set_bind_group(1, &scene.material_groups[d.material as usize], &[]);
+            pass.draw_indexed(d.first_index..d.first_index + d.index_count, 0, 0..1);
+        }
+    }
+}

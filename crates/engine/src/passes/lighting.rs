@@ -1,0 +1,174 @@
+//! Deferred lighting of the main view (thesis 3.3 and 5.3.6-5.3.8): per-pixel lookup queries
+//! from the G-buffer, the sky-volume and LPV lookups by their crates' kernels, then one
+//! full-screen pass (`shaders/engine/lighting.wgsl`) into the HDR target.
+
+use super::{lpv::LpvState, shadow::ShadowMaps, sky::SkyState};
+use crate::EngineError;
+use crate::gpu::{
+    GBufferTargets, HDR_FORMAT, bind_group, compute_pipeline, dispatch, shader, storage,
+    storage_empty,
+};
+use bytemuck::{Pod, Zeroable};
+
+/// A point light as the shader reads it.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct GpuPointLight {
+    /// Position, radius of influence.
+    pub position: [f32; 4],
+    /// Colour (intensity), index of its cube shadow map (-1: none).
+    pub color: [f32; 4],
+    /// World to clip of the six cube faces.
+    pub faces: [[[f32; 4]; 4]; 6],
+}
+const _: () = assert!(std::mem::size_of::<GpuPointLight>() == 416);
+
+pub struct LightingPass {
+    queries: wgpu::ComputePipeline,
+    pipeline: wgpu::RenderPipeline,
+    sky_q: wgpu::Buffer,
+    lpv_q: wgpu::Buffer,
+    pub sky_out: wgpu::Buffer,
+    pub lpv_out: wgpu::Buffer,
+    pixels: u32,
+}
+
+/// What the lighting pass reads besides the G-buffer.
+pub struct LightingInputs<'a> {
+    pub frame: &'a wgpu::Buffer,
+    pub shadows: Option<&'a ShadowMaps>,
+    pub shadow_fallback: &'a wgpu::TextureView,
+    pub sky: Option<&'a SkyState>,
+    /// Run the sky-volume lookup this frame.
+    pub sky_volume: bool,
+    pub lpv: Option<&'a LpvState>,
+    pub materials: &'a wgpu::Buffer,
+    pub lights: &'a wgpu::Buffer,
+    pub cube_depths: &'a wgpu::Buffer,
+}
+
+impl LightingPass {
+    pub fn new(device: &wgpu::Device, targets: &GBufferTargets) -> Result<Self, EngineError> {
+        let module = shader(device, "lighting", &crate::shaders::lighting())?;
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("lighting"),
+            layout: None,
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_fullscreen"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: Default::default(),
+            depth_stencil: None,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_lighting"),
+                compilation_options: Default::default(),
+                targets: &[Some(HDR_FORMAT.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        let n = targets.pixels() as u64;
+        Ok(Self {
+            queries: compute_pipeline(
+                device,
+                "lookup queries",
+                &crate::shaders::queries(),
+                "main",
+            )?,
+            pipeline,
+            sky_q: storage_empty(device, "sky queries", n * 48),
+            lpv_q: storage_empty(device, "lpv queries", n * 32),
+            sky_out: storage_empty(device, "sky light", n * 16),
+            lpv_out: storage_empty(device, "lpv light", n * 16),
+            pixels: n as u32,
+        })
+    }
+
+    /// Records the queries, the lookups that are needed, and the lighting.
+    pub fn record(
+        &self,
+        device: &wgpu::Device,
+        enc: &mut wgpu::CommandEncoder,
+        targets: &GBufferTargets,
+        inputs: &LightingInputs<'_>,
+    ) {
+        let tv = wgpu::BindingResource::TextureView;
+        if inputs.sky_volume || inputs.lpv.is_some() {
+            let bg = bind_group(
+                device,
+                &self.queries.get_bind_group_layout(0),
+                &[
+                    inputs.frame.as_entire_binding(),
+                    tv(&targets.normal),
+                    tv(&targets.depth),
+                    self.sky_q.as_entire_binding(),
+                    self.lpv_q.as_entire_binding(),
+                ],
+            );
+            dispatch(
+                enc,
+                &self.queries,
+                &bg,
+                [targets.width.div_ceil(8), targets.height.div_ceil(8), 1],
+            );
+        }
+        if let (true, Some(sky)) = (inputs.sky_volume, inputs.sky) {
+            sky.record_lookup(device, enc, &self.sky_q, &self.sky_out, self.pixels);
+        }
+        if let Some(lpv) = inputs.lpv {
+            lpv.record_lookup(device, enc, &self.lpv_q, &self.lpv_out, self.pixels);
+        }
+        let empty;
+        let (shadow_view, cascades, taps) = match inputs.shadows {
+            Some(s) => (&s.array, &s.cascades, &s.taps),
+            None => {
+                empty = storage(device, "no cascades", &[0u8; 128]);
+                (inputs.shadow_fallback, &empty, &empty)
+            }
+        };
+        let skymap = inputs.sky.map(|s| &s.map_buffer).unwrap_or(inputs.lights);
+        let bg = bind_group(
+            device,
+            &self.pipeline.get_bind_group_layout(0),
+            &[
+                inputs.frame.as_entire_binding(),
+                tv(&targets.albedo),
+                tv(&targets.normal),
+                tv(&targets.geometry),
+                tv(&targets.depth),
+                tv(shadow_view),
+                cascades.as_entire_binding(),
+                taps.as_entire_binding(),
+                self.sky_out.as_entire_binding(),
+                self.lpv_out.as_entire_binding(),
+                inputs.materials.as_entire_binding(),
+                skymap.as_entire_binding(),
+                inputs.lights.as_entire_binding(),
+                inputs.cube_depths.as_entire_binding(),
+            ],
+        );
+        let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("lighting"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &targets.lit,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: None,
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &bg, &[]);
+        pass.draw(0..3, 0..1);
+    }
+}

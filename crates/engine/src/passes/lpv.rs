@@ -1,0 +1,180 @@
+//! Indirect sunlight through light propagation volumes (thesis 5.2, 5.3.7): a reflective
+//! shadow map of the sun over the cascades (`shadows::gpu::RsmPass`), its texels as VPLs,
+//! injection and propagation on the GPU (`lpv::gpu::GpuLpv`), and a per-pixel lookup by the
+//! crate's own kernel.
+
+use crate::gpu::{Gpu, bind_group, compute_pipeline, dispatch, storage, uniform};
+use crate::{EngineError, Settings};
+use glam::{Mat4, Vec3};
+use lpv::gpu::{GpuGrid, GpuLookupParams};
+use lpv::{Lpv, Surfel, Vpl};
+use shadows::{LightBasis, ShadowView};
+
+/// Per-mesh world-space data for the RSM pass.
+struct RsmMesh {
+    positions: Vec<Vec3>,
+    normals: Vec<Vec3>,
+    indices: Vec<u32>,
+    albedo: Vec3,
+}
+
+pub struct LpvState {
+    pub lpv: Lpv,
+    gpu_lpv: lpv::gpu::GpuLpv,
+    rsm: shadows::gpu::RsmPass,
+    meshes: Vec<RsmMesh>,
+    rsm_resolution: u32,
+    pub volumes: wgpu::Buffer,
+    lookup: wgpu::ComputePipeline,
+    pub vpl_count: usize,
+    /// Inject and propagate with the GPU kernels (else the crate's CPU path).
+    pub on_gpu: bool,
+}
+
+impl LpvState {
+    pub fn new(gpu: &Gpu, scene: &scene::Scene, settings: &Settings) -> Result<Self, EngineError> {
+        let lpv = Lpv::new(settings.lpv).map_err(|e| EngineError::technique("lpv", e))?;
+        let rsm = shadows::gpu::RsmPass::new(&gpu.device)
+            .map_err(|e| EngineError::technique("shadows", e))?;
+        let meshes = scene
+            .meshes
+            .iter()
+            .filter(|m| !m.indices.is_empty())
+            .map(|m| {
+                let nm = m.normal_matrix();
+                let mat = scene.material(m.material);
+                RsmMesh {
+                    positions: m
+                        .positions
+                        .iter()
+                        .map(|&p| m.transform.transform_point3(p))
+                        .collect(),
+                    normals: (0..m.positions.len())
+                        .map(|k| {
+                            m.normals.get(k).map_or(Vec3::Y, |&n| (nm * n).normalize_or(Vec3::Y))
+                        })
+                        .collect(),
+                    indices: m.indices.iter().flatten().copied().collect(),
+                    albedo: mat.map_or(Vec3::ZERO, |mat| {
+                        mat.albedo * (1.0 - mat.reflectivity - mat.transparency).max(0.0)
+                    }),
+                }
+            })
+            .collect();
+        Ok(Self {
+            lpv,
+            gpu_lpv: lpv::gpu::GpuLpv::new(&gpu.device),
+            rsm,
+            meshes,
+            rsm_resolution: settings.rsm_resolution,
+            volumes: storage(&gpu.device, "lpv volumes", &[0u8; 16]),
+            lookup: compute_pipeline(&gpu.device, "lpv lookup", lpv::gpu::LOOKUP_WGSL, "lookup")?,
+            vpl_count: 0,
+            on_gpu: settings.lpv_on_gpu.unwrap_or(!gpu.software),
+        })
+    }
+
+    /// Re-centres the cascades on `eye`, renders the sun's RSM over them, injects and
+    /// propagates, and uploads the volumes for the lookup.
+    pub fn update(
+        &mut self,
+        gpu: &Gpu,
+        eye: Vec3,
+        sun_dir: Vec3,
+        sun_irradiance: Vec3,
+    ) -> Result<(), EngineError> {
+        let tech = |e| EngineError::technique("shadows", e);
+        self.lpv.follow(eye);
+        let coarsest = self.lpv.cascades().last().map(|c| c.grid);
+        let Some(grid) = coarsest else { return Ok(()) };
+        let half = grid.extent() as f64 * 0.5;
+        let center = grid.origin.as_dvec3() + glam::DVec3::splat(half);
+        let basis = LightBasis::new(-sun_dir).map_err(tech)?;
+        let view = ShadowView::fit_sphere(
+            basis,
+            center,
+            half * 3f64.sqrt(),
+            self.rsm_resolution,
+            200.0,
+            true,
+        );
+        let gpu_meshes: Vec<shadows::gpu::GpuMesh<'_>> = self
+            .meshes
+            .iter()
+            .map(|m| shadows::gpu::GpuMesh {
+                positions: &m.positions,
+                normals: &m.normals,
+                indices: &m.indices,
+                model: Mat4::IDENTITY,
+                albedo: m.albedo,
+            })
+            .collect();
+        let (rsm, _depth) = self
+            .rsm
+            .render(&gpu.device, &gpu.queue, &gpu_meshes, &view, sun_irradiance)
+            .map_err(tech)?;
+        let vpls: Vec<Vpl> = rsm
+            .extract_vpls(1)
+            .map_err(tech)?
+            .into_iter()
+            .map(|v| Vpl::new(v.position, v.normal, v.flux))
+            .collect();
+        let texel_area = (view.texel_size * view.texel_size) as f32;
+        let surfels: Vec<Surfel> = if self.lpv.settings().geometry_volume {
+            rsm.position
+                .iter()
+                .zip(&rsm.normal)
+                .filter(|(_, n)| n.length_squared() > 0.0)
+                .map(|(&p, &n)| Surfel::new(p, n, texel_area / n.dot(-sun_dir).abs().max(0.2)))
+                .collect()
+        } else {
+            Vec::new()
+        };
+        self.vpl_count = vpls.len();
+        if self.on_gpu {
+            self.gpu_lpv
+                .update(&gpu.device, &gpu.queue, &mut self.lpv, &vpls, &surfels)
+                .map_err(|e| EngineError::technique("lpv", e))?;
+        } else {
+            self.lpv.update(&vpls, &surfels);
+        }
+        let data: Vec<f32> =
+            self.lpv.cascades().iter().flat_map(|c| c.volume.data.iter().copied()).collect();
+        self.volumes = storage(&gpu.device, "lpv volumes", bytemuck::cast_slice(&data));
+        Ok(())
+    }
+
+    /// Records the per-pixel irradiance lookup from `queries` (position, normal) to `out`.
+    pub fn record_lookup(
+        &self,
+        device: &wgpu::Device,
+        enc: &mut wgpu::CommandEncoder,
+        queries: &wgpu::Buffer,
+        out: &wgpu::Buffer,
+        count: u32,
+    ) {
+        let s = self.lpv.settings();
+        let mut params = GpuLookupParams {
+            cascades: self.lpv.cascades().len() as u32,
+            blend_cells: s.blend_cells,
+            offset_cells: s.lookup_offset_cells,
+            count,
+            ..Default::default()
+        };
+        for (i, c) in self.lpv.cascades().iter().enumerate().take(4) {
+            params.grids[i] = GpuGrid::new(&c.grid, 0, 1.0, 0);
+        }
+        let params = uniform(device, "lpv lookup", bytemuck::bytes_of(&params));
+        let bg = bind_group(
+            device,
+            &self.lookup.get_bind_group_layout(0),
+            &[
+                params.as_entire_binding(),
+                self.volumes.as_entire_binding(),
+                queries.as_entire_binding(),
+                out.as_entire_binding(),
+            ],
+        );
+        dispatch(enc, &self.lookup, &bg, [count.div_ceil(64), 1, 1]);
+    }
+}

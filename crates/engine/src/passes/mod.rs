@@ -1,0 +1,12 @@
+//! One file per pass; each pass is a struct of its pipelines and a plain function that
+//! records or runs it.
+
+pub mod combine;
+pub mod gbuffer;
+pub mod lighting;
+pub mod lpv;
+pub mod point_shadows;
+pub mod raycast;
+pub mod shadow;
+pub mod sky;
+pub mod tonemap;

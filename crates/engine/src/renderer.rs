@@ -1,0 +1,197 @@
+//! The public face of the engine: a [`Renderer`] made from a scene and [`Settings`], a camera
+//! and a sun to move, and [`Renderer::render_frame`], which returns the image and the report
+//! of every pass.
+
+use crate::gpu::TimestampTimer;
+use crate::graph::{self, HdrFrame, pass};
+use crate::passes::tonemap::{ToneMapper, log_average};
+use crate::state::{FrameCtx, State, SunLight};
+use crate::{EngineError, Settings};
+use frame_scheduler::{FrameReport, PassId, Res, Scheduler};
+use glam::Vec3;
+use std::path::Path;
+use std::sync::Arc;
+use std::time::Instant;
+
+/// One rendered frame.
+pub struct Frame {
+    pub width: u32,
+    pub height: u32,
+    /// Linear HDR radiance, row-major, top row first.
+    pub hdr: Arc<HdrFrame>,
+    /// Tone-mapped sRGB, RGBA8.
+    pub ldr: Vec<u8>,
+    /// Every pass: ran, skipped or reused, why, and its cost.
+    pub report: FrameReport,
+    /// Wall-clock time of the frame (scheduling, GPU waits, CPU work, read-back).
+    pub wall_ms: f64,
+    /// Whether the ray-tracing pass ran in this frame.
+    pub ray_traced: bool,
+    pub needs: scene::SceneNeeds,
+}
+
+impl Frame {
+    /// The HDR image as `reference::Image` (for comparisons and EXR output).
+    pub fn image(&self) -> reference::Image {
+        let mut im = reference::Image::new(self.width, self.height);
+        im.pixels = self.hdr.pixels.iter().map(|p| Vec3::new(p[0], p[1], p[2])).collect();
+        im
+    }
+
+    /// Writes the linear HDR frame as OpenEXR.
+    pub fn write_exr(&self, path: impl AsRef<Path>) -> Result<(), EngineError> {
+        let path = path.as_ref();
+        self.image().write_exr(path).map_err(|e| io_err(path, e))
+    }
+
+    /// Writes the tone-mapped frame as PNG.
+    pub fn write_png(&self, path: impl AsRef<Path>) -> Result<(), EngineError> {
+        let path = path.as_ref();
+        image::save_buffer(path, &self.ldr, self.width, self.height, image::ColorType::Rgba8)
+            .map_err(|e| io_err(path, e))
+    }
+}
+
+pub(crate) fn io_err(path: &Path, e: impl std::fmt::Display) -> EngineError {
+    EngineError::Io { path: path.display().to_string(), message: e.to_string() }
+}
+
+/// The hybrid renderer.
+pub struct Renderer {
+    state: Arc<State>,
+    scheduler: Scheduler<FrameCtx>,
+    hdr: Res<HdrFrame>,
+    sky_volume: PassId,
+    scene: scene::Scene,
+    camera: scene::Camera,
+    tonemapper: ToneMapper,
+    last_frame: Option<Instant>,
+    /// Seconds per frame for eye adaptation (None: wall clock).
+    fixed_dt: Option<f32>,
+}
+
+impl Renderer {
+    /// Opens the GPU, uploads `scene` and builds every pass for `settings`.
+    pub fn new(scene: scene::Scene, settings: Settings) -> Result<Self, EngineError> {
+        let state = Arc::new(State::new(&scene, settings)?);
+        let layers = state.sky.as_ref().map_or(1, |s| s.read().map_or(1, |s| s.layers()));
+        let (g, out) = graph::build(layers, state.settings.sky_layers_per_frame);
+        let scheduler =
+            g.build().map_err(|e| EngineError::Settings(format!("frame graph: {e}")))?;
+        let mut camera = scene.camera;
+        camera.aspect = state.settings.width as f32 / state.settings.height as f32;
+        Ok(Self {
+            state,
+            scheduler,
+            hdr: out.hdr,
+            sky_volume: out.sky_volume,
+            scene,
+            camera,
+            tonemapper: ToneMapper::default(),
+            last_frame: None,
+            fixed_dt: None,
+        })
+    }
+
+    /// The adapter's description, e.g. `llvmpipe (LLVM 15.0.7, 256 bits) (Vulkan, Cpu)`.
+    pub fn adapter(&self) -> &str {
+        &self.state.gpu.adapter
+    }
+
+    /// True on a software adapter (Mesa): its timings are CPU timings.
+    pub fn is_software(&self) -> bool {
+        self.state.gpu.software
+    }
+
+    pub fn settings(&self) -> &Settings {
+        &self.state.settings
+    }
+
+    pub fn scene(&self) -> &scene::Scene {
+        &self.scene
+    }
+
+    pub fn camera(&self) -> &scene::Camera {
+        &self.camera
+    }
+
+    /// Moves the camera (its aspect is set to the image's).
+    pub fn set_camera(&mut self, mut camera: scene::Camera) {
+        camera.aspect = self.state.settings.width as f32 / self.state.settings.height as f32;
+        self.camera = camera;
+    }
+
+    /// Changes the sun (time of day); the sky map and volume follow when it moved.
+    pub fn set_sun(&mut self, sun: Option<scene::Sun>) {
+        self.scene.sun = sun;
+    }
+
+    /// Eye adaptation advances by `dt` seconds per frame instead of the wall clock (for
+    /// reproducible images).
+    pub fn set_fixed_frame_time(&mut self, dt: Option<f32>) {
+        self.fixed_dt = dt;
+    }
+
+    /// Whether the amortised sky volume has completed its current cycle.
+    pub fn sky_volume_complete(&self) -> bool {
+        self.scheduler.progress(self.sky_volume).is_some_and(|p| p.complete())
+    }
+
+    /// Frames the sky volume needs for one complete fill.
+    pub fn sky_volume_frames(&self) -> u32 {
+        let layers = self.state.sky.as_ref().map_or(0, |s| s.read().map_or(0, |s| s.layers()));
+        layers.div_ceil(self.state.settings.sky_layers_per_frame)
+    }
+
+    fn sun_light(&self) -> Result<Option<SunLight>, EngineError> {
+        let Some(sun) = &self.scene.sun else { return Ok(None) };
+        let dir = sun.direction()?;
+        let irradiance = match &self.state.sky {
+            Some(sky) => sky.read().map_err(crate::state::poisoned)?.sun_irradiance(sun.color, dir),
+            None => sun.color,
+        };
+        Ok(Some(SunLight { dir, irradiance, angular_radius: sun.angular_radius }))
+    }
+
+    /// Renders one frame.
+    pub fn render_frame(&mut self) -> Result<Frame, EngineError> {
+        let t0 = Instant::now();
+        let needs = scene::SceneNeeds::of(&self.scene, &self.camera);
+        let ctx = FrameCtx {
+            state: Arc::clone(&self.state),
+            camera: self.camera,
+            needs: needs.clone(),
+            sun: self.sun_light()?,
+            frame: self.scheduler.frames(),
+        };
+        let mut timer = TimestampTimer::new(&self.state.gpu.device, &self.state.gpu.queue);
+        let report = self.scheduler.run_frame_timed(&ctx, &mut timer).map_err(|e| match e {
+            frame_scheduler::FrameError::PassFailed { pass, source, .. } => {
+                EngineError::Pass { pass, message: source.to_string() }
+            }
+        })?;
+        let hdr = self
+            .scheduler
+            .get(self.hdr)
+            .ok_or_else(|| EngineError::Gpu("the frame was not read back".into()))?;
+        let now = Instant::now();
+        let dt = self.fixed_dt.unwrap_or_else(|| {
+            self.last_frame.map_or(0.0, |l| now.duration_since(l).as_secs_f32())
+        });
+        self.last_frame = Some(now);
+        let s = &self.state.settings;
+        self.tonemapper.adapt(log_average(&hdr.pixels), dt, s.adaptation_per_s);
+        let ldr = self.tonemapper.map(&hdr.pixels, s.key);
+        let ray_traced = report.pass(pass::RAY_TRACING).is_some_and(|p| p.outcome.executed());
+        Ok(Frame {
+            width: hdr.width,
+            height: hdr.height,
+            hdr,
+            ldr,
+            report,
+            wall_ms: t0.elapsed().as_secs_f64() * 1e3,
+            ray_traced,
+            needs,
+        })
+    }
+}

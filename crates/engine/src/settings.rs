@@ -1,0 +1,176 @@
+//! Quality presets: one switch that sets every technique's knobs at once.
+
+use crate::EngineError;
+use std::fmt;
+use std::str::FromStr;
+
+/// A quality preset.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Preset {
+    Low,
+    #[default]
+    Default,
+    High,
+}
+
+impl Preset {
+    pub const ALL: [Preset; 3] = [Preset::Low, Preset::Default, Preset::High];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Preset::Low => "low",
+            Preset::Default => "default",
+            Preset::High => "high",
+        }
+    }
+}
+
+impl fmt::Display for Preset {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Preset {
+    type Err = EngineError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Preset::ALL.into_iter().find(|p| p.name() == s).ok_or_else(|| {
+            EngineError::Settings(format!("unknown preset {s:?} (low, default, high)"))
+        })
+    }
+}
+
+/// Specular model of the deferred pass (thesis 3.3: Phong; Blinn-Phong as an option).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Specular {
+    #[default]
+    Phong,
+    BlinnPhong,
+}
+
+/// Every knob of the engine. Build with [`Settings::preset`] and adjust fields.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Settings {
+    pub width: u32,
+    pub height: u32,
+    pub preset: Preset,
+    /// Sun cascades and their resolution (thesis 4.2: 4 x 1024²).
+    pub csm_cascades: u32,
+    pub csm_resolution: u32,
+    /// PCSS blocker-search and PCF taps (0 PCF taps: hard shadows).
+    pub pcss_blocker_taps: u32,
+    pub pcss_pcf_taps: u32,
+    /// Point-light shadows (cube maps) are rendered when a light is in range.
+    pub point_shadow_resolution: u32,
+    /// Sky volume: hemisphere samples per point and layers filled per frame (thesis 5.3.5:
+    /// one layer per frame).
+    pub sky_samples: usize,
+    pub sky_layers_per_frame: u32,
+    /// Sky map resolution (thesis 4.3: 256²).
+    pub sky_map_size: u32,
+    /// LPV: cells per axis, cascades, propagation iterations, geometry volume, RSM size.
+    #[serde(skip)]
+    pub lpv: lpv::LpvSettings,
+    pub rsm_resolution: u32,
+    /// Inject and propagate the LPV on the GPU (`None`: on a hardware GPU yes; on a software
+    /// adapter the crate's multi-threaded CPU path, which is several times faster than Mesa's
+    /// emulation of the compute kernels).
+    pub lpv_on_gpu: Option<bool>,
+    /// SSAO samples (0: off), radius in metres (thesis 5.3.8).
+    pub ssao_samples: u32,
+    pub ssao_radius: f32,
+    /// Ray tracing: on when the scene needs it; depth 1 is the thesis (no recursion).
+    pub trace_depth: u32,
+    pub specular: Specular,
+    /// Reinhard key (middle grey) and eye adaptation rate per second (thesis 3.7).
+    pub key: f32,
+    pub adaptation_per_s: f32,
+}
+
+impl Settings {
+    /// The settings of a preset at `width x height`.
+    pub fn preset(preset: Preset, width: u32, height: u32) -> Self {
+        let base = Self {
+            width,
+            height,
+            preset,
+            csm_cascades: 4,
+            csm_resolution: 1024,
+            pcss_blocker_taps: 16,
+            pcss_pcf_taps: 16,
+            point_shadow_resolution: 256,
+            sky_samples: 100,
+            sky_layers_per_frame: 4,
+            sky_map_size: 256,
+            lpv: lpv::LpvSettings::default_preset(),
+            rsm_resolution: 256,
+            lpv_on_gpu: None,
+            ssao_samples: 8,
+            ssao_radius: 0.5,
+            trace_depth: 1,
+            specular: Specular::Phong,
+            key: 0.18,
+            adaptation_per_s: 1.5,
+        };
+        match preset {
+            Preset::Low => Self {
+                csm_cascades: 3,
+                csm_resolution: 512,
+                pcss_blocker_taps: 8,
+                pcss_pcf_taps: 8,
+                point_shadow_resolution: 128,
+                sky_samples: 64,
+                sky_layers_per_frame: 16,
+                sky_map_size: 128,
+                lpv: lpv::LpvSettings::low(),
+                rsm_resolution: 128,
+                ssao_samples: 0,
+                ..base
+            },
+            Preset::Default => base,
+            Preset::High => Self {
+                csm_resolution: 2048,
+                pcss_blocker_taps: 32,
+                pcss_pcf_taps: 32,
+                point_shadow_resolution: 512,
+                sky_samples: 256,
+                lpv: lpv::LpvSettings::high(),
+                rsm_resolution: 512,
+                ssao_samples: 16,
+                trace_depth: 2,
+                ..base
+            },
+        }
+    }
+
+    /// Rejects sizes and knobs the passes cannot work with.
+    pub fn validate(&self) -> Result<(), EngineError> {
+        let bad = |m: String| Err(EngineError::Settings(m));
+        if self.width < 8 || self.height < 8 || self.width > 8192 || self.height > 8192 {
+            return bad(format!("image size {}x{} (8..8192 per side)", self.width, self.height));
+        }
+        if !(1..=4).contains(&self.csm_cascades) {
+            return bad(format!("{} cascades (1..4)", self.csm_cascades));
+        }
+        if !(64..=4096).contains(&self.csm_resolution)
+            || !(16..=2048).contains(&self.rsm_resolution)
+        {
+            return bad("shadow map or RSM resolution out of range".into());
+        }
+        if self.pcss_blocker_taps > 64 || self.pcss_pcf_taps > 64 || self.ssao_samples > 64 {
+            return bad("at most 64 PCSS or SSAO taps".into());
+        }
+        if self.sky_samples == 0 || self.sky_layers_per_frame == 0 {
+            return bad("sky volume needs samples and at least one layer per frame".into());
+        }
+        if !(1..=3).contains(&self.trace_depth) {
+            return bad(format!("trace depth {} (1..3)", self.trace_depth));
+        }
+        if !(self.key > 0.0 && self.adaptation_per_s >= 0.0) {
+            return bad("tone-mapping key must be positive".into());
+        }
+        self.lpv.validate().map_err(|e| EngineError::Settings(e.to_string()))
+    }
+}

@@ -1,0 +1,39 @@
+//! The engine's WGSL (`shaders/engine/`), with the snippets each shader includes.
+
+const COMMON: &str = include_str!("../../../shaders/engine/common.inc.wgsl");
+const GBUFFER: &str = include_str!("../../../shaders/engine/gbuffer.wgsl");
+const LIGHTING: &str = include_str!("../../../shaders/engine/lighting.wgsl");
+const QUERIES: &str = include_str!("../../../shaders/engine/queries.wgsl");
+const RAYCAST: &str = include_str!("../../../shaders/engine/raycast.wgsl");
+const COMBINE: &str = include_str!("../../../shaders/engine/combine.wgsl");
+
+/// Every complete shader as `(name, source)`, for the pipelines and the naga test.
+pub fn all() -> Vec<(&'static str, String)> {
+    vec![
+        ("gbuffer", gbuffer()),
+        ("lighting", lighting()),
+        ("queries", queries()),
+        ("raycast", raycast()),
+        ("combine", combine()),
+    ]
+}
+
+pub fn gbuffer() -> String {
+    format!("{COMMON}\n{GBUFFER}")
+}
+
+pub fn lighting() -> String {
+    format!("{COMMON}\n{}\n{LIGHTING}", shadows::gpu::PCSS_INC_WGSL)
+}
+
+pub fn queries() -> String {
+    format!("{COMMON}\n{QUERIES}")
+}
+
+pub fn raycast() -> String {
+    format!("{COMMON}\n{RAYCAST}")
+}
+
+pub fn combine() -> String {
+    format!("{COMMON}\n{COMBINE}")
+}

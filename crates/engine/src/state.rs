@@ -1,0 +1,133 @@
+//! The renderer's GPU and technique state that the pass bodies share, and the per-frame
+//! context the scheduler evaluates conditions and keys on.
+
+use crate::gpu::{GBufferTargets, Gpu, SceneBuffers, storage, uniform};
+use crate::passes::{
+    combine::CombinePass,
+    gbuffer::GBufferPass,
+    lighting::LightingPass,
+    lpv::LpvState,
+    point_shadows::{PointShadowPass, PointShadows, gpu_lights},
+    raycast::RayCastPass,
+    shadow::ShadowMaps,
+    shadow::ShadowPass,
+    sky::SkyState,
+};
+use crate::trace::TraceScene;
+use crate::{EngineError, Settings};
+use glam::Vec3;
+use std::sync::{Mutex, RwLock};
+
+/// Everything the passes read and write, built once per scene and settings.
+pub struct State {
+    pub gpu: Gpu,
+    pub settings: Settings,
+    pub scene: SceneBuffers,
+    pub targets: GBufferTargets,
+    pub gbuffer: GBufferPass,
+    pub shadow: ShadowPass,
+    pub lighting: LightingPass,
+    pub raycast: RayCastPass,
+    pub combine: CombinePass,
+    pub sky: Option<RwLock<SkyState>>,
+    pub lpv: RwLock<LpvState>,
+    pub trace: TraceScene,
+    pub frame: wgpu::Buffer,
+    pub lights: wgpu::Buffer,
+    pub shadow_maps: Mutex<Option<ShadowMaps>>,
+    pub point_shadow: PointShadowPass,
+    pub point_shadows: Mutex<Option<PointShadows>>,
+    pub no_cube_depths: wgpu::Buffer,
+    pub shadow_fallback: wgpu::TextureView,
+    pub point_lights: Vec<scene::PointLight>,
+}
+
+/// The sun as the passes light with it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SunLight {
+    /// Unit direction towards the sun.
+    pub dir: Vec3,
+    /// Irradiance at the ground (RGB).
+    pub irradiance: Vec3,
+    pub angular_radius: f32,
+}
+
+/// What one frame is rendered from.
+pub struct FrameCtx {
+    pub state: std::sync::Arc<State>,
+    pub camera: scene::Camera,
+    pub needs: scene::SceneNeeds,
+    pub sun: Option<SunLight>,
+    pub frame: u64,
+}
+
+impl State {
+    pub fn new(scene: &scene::Scene, settings: Settings) -> Result<Self, EngineError> {
+        settings.validate()?;
+        scene.validate()?;
+        let gpu = Gpu::new()?;
+        let device = &gpu.device;
+        let buffers = SceneBuffers::new(device, &gpu.queue, scene);
+        let targets = GBufferTargets::new(device, settings.width, settings.height);
+        let sky = if scene.sky {
+            Some(RwLock::new(SkyState::new(&gpu, scene, &settings)?))
+        } else {
+            None
+        };
+        let lights = gpu_lights(&scene.point_lights);
+        let state = Self {
+            gbuffer: GBufferPass::new(device, &buffers)?,
+            shadow: ShadowPass::new(device, &settings)?,
+            lighting: LightingPass::new(device, &targets)?,
+            raycast: RayCastPass::new(device, &targets)?,
+            combine: CombinePass::new(device, &targets)?,
+            lpv: RwLock::new(LpvState::new(&gpu, scene, &settings)?),
+            trace: TraceScene::new(scene)?,
+            frame: uniform(
+                device,
+                "frame",
+                &[0u8; std::mem::size_of::<crate::frame::FrameUniform>()],
+            ),
+            lights: storage(device, "point lights", bytemuck::cast_slice(&lights)),
+            shadow_maps: Mutex::new(None),
+            point_shadow: PointShadowPass::new(device)?,
+            point_shadows: Mutex::new(None),
+            no_cube_depths: storage(device, "no cube shadows", &[0u8; 16]),
+            shadow_fallback: device
+                .create_texture(&wgpu::TextureDescriptor {
+                    label: Some("no shadows"),
+                    size: wgpu::Extent3d { width: 1, height: 1, depth_or_array_layers: 1 },
+                    mip_level_count: 1,
+                    sample_count: 1,
+                    dimension: wgpu::TextureDimension::D2,
+                    format: wgpu::TextureFormat::Depth32Float,
+                    usage: wgpu::TextureUsages::TEXTURE_BINDING,
+                    view_formats: &[],
+                })
+                .create_view(&wgpu::TextureViewDescriptor {
+                    dimension: Some(wgpu::TextureViewDimension::D2Array),
+                    ..Default::default()
+                }),
+            sky,
+            point_lights: scene.point_lights.clone(),
+            scene: buffers,
+            targets,
+            settings,
+            gpu,
+        };
+        state.gpu.take_error()?;
+        Ok(state)
+    }
+}
+
+impl State {
+    /// Number of point lights the lighting pass loops over.
+    pub fn scene_lights(&self) -> u32 {
+        self.point_lights.len() as u32
+    }
+}
+
+/// Poisoned locks become errors, not panics.
+pub(crate) fn poisoned<T>(_: T) -> EngineError {
+    EngineError::Gpu("a pass panicked while holding shared state".into())
+}

@@ -1,0 +1,60 @@
+// Shared by the engine's passes: the per-frame uniform, the material table entry, and
+// reconstruction of world positions from the linear-depth G-buffer target.
+
+struct Frame {
+    view_proj: mat4x4<f32>,
+    inv_view_proj: mat4x4<f32>,
+    // xyz camera position, w near plane
+    camera_pos: vec4<f32>,
+    // xyz unit forward, w far plane
+    camera_fwd: vec4<f32>,
+    // xyz unit direction towards the sun, w 1 when there is a sun
+    sun_dir: vec4<f32>,
+    // rgb sun irradiance at the ground, w sun angular radius (radians)
+    sun_irradiance: vec4<f32>,
+    // width, height, point-light count, flags (bit 0 sky, bit 1 Blinn-Phong, bit 2 LPV, bit 3 sky volume, bit 4 shadows)
+    size: vec4<u32>,
+    // SSAO radius (m), SSAO samples, sky-map size, frame index
+    params: vec4<f32>,
+    // cascades, shadow-map resolution, point-light cube-map size (0: no cube shadows), unused
+    csm: vec4<u32>,
+    // world-to-light rotation rows (x right, y up, z towards the light)
+    light_rot: array<vec4<f32>, 3>,
+}
+
+struct Material {
+    albedo: vec4<f32>,
+    // specular power, reflectivity, transparency, ior
+    params: vec4<f32>,
+    // emission rgb, alpha cutoff
+    emission: vec4<f32>,
+    flags: vec4<u32>,
+}
+
+const FLAG_SKY: u32 = 1u;
+const FLAG_BLINN: u32 = 2u;
+const FLAG_LPV: u32 = 4u;
+const FLAG_SKY_VOLUME: u32 = 8u;
+const FLAG_SHADOWS: u32 = 16u;
+const PI: f32 = 3.14159265;
+
+// Unit view ray through the centre of pixel `px`.
+fn view_ray(f: Frame, px: vec2<f32>) -> vec3<f32> {
+    let size = vec2<f32>(f32(f.size.x), f32(f.size.y));
+    let ndc = vec2<f32>((px.x + 0.5) / size.x * 2.0 - 1.0, 1.0 - (px.y + 0.5) / size.y * 2.0);
+    let far = f.inv_view_proj * vec4<f32>(ndc, 1.0, 1.0);
+    return normalize(far.xyz / far.w - f.camera_pos.xyz);
+}
+
+// World position of pixel `px` whose linear (view-axis) depth is `depth`.
+fn world_position(f: Frame, px: vec2<f32>, depth: f32) -> vec3<f32> {
+    let d = view_ray(f, px);
+    return f.camera_pos.xyz + d * (depth / max(dot(d, f.camera_fwd.xyz), 1e-4));
+}
+
+// Schlick's Fresnel reflectance for a dielectric of index `ior` seen at cosine `c`.
+fn fresnel_schlick(c: f32, ior: f32) -> f32 {
+    let r0 = (ior - 1.0) / (ior + 1.0);
+    let f0 = r0 * r0;
+    return f0 + (1.0 - f0) * pow(1.0 - clamp(c, 0.0, 1.0), 5.0);
+}

@@ -1,0 +1,74 @@
+// include: engine/common.inc.wgsl
+// G-buffer (thesis Table 3.1, formats for wgpu): albedo + glossiness (RGBA8), shading normal +
+// specular power (RGBA16F), geometry normal + material id (RGBA16F), linear depth (R32F).
+// Alpha-tested materials discard below their cutoff; surfaces are two-sided, both normals
+// face the viewer.
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<storage, read> materials: array<Material>;
+@group(1) @binding(0) var albedo_tex: texture_2d<f32>;
+@group(1) @binding(1) var alpha_tex: texture_2d<f32>;
+@group(1) @binding(2) var material_sampler: sampler;
+
+struct VOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) @interpolate(flat) material: u32,
+}
+
+@vertex
+fn vs_main(
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) material: u32,
+) -> VOut {
+    var o: VOut;
+    o.clip = frame.view_proj * vec4<f32>(position, 1.0);
+    o.world = position;
+    o.normal = normal;
+    o.uv = uv;
+    o.material = material;
+    return o;
+}
+
+struct GBuffer {
+    @location(0) albedo: vec4<f32>,
+    @location(1) normal: vec4<f32>,
+    @location(2) geometry: vec4<f32>,
+    @location(3) depth: f32,
+}
+
+@fragment
+fn fs_main(v: VOut) -> GBuffer {
+    let tex = textureSample(albedo_tex, material_sampler, v.uv);
+    let alpha = textureSample(alpha_tex, material_sampler, v.uv).a;
+    let dx = dpdx(v.world);
+    let dy = dpdy(v.world);
+    let m = materials[v.material];
+    if m.flags.y != 0u && alpha < m.emission.w {
+        discard;
+    }
+    let to_eye = frame.camera_pos.xyz - v.world;
+    var g = cross(dy, dx);
+    if dot(g, g) < 1e-20 {
+        g = v.normal;
+    }
+    g = normalize(g);
+    if dot(g, to_eye) < 0.0 {
+        g = -g;
+    }
+    var n = normalize(v.normal);
+    if dot(n, g) < 0.0 {
+        n = -n;
+    }
+    let albedo = m.albedo.rgb * select(vec3<f32>(1.0), tex.rgb, m.flags.x != 0u);
+    var o: GBuffer;
+    o.albedo = vec4<f32>(albedo, m.albedo.w);
+    o.normal = vec4<f32>(n, m.params.x);
+    o.geometry = vec4<f32>(g, f32(v.material));
+    o.depth = dot(v.world - frame.camera_pos.xyz, frame.camera_fwd.xyz);
+    return o;
+}

@@ -1,0 +1,280 @@
+// include: engine/common.inc.wgsl
+// include: shadows/pcss.inc.wgsl
+// Deferred lighting of the main view (thesis 3.3, 4.2, 5.3.6-5.3.8): the sun with Phong (or
+// Blinn-Phong) and stabilised-CSM PCSS shadows, point lights, sky light from the sky volume
+// and one diffuse bounce from the LPV (both looked up per pixel by the crates' own kernels
+// into `sky` and `lpv`), SSAO on the indirect light only, emission, and the sky map where no
+// geometry was drawn. The base BRDF is the reference's:
+// w_b ((1 - g) albedo / pi + g (n + 2) / (2 pi) cos^n), w_b = 1 - reflectivity - transparency;
+// the mirror and glass parts come from the ray tracer in the combine pass.
+
+struct Cascade {
+    view_proj: mat4x4<f32>,
+    pcss: PcssParams,
+    // split far (view depth), texel size (m), depth range (m), unused
+    info: vec4<f32>,
+}
+
+struct PointLight {
+    // xyz position, w radius of influence
+    position: vec4<f32>,
+    // rgb intensity, w index of the cube shadow map (-1: none)
+    color: vec4<f32>,
+    // world to clip of the cube faces +X, -X, +Y, -Y, +Z, -Z (shadows::cube_face_view_proj)
+    faces: array<mat4x4<f32>, 6>,
+}
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var albedo_t: texture_2d<f32>;
+@group(0) @binding(2) var normal_t: texture_2d<f32>;
+@group(0) @binding(3) var geometry_t: texture_2d<f32>;
+@group(0) @binding(4) var depth_t: texture_2d<f32>;
+@group(0) @binding(5) var shadow_t: texture_depth_2d_array;
+@group(0) @binding(6) var<storage, read> cascades: array<Cascade>;
+@group(0) @binding(7) var<storage, read> taps: array<vec2<f32>>;
+@group(0) @binding(8) var<storage, read> sky: array<vec4<f32>>;
+@group(0) @binding(9) var<storage, read> lpv: array<vec4<f32>>;
+@group(0) @binding(10) var<storage, read> materials: array<Material>;
+@group(0) @binding(11) var<storage, read> skymap: array<vec4<f32>>;
+@group(0) @binding(12) var<storage, read> lights: array<PointLight>;
+// Cube shadow maps: per light 6 faces of size² depths (perspective, 0 at the near plane).
+@group(0) @binding(13) var<storage, read> cube_depths: array<f32>;
+
+var<private> g_cascade: i32;
+
+fn pcss_depth(tx: i32, ty: i32) -> f32 {
+    return textureLoad(shadow_t, vec2<i32>(tx, ty), g_cascade, 0);
+}
+
+fn pcss_tap(i: u32) -> vec2<f32> {
+    return taps[i];
+}
+
+@vertex
+fn vs_fullscreen(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
+}
+
+// Sun visibility at world point p with geometry normal gn: PCSS in the first cascade whose
+// split contains the point's view depth.
+fn sun_visibility(p: vec3<f32>, gn: vec3<f32>, view_depth: f32) -> f32 {
+    if (frame.size.w & FLAG_SHADOWS) == 0u {
+        return 1.0;
+    }
+    let count = i32(frame.csm.x);
+    for (var c = 0; c < count; c = c + 1) {
+        let cs = cascades[c];
+        if view_depth > cs.info.x && c < count - 1 {
+            continue;
+        }
+        // Normal offset of half a texel against acne on slopes.
+        let q = p + gn * cs.info.y * 0.75;
+        let clip = cs.view_proj * vec4<f32>(q, 1.0);
+        let res = f32(cs.pcss.width);
+        let x = (clip.x * 0.5 + 0.5) * res;
+        let y = (0.5 - clip.y * 0.5) * res;
+        if x < 0.0 || y < 0.0 || x >= res || y >= res || clip.z > 1.0 {
+            return 1.0;
+        }
+        let nl = vec3<f32>(
+            dot(frame.light_rot[0].xyz, gn),
+            dot(frame.light_rot[1].xyz, gn),
+            dot(frame.light_rot[2].xyz, gn),
+        );
+        var nz = nl.z;
+        if abs(nz) < 1e-4 {
+            nz = select(-1e-4, 1e-4, nz >= 0.0);
+        }
+        let s = cs.info.y / cs.info.z / nz;
+        var r: PcssReceiver;
+        r.x = x;
+        r.y = y;
+        r.depth = clip.z;
+        r.gx = nl.x * s;
+        r.gy = -nl.y * s;
+        g_cascade = c;
+        return pcss_soft(cs.pcss, r);
+    }
+    return 1.0;
+}
+
+// The cube face a direction from the light falls on (shadows::cube_face_of).
+fn cube_face(d: vec3<f32>) -> u32 {
+    let a = abs(d);
+    if a.x >= a.y && a.x >= a.z {
+        return select(1u, 0u, d.x >= 0.0);
+    }
+    if a.y >= a.z {
+        return select(3u, 2u, d.y >= 0.0);
+    }
+    return select(5u, 4u, d.z >= 0.0);
+}
+
+// Visibility of point light `l` from p (normal-offset, 2x2 PCF in its cube map).
+fn point_visibility(l: PointLight, p: vec3<f32>, gn: vec3<f32>) -> f32 {
+    if l.color.w < 0.0 || frame.csm.z == 0u {
+        return 1.0;
+    }
+    let size = i32(frame.csm.z);
+    let dist = length(p - l.position.xyz);
+    let q = p + gn * (0.01 + 2.0 * dist / f32(size));
+    let face = cube_face(q - l.position.xyz);
+    let clip = l.faces[face] * vec4<f32>(q, 1.0);
+    if clip.w <= 0.0 {
+        return 1.0;
+    }
+    let ndc = clip.xyz / clip.w;
+    let x = (ndc.x * 0.5 + 0.5) * f32(size) - 0.5;
+    let y = (0.5 - ndc.y * 0.5) * f32(size) - 0.5;
+    let base = (u32(l.color.w) * 6u + face) * u32(size * size);
+    let fx = floor(x);
+    let fy = floor(y);
+    var lit = 0.0;
+    for (var k = 0; k < 4; k = k + 1) {
+        let tx = clamp(i32(fx) + (k & 1), 0, size - 1);
+        let ty = clamp(i32(fy) + (k >> 1), 0, size - 1);
+        let z = cube_depths[base + u32(ty * size + tx)];
+        let w = select(1.0 - (x - fx), x - fx, (k & 1) == 1) * select(1.0 - (y - fy), y - fy, (k >> 1) == 1);
+        lit += select(0.0, w, z >= ndc.z);
+    }
+    return lit;
+}
+
+// Base BRDF times cos for light from `l` seen from `v`.
+fn base_brdf_cos(albedo: vec3<f32>, g: f32, power: f32, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
+    let c = dot(n, l);
+    if c <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    var spec: f32;
+    if (frame.size.w & FLAG_BLINN) != 0u {
+        let h = normalize(l + v);
+        spec = (power + 8.0) / (8.0 * PI) * pow(max(dot(n, h), 0.0), power);
+    } else {
+        let r = reflect(-v, n);
+        spec = (power + 2.0) / (2.0 * PI) * pow(max(dot(r, l), 0.0), power);
+    }
+    return ((1.0 - g) * albedo / PI + vec3<f32>(g * spec)) * c;
+}
+
+// Bilinear sample of the paraboloid sky map (atmosphere::SkyMap::sample).
+fn sky_radiance(dir: vec3<f32>) -> vec3<f32> {
+    let size = i32(frame.params.z);
+    if (frame.size.w & FLAG_SKY) == 0u || size <= 0 {
+        return vec3<f32>(0.0);
+    }
+    var d = normalize(dir);
+    if d.y < 0.0 {
+        let h = vec3<f32>(d.x, 0.0, d.z);
+        d = select(vec3<f32>(1.0, 0.0, 0.0), normalize(h), dot(h, h) > 1e-12);
+    }
+    let disk = vec2<f32>(d.x, d.z) / (1.0 + d.y);
+    let c = (disk + 1.0) * 0.5 * f32(size) - 0.5;
+    let f = floor(c);
+    let t = c - f;
+    let x0 = clamp(i32(f.x), 0, size - 1);
+    let y0 = clamp(i32(f.y), 0, size - 1);
+    let x1 = clamp(i32(f.x) + 1, 0, size - 1);
+    let y1 = clamp(i32(f.y) + 1, 0, size - 1);
+    let a = mix(skymap[y0 * size + x0].xyz, skymap[y0 * size + x1].xyz, t.x);
+    let b = mix(skymap[y1 * size + x0].xyz, skymap[y1 * size + x1].xyz, t.x);
+    return mix(a, b, t.y);
+}
+
+fn hash(p: vec2<u32>) -> f32 {
+    var h = p.x * 1664525u + p.y * 1013904223u + 374761393u;
+    h = (h ^ (h >> 16u)) * 2246822519u;
+    h = (h ^ (h >> 13u)) * 3266489917u;
+    h = h ^ (h >> 16u);
+    return f32(h) / 4294967296.0;
+}
+
+// Screen-space ambient occlusion (thesis 5.3.8) around p in the hemisphere of the geometry
+// normal: the fraction of sample points in front of the depth buffer.
+fn ambient_occlusion(px: vec2<u32>, p: vec3<f32>, gn: vec3<f32>) -> f32 {
+    let n = u32(frame.params.y);
+    if n == 0u {
+        return 1.0;
+    }
+    let radius = frame.params.x;
+    let t = normalize(select(vec3<f32>(1.0, 0.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), abs(gn.x) > 0.9) - gn * dot(gn, select(vec3<f32>(1.0, 0.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), abs(gn.x) > 0.9)));
+    let b = cross(gn, t);
+    let rot = hash(px) * 6.2831853;
+    var open = 0.0;
+    for (var i = 0u; i < n; i = i + 1u) {
+        let u = (f32(i) + 0.5) / f32(n);
+        let phi = rot + f32(i) * 2.3999632;
+        let r = sqrt(u);
+        let dir = t * (r * cos(phi)) + b * (r * sin(phi)) + gn * sqrt(max(1.0 - u, 0.0));
+        let q = p + dir * radius * mix(0.2, 1.0, u);
+        let clip = frame.view_proj * vec4<f32>(q, 1.0);
+        if clip.w <= 0.0 {
+            open += 1.0;
+            continue;
+        }
+        let ndc = clip.xy / clip.w;
+        let sx = i32((ndc.x * 0.5 + 0.5) * f32(frame.size.x));
+        let sy = i32((0.5 - ndc.y * 0.5) * f32(frame.size.y));
+        if sx < 0 || sy < 0 || sx >= i32(frame.size.x) || sy >= i32(frame.size.y) {
+            open += 1.0;
+            continue;
+        }
+        let scene_depth = textureLoad(depth_t, vec2<i32>(sx, sy), 0).x;
+        let q_depth = dot(q - frame.camera_pos.xyz, frame.camera_fwd.xyz);
+        let blocked = scene_depth > 0.0 && scene_depth < q_depth - 0.02 && q_depth - scene_depth < radius * 2.0;
+        open += select(1.0, 0.0, blocked);
+    }
+    return open / f32(n);
+}
+
+@fragment
+fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
+    let px = vec2<i32>(frag.xy);
+    let depth = textureLoad(depth_t, px, 0).x;
+    let pxf = vec2<f32>(px);
+    if depth <= 0.0 {
+        return vec4<f32>(sky_radiance(view_ray(frame, pxf)), 1.0);
+    }
+    let a = textureLoad(albedo_t, px, 0);
+    let ns = textureLoad(normal_t, px, 0);
+    let gm = textureLoad(geometry_t, px, 0);
+    let m = materials[u32(gm.w + 0.5)];
+    let n = normalize(ns.xyz);
+    let gn = normalize(gm.xyz);
+    let p = world_position(frame, pxf, depth);
+    let v = normalize(frame.camera_pos.xyz - p);
+    let g = a.w;
+    let power = max(ns.w, 1.0);
+    let base = max(1.0 - m.params.y - m.params.z, 0.0);
+    var direct = vec3<f32>(0.0);
+    if frame.sun_dir.w > 0.0 {
+        let f = base_brdf_cos(a.rgb, g, power, n, frame.sun_dir.xyz, v);
+        if any(f > vec3<f32>(0.0)) {
+            direct += f * frame.sun_irradiance.rgb * sun_visibility(p, gn, depth);
+        }
+    }
+    for (var i = 0u; i < frame.size.z; i = i + 1u) {
+        let l = lights[i];
+        let d = l.position.xyz - p;
+        let dist2 = max(dot(d, d), 1e-4);
+        if dist2 > l.position.w * l.position.w {
+            continue;
+        }
+        let f = base_brdf_cos(a.rgb, g, power, n, d * inverseSqrt(dist2), v);
+        if any(f > vec3<f32>(0.0)) {
+            direct += f * l.color.rgb / dist2 * point_visibility(l, p, gn);
+        }
+    }
+    let i = u32(px.y) * frame.size.x + u32(px.x);
+    var indirect = vec3<f32>(0.0);
+    if (frame.size.w & FLAG_SKY_VOLUME) != 0u {
+        indirect += sky[i].xyz * (1.0 - g) * a.rgb;
+    }
+    if (frame.size.w & FLAG_LPV) != 0u {
+        indirect += lpv[i].xyz * (1.0 - g) * a.rgb / PI;
+    }
+    let ao = ambient_occlusion(vec2<u32>(px), p, gn);
+    let c = base * (direct + indirect * ao) + m.emission.rgb;
+    return vec4<f32>(max(c, vec3<f32>(0.0)), 1.0);
+}

@@ -1,0 +1,40 @@
+// include: engine/common.inc.wgsl
+// One lookup query per pixel for the sky-volume and LPV lookup kernels of their crates
+// (`shaders/sky_volume/lookup.wgsl`, `shaders/lpv/lookup.wgsl`): world position and shading
+// normal from the G-buffer; background pixels get a zero normal and albedo (zero light).
+
+struct SkyQuery {
+    position: vec4<f32>,
+    normal: vec4<f32>,
+    albedo: vec4<f32>,
+}
+
+struct LpvQuery {
+    position: vec4<f32>,
+    normal: vec4<f32>,
+}
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var normal_t: texture_2d<f32>;
+@group(0) @binding(2) var depth_t: texture_2d<f32>;
+@group(0) @binding(3) var<storage, read_write> sky_q: array<SkyQuery>;
+@group(0) @binding(4) var<storage, read_write> lpv_q: array<LpvQuery>;
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= frame.size.x || id.y >= frame.size.y {
+        return;
+    }
+    let i = id.y * frame.size.x + id.x;
+    let depth = textureLoad(depth_t, vec2<i32>(id.xy), 0).x;
+    var p = vec3<f32>(0.0);
+    var n = vec3<f32>(0.0);
+    var albedo = 0.0;
+    if depth > 0.0 {
+        p = world_position(frame, vec2<f32>(id.xy), depth);
+        n = normalize(textureLoad(normal_t, vec2<i32>(id.xy), 0).xyz);
+        albedo = 1.0;
+    }
+    sky_q[i] = SkyQuery(vec4<f32>(p, 1.0), vec4<f32>(n, 0.0), vec4<f32>(albedo));
+    lpv_q[i] = LpvQuery(vec4<f32>(p, 1.0), vec4<f32>(n, 0.0));
+}

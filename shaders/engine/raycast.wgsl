@@ -1,0 +1,66 @@
+// include: engine/common.inc.wgsl
+// The ray casting buffer (thesis 6.2.1, Table 6.1) at quarter resolution (half width, half
+// height): for every 2x2 block the pixel with a mirror or glass material nearest the block's
+// centre writes its origin, view depth, and the reflection and refraction directions with
+// their weights (reflect: reflectivity + transparency * Fresnel; refract: transparency *
+// (1 - Fresnel)). Texels without such a pixel have zero weights and are not traced.
+
+struct RayCast {
+    // xyz origin, w view depth (0: no ray)
+    origin: vec4<f32>,
+    // xyz reflection direction, w weight
+    reflect: vec4<f32>,
+    // xyz refraction direction, w weight
+    refract: vec4<f32>,
+}
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var normal_t: texture_2d<f32>;
+@group(0) @binding(2) var geometry_t: texture_2d<f32>;
+@group(0) @binding(3) var depth_t: texture_2d<f32>;
+@group(0) @binding(4) var<storage, read> materials: array<Material>;
+@group(0) @binding(5) var<storage, read_write> rays: array<RayCast>;
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let qw = (frame.size.x + 1u) / 2u;
+    let qh = (frame.size.y + 1u) / 2u;
+    if id.x >= qw || id.y >= qh {
+        return;
+    }
+    var out = RayCast(vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0));
+    // Block pixels in order of distance to the centre are all equal: take the first found.
+    for (var k = 0u; k < 4u; k = k + 1u) {
+        let px = vec2<i32>(i32(id.x * 2u + (k & 1u)), i32(id.y * 2u + (k >> 1u)));
+        if px.x >= i32(frame.size.x) || px.y >= i32(frame.size.y) {
+            continue;
+        }
+        let depth = textureLoad(depth_t, px, 0).x;
+        if depth <= 0.0 {
+            continue;
+        }
+        let gm = textureLoad(geometry_t, px, 0);
+        let m = materials[u32(gm.w + 0.5)];
+        let refl = m.params.y;
+        let trans = m.params.z;
+        if refl + trans <= 0.0 {
+            continue;
+        }
+        let p = world_position(frame, vec2<f32>(px), depth);
+        let n = normalize(textureLoad(normal_t, px, 0).xyz);
+        let v = normalize(frame.camera_pos.xyz - p);
+        let f = fresnel_schlick(dot(n, v), m.params.w);
+        let r = reflect(-v, n);
+        var t = refract(-v, n, 1.0 / max(m.params.w, 1e-3));
+        var wt = trans * (1.0 - f);
+        if dot(t, t) < 1e-12 {
+            t = vec3<f32>(0.0);
+            wt = 0.0;
+        }
+        out.origin = vec4<f32>(p, depth);
+        out.reflect = vec4<f32>(r, refl + trans * f);
+        out.refract = vec4<f32>(normalize(t + vec3<f32>(1e-20)), wt);
+        break;
+    }
+    rays[id.y * qw + id.x] = out;
+}
