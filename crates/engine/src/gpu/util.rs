@@ -11,7 +11,7 @@ pub(crate) fn buffer_init(
     usage: wgpu::BufferUsages,
 ) -> wgpu::Buffer {
     let mut padded;
-    let contents = if bytes.len() < 16 || bytes.len() % 4 != 0 {
+    let contents = if bytes.len() < 16 || !bytes.len().is_multiple_of(4) {
         padded = bytes.to_vec();
         padded.resize(bytes.len().max(16).next_multiple_of(4), 0);
         &padded[..]

@@ -62,7 +62,11 @@ impl PointShadowPass {
         let mut depths: Vec<f32> = Vec::new();
         let mut index = 0.0f32;
         for (l, g) in lights.iter().zip(&mut out) {
-            if !l.casts_shadows || !(l.radius > CUBE_NEAR * 2.0) || scene.index_list.is_empty() {
+            if !l.casts_shadows
+                || l.radius.is_nan()
+                || l.radius <= CUBE_NEAR * 2.0
+                || scene.index_list.is_empty()
+            {
                 continue;
             }
             let faces = self
