@@ -74,7 +74,11 @@ impl State {
         } else {
             None
         };
-        let lights = gpu_lights(&scene.point_lights);
+        let mut lights = gpu_lights(&scene.point_lights);
+        if lights.is_empty() {
+            // Bindings need one element; the frame uniform's light count stays 0.
+            lights.push(bytemuck::Zeroable::zeroed());
+        }
         let state = Self {
             gbuffer: GBufferPass::new(device, &buffers)?,
             shadow: ShadowPass::new(device, &settings)?,

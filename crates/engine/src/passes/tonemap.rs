@@ -2,6 +2,8 @@
 //! (with the small bias that keeps black pixels from sending it to zero), eye adaptation over
 //! frames, and the sRGB transfer function. Runs on the CPU on the read-back HDR frame.
 
+use rayon::prelude::*;
+
 /// The bias added to each luminance before the logarithm (Reinhard et al. 2002, `delta`).
 pub const LOG_DELTA: f32 = 1e-4;
 
@@ -46,16 +48,14 @@ impl ToneMapper {
     pub fn map(&self, pixels: &[[f32; 4]], key: f32) -> Vec<u8> {
         let adapted = self.adapted.unwrap_or(1.0).max(1e-6);
         let scale = key / adapted;
-        let mut out = Vec::with_capacity(pixels.len() * 4);
-        for p in pixels {
+        let texel = |p: &[f32; 4]| {
             let c = [p[0], p[1], p[2]].map(|v| if v.is_finite() { v.max(0.0) } else { 0.0 });
             let l = luminance(c) * scale;
             let s = if l > 0.0 { scale / (1.0 + l) } else { 0.0 };
-            for v in c {
-                out.push((scene::linear_to_srgb((v * s).min(1.0)) * 255.0 + 0.5) as u8);
-            }
-            out.push(255);
-        }
-        out
+            let [r, g, b] =
+                c.map(|v| (scene::linear_to_srgb((v * s).min(1.0)) * 255.0 + 0.5) as u8);
+            [r, g, b, 255u8]
+        };
+        pixels.par_iter().map(texel).collect::<Vec<[u8; 4]>>().into_flattened()
     }
 }
