@@ -116,6 +116,7 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
             if let Some(sky) = &c.state.sky {
                 sky.write().map_err(poisoned)?.build_map(&c.state.gpu, dir)?;
             }
+            io.ctx().state.gpu.take_error()?;
             io.put(sky_map, c.frame)?;
             Ok(())
         });
@@ -135,6 +136,7 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
             if let Some(sky) = &c.state.sky {
                 sky.write().map_err(poisoned)?.fill_layers(&c.state.gpu, layer..layer + 1)?;
             }
+            io.ctx().state.gpu.take_error()?;
             io.put(sky_vol, c.frame)?;
             Ok(())
         });
@@ -159,6 +161,7 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
                 &s.settings,
             )?;
             *s.shadow_maps.lock().map_err(poisoned)? = Some(maps);
+            io.ctx().state.gpu.take_error()?;
             io.put(shadow, c.frame)?;
             Ok(())
         });
@@ -176,6 +179,7 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
             let cube = s.point_shadow.render(&s.gpu, &s.scene, &s.point_lights, size)?;
             s.gpu.queue.write_buffer(&s.lights, 0, bytemuck::cast_slice(&cube.lights));
             *s.point_shadows.lock().map_err(poisoned)? = Some(cube);
+            io.ctx().state.gpu.take_error()?;
             io.put(cubes, c.frame)?;
             Ok(())
         });
@@ -187,6 +191,7 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
         let mut enc = s.gpu.device.create_command_encoder(&Default::default());
         s.gbuffer.record(&s.gpu.device, &mut enc, &s.targets, &s.frame, &s.scene);
         s.gpu.queue.submit([enc.finish()]);
+        io.ctx().state.gpu.take_error()?;
         io.put(gbuf, c.frame)?;
         Ok(())
     });
@@ -203,6 +208,7 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
             let sun = c.sun.ok_or_else(|| crate::EngineError::Settings("no sun".into()))?;
             let mut l = c.state.lpv.write().map_err(poisoned)?;
             l.update(&c.state.gpu, c.camera.position, sun.dir, sun.irradiance)?;
+            io.ctx().state.gpu.take_error()?;
             io.put(lpv, c.frame)?;
             Ok(())
         });
@@ -225,6 +231,7 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
                 &s.frame,
                 &s.scene.materials,
             )?;
+            io.ctx().state.gpu.take_error()?;
             io.put(batch, b)?;
             Ok(())
         });
@@ -303,6 +310,7 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
             let mut enc = s.gpu.device.create_command_encoder(&Default::default());
             s.lighting.record(&s.gpu.device, &mut enc, &s.targets, &inputs);
             s.gpu.queue.submit([enc.finish()]);
+            io.ctx().state.gpu.take_error()?;
             io.put(lit, c.frame)?;
             Ok(())
         });
@@ -329,6 +337,7 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
                 &s.raycast,
             );
             s.gpu.queue.submit([enc.finish()]);
+            io.ctx().state.gpu.take_error()?;
             io.put(combined, c.frame)?;
             Ok(())
         });

@@ -312,7 +312,7 @@ mod tests {
         assert!(md.contains("not GPU timings"));
         assert!(md.contains("Table 7.1") && md.contains("Table 7.3"));
         assert!(md.contains("| CPU Ray Tracing (reflections) | 36.0 |"), "{md}");
-        assert!(md.contains("Screen Space Ambient Occlusion | 6.0"));
+        assert!(md.contains("LPV Rendering + SSAO | 21.7"), "{md}");
         assert!(md.contains("42.6") && md.contains("48.4") && md.contains("75.0 %"));
         assert!(md.contains("| rel_rms | 0.05 |") && md.contains("- a note"));
 

@@ -192,16 +192,9 @@ mod tests {
 
     #[test]
     fn engine_passes_map() {
-        let mapped = ["sky volume", "rsm + lpv", "ray tracing", "lighting", "combine"];
-        let unmapped = [
-            "sky map",
-            "shadow maps",
-            "point shadows",
-            "g-buffer",
-            "ray casting buffer",
-            "traced upload",
-            "readback + tonemap",
-        ];
+        use crate::pass::*;
+        let mapped = [SKY_VOLUME, LPV, RAY_TRACING, LIGHTING];
+        let unmapped = [SKY_MAP, SHADOW_MAPS, POINT_SHADOWS, GBUFFER, RAY_CASTING, COMBINE, READBACK];
         assert!(mapped.iter().all(|p| thesis_pass_for(p).is_some()));
         assert!(unmapped.iter().all(|p| thesis_pass_for(p).is_none()));
         assert_eq!(thesis_pass_for("ray tracing").unwrap().ms, 36.0);

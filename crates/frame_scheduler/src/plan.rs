@@ -51,10 +51,14 @@ impl<C> Scheduler<C> {
                 }
             }
             let reads = &sh.reads[i];
+            let actions = &self.actions;
+            let skipped_now = |r: u32| {
+                sh.topo.producer[r as usize].is_some_and(|p| actions[p as usize] == Action::Skip)
+            };
             let changed_input = reads
                 .iter()
-                .zip(&st.input_versions)
-                .find(|&(&r, &v)| self.versions[r as usize] != v)
+                .zip(st.input_versions.iter().zip(&st.input_skipped))
+                .find(|&(&r, (&v, &s))| self.versions[r as usize] != v || skipped_now(r) != s)
                 .map(|(&r, _)| r);
             let cause = if st.invalidated {
                 Some(Reason::Invalidated)
@@ -107,6 +111,9 @@ impl<C> Scheduler<C> {
                 }
                 for (v, &r) in st.input_versions.iter_mut().zip(reads) {
                     *v = self.versions[r as usize];
+                }
+                for (s, &r) in st.input_skipped.iter_mut().zip(reads) {
+                    *s = skipped_now(r);
                 }
                 st.ran_once = true;
                 st.invalidated = false;

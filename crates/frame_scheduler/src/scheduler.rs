@@ -50,6 +50,9 @@ pub(crate) struct PassState {
     pub done: u32,
     /// Versions of the inputs when the pass (or its amortised cycle) last started.
     pub input_versions: Vec<u64>,
+    /// Whether each input's producer was skipped when the pass last started: a producer that
+    /// stops or starts running changes what the pass reads even without a new version.
+    pub input_skipped: Vec<bool>,
     pub invalidated: bool,
     /// Estimated cost of one amortised unit in ms (CPU wall or GPU, the larger), 0 if unknown.
     pub ms_per_unit: f64,
@@ -127,7 +130,11 @@ impl<C: 'static> Scheduler<C> {
         for p in g.passes {
             shared.pass_names.push(p.name);
             shared.lanes.push(p.lane);
-            state.push(PassState { input_versions: vec![0; p.reads.len()], ..Default::default() });
+            state.push(PassState {
+                input_versions: vec![0; p.reads.len()],
+                input_skipped: vec![false; p.reads.len()],
+                ..Default::default()
+            });
             bodies.push(Mutex::new(BodySlot {
                 body: p.body,
                 values: Vec::with_capacity(p.reads.len()),
@@ -216,10 +223,11 @@ impl<C: 'static> Scheduler<C> {
                 let name = &self.shared.resource_names[r as usize];
                 let seen = old_resources.get(name.as_str()).and_then(|&or| {
                     let pk = prev.shared.reads[o].iter().position(|&pr| pr as usize == or)?;
-                    Some(old.input_versions[pk])
+                    Some((old.input_versions[pk], old.input_skipped[pk]))
                 });
                 // An input the pass did not read before counts as changed.
-                st.input_versions[k] = seen.unwrap_or(u64::MAX);
+                st.input_versions[k] = seen.map_or(u64::MAX, |s| s.0);
+                st.input_skipped[k] = seen.is_some_and(|s| s.1);
             }
             let (new_keys, old_keys) = (&mut self.meta[i].keys, &mut prev.meta[o].keys);
             for (nk, ok) in new_keys.iter_mut().zip(old_keys.iter_mut()) {

@@ -122,6 +122,8 @@ struct Model {
     ran_once: Vec<bool>,
     key: Vec<u8>,
     seen: Vec<Vec<u64>>,
+    /// Whether each input's producer was skipped when the pass last ran.
+    seen_skipped: Vec<Vec<bool>>,
     version: Vec<u64>,
 }
 
@@ -140,6 +142,7 @@ impl Model {
             ran_once: vec![false; n],
             key: vec![0; n],
             seen: specs.iter().map(|s| vec![0; s.reads.len()]).collect(),
+            seen_skipped: specs.iter().map(|s| vec![false; s.reads.len()]).collect(),
             version: vec![0; n],
         }
     }
@@ -166,13 +169,16 @@ impl Model {
             }
             let s = &specs[i];
             let cacheable = s.keyed || s.cached;
+            let skipped = |r: usize| matches!(e[r], Expect::SkipCondition | Expect::SkipNoReader);
             let inputs_changed =
-                s.reads.iter().zip(&self.seen[i]).any(|(&r, &v)| self.version[r] != v);
+                s.reads.iter().zip(&self.seen[i]).any(|(&r, &v)| self.version[r] != v)
+                    || s.reads.iter().zip(&self.seen_skipped[i]).any(|(&r, &k)| skipped(r) != k);
             let key_changed = s.keyed && self.key[i] != ctx.keys[i];
             if !cacheable || !self.ran_once[i] || key_changed || inputs_changed {
                 self.ran_once[i] = true;
                 self.key[i] = ctx.keys[i];
                 self.seen[i] = s.reads.iter().map(|&r| self.version[r]).collect();
+                self.seen_skipped[i] = s.reads.iter().map(|&r| skipped(r)).collect();
                 self.version[i] += 1;
             } else {
                 e[i] = Expect::Reuse;

@@ -342,7 +342,10 @@ fn build(seed: u64) -> Result<Scene, SceneError> {
             // The bulb hangs under the lamp head, beside the post (not inside it, where
             // a shadow-casting light would be occluded in every direction).
             base + Vec3::new(0.17, 4.9, 0.0),
-            Vec3::new(60.0, 48.0, 30.0),
+            // Intensity in the sun's units (irradiance 1 at the top of the atmosphere):
+            // 0.024 straight below at 5 m, a street lamp that shows at dusk and at night,
+            // not beside the afternoon sun.
+            Vec3::new(0.6, 0.48, 0.3),
             15.0,
         ));
     }

@@ -1,0 +1,109 @@
+//! Helpers shared by the engine's integration tests: a renderer that fails loudly without a
+//! GPU adapter (unless the developer skips GPU tests), seeded scenes, image statistics.
+#![allow(dead_code)]
+
+use engine::{EngineError, Preset, Renderer, Settings};
+use frame_scheduler::Outcome;
+
+/// Environment variable that lets a developer skip GPU tests on a machine with no adapter
+/// (the same switch as `gpu_harness::SKIP_ENV`; CI never honours it).
+pub const SKIP_ENV: &str = "SEREIN_SKIP_GPU";
+
+/// The seed of every generated scene in these tests.
+pub const SEED: u64 = 1;
+
+/// Eye adaptation step per frame (fixed, so images are reproducible).
+pub const DT: f32 = 1.0 / 30.0;
+
+/// True when `SEREIN_SKIP_GPU=1` is set and this is not CI.
+pub fn skip_requested() -> bool {
+    let skip = std::env::var(SKIP_ENV).is_ok_and(|v| v == "1");
+    let ci = std::env::var("CI").is_ok_and(|v| !v.is_empty() && v != "false");
+    skip && !ci
+}
+
+/// A renderer for `scene` with a fixed frame time, or `None` when the developer skips GPU
+/// tests. Panics with the engine's message (which names `mesa-vulkan-drivers`) when no
+/// adapter exists and no skip was requested, so GPU tests never pass silently.
+pub fn renderer(scene: scene::Scene, settings: Settings) -> Option<Renderer> {
+    if skip_requested() {
+        eprintln!("{SKIP_ENV}=1: skipping a GPU test");
+        return None;
+    }
+    match Renderer::new(scene, settings) {
+        Ok(mut r) => {
+            r.set_fixed_frame_time(Some(DT));
+            Some(r)
+        }
+        Err(e @ EngineError::NoAdapter(_)) => {
+            panic!("{e}\n(set {SKIP_ENV}=1 to skip GPU tests on this machine)")
+        }
+        Err(e) => panic!("Renderer::new failed: {e}"),
+    }
+}
+
+/// A renderer for a generated scene at the low preset.
+pub fn generated(g: scene::Generated, width: u32, height: u32) -> Option<Renderer> {
+    renderer(g.build(SEED), Settings::preset(Preset::Low, width, height))
+}
+
+/// The outcome of `pass` in a frame's report (panics naming the pass if it is missing).
+pub fn outcome(f: &engine::Frame, pass: &str) -> Outcome {
+    match f.report.pass(pass) {
+        Some(p) => p.outcome,
+        None => panic!("pass {pass:?} missing from the report:\n{}", f.report.to_markdown()),
+    }
+}
+
+/// Outcome and reason of `pass`, for assertion messages.
+pub fn describe(f: &engine::Frame, pass: &str) -> String {
+    match f.report.pass(pass) {
+        Some(p) => format!("{pass}: {} ({:?})", p.outcome, p.reason),
+        None => format!("{pass}: missing"),
+    }
+}
+
+/// Mean linear luminance of the HDR frame and whether every pixel is finite.
+pub fn hdr_stats(f: &engine::Frame) -> (f64, bool) {
+    let mut sum = 0.0f64;
+    let mut finite = true;
+    for p in &f.hdr.pixels {
+        finite &= p.iter().all(|v| v.is_finite());
+        sum += f64::from(0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]);
+    }
+    (sum / f.hdr.pixels.len().max(1) as f64, finite)
+}
+
+/// Mean of the RGB channels of the tone-mapped frame, 0..255.
+pub fn ldr_mean(f: &engine::Frame) -> f64 {
+    let (mut sum, mut n) = (0u64, 0u64);
+    for px in f.ldr.chunks_exact(4) {
+        sum += u64::from(px[0]) + u64::from(px[1]) + u64::from(px[2]);
+        n += 3;
+    }
+    sum as f64 / n.max(1) as f64
+}
+
+/// An empty scratch folder for one test (under the system temp dir, named after the test
+/// and the process so parallel runs do not collide).
+pub fn scratch_dir(test: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("serein-engine-{test}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("creating {}: {e}", dir.display()));
+    dir
+}
+
+/// A `RenderJob` for tests: small, low preset, no progress bar.
+pub fn job(scene: &str, out: &std::path::Path) -> engine::cli::RenderJob {
+    engine::cli::RenderJob {
+        scene: scene.into(),
+        width: 96,
+        height: 54,
+        preset: Preset::Low,
+        frames: 2,
+        out: out.to_path_buf(),
+        progress: false,
+        seed: SEED,
+        ..Default::default()
+    }
+}
