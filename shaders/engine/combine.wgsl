@@ -21,12 +21,6 @@ struct RayCast {
 // Two entries per quarter texel: reflected radiance, refracted radiance.
 @group(0) @binding(7) var<storage, read> traced: array<vec4<f32>>;
 
-@vertex
-fn vs_fullscreen(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
-}
-
 @fragment
 fn fs_combine(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     let px = vec2<i32>(frag.xy);

@@ -38,6 +38,13 @@ const FLAG_SKY_VOLUME: u32 = 8u;
 const FLAG_SHADOWS: u32 = 16u;
 const PI: f32 = 3.14159265;
 
+// The full-screen triangle of the lighting and combine passes.
+@vertex
+fn vs_fullscreen(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
+}
+
 // Unit view ray through the centre of pixel `px`.
 fn view_ray(f: Frame, px: vec2<f32>) -> vec3<f32> {
     let size = vec2<f32>(f32(f.size.x), f32(f.size.y));

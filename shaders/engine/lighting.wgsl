@@ -50,12 +50,6 @@ fn pcss_tap(i: u32) -> vec2<f32> {
     return taps[i];
 }
 
-@vertex
-fn vs_fullscreen(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
-}
-
 // Sun visibility at world point p with geometry normal gn: PCSS in the first cascade whose
 // split contains the point's view depth.
 fn sun_visibility(p: vec3<f32>, gn: vec3<f32>, view_depth: f32) -> f32 {

@@ -190,3 +190,92 @@ pub(crate) fn dispatch(
     pass.set_bind_group(0, bind, &[]);
     pass.dispatch_workgroups(groups[0].max(1), groups[1].max(1), groups[2].max(1));
 }
+
+/// A full-screen triangle pipeline (`vs_fullscreen` of `common.inc.wgsl`) writing one HDR
+/// target with the fragment entry point `fs_entry`.
+pub(crate) fn fullscreen_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    source: &str,
+    fs_entry: &str,
+) -> Result<wgpu::RenderPipeline, EngineError> {
+    let module = shader(device, label, source)?;
+    Ok(device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(label),
+        layout: None,
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some("vs_fullscreen"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: Default::default(),
+        depth_stencil: None,
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: &module,
+            entry_point: Some(fs_entry),
+            compilation_options: Default::default(),
+            targets: &[Some(super::HDR_FORMAT.into())],
+        }),
+        multiview_mask: None,
+        cache: None,
+    }))
+}
+
+/// Records one full-screen draw of `pipeline` with `bind` into `target` (cleared first).
+pub(crate) fn draw_fullscreen(
+    enc: &mut wgpu::CommandEncoder,
+    label: &str,
+    pipeline: &wgpu::RenderPipeline,
+    bind: &wgpu::BindGroup,
+    target: &wgpu::TextureView,
+) {
+    let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view: target,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                store: wgpu::StoreOp::Store,
+            },
+        })],
+        depth_stencil_attachment: None,
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    });
+    pass.set_pipeline(pipeline);
+    pass.set_bind_group(0, bind, &[]);
+    pass.draw(0..3, 0..1);
+}
+
+/// Depth test and write into a `Depth32Float` target (the G-buffer and shadow passes).
+pub(crate) fn depth_write_state() -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        format: wgpu::TextureFormat::Depth32Float,
+        depth_write_enabled: Some(true),
+        depth_compare: Some(wgpu::CompareFunction::Less),
+        stencil: Default::default(),
+        bias: Default::default(),
+    }
+}
+
+/// One dispatch of a lookup kernel whose group 0 is `(params, data, queries, out)`, one
+/// invocation per query in workgroups of 64.
+pub(crate) fn dispatch_lookup(
+    device: &wgpu::Device,
+    enc: &mut wgpu::CommandEncoder,
+    pipeline: &wgpu::ComputePipeline,
+    buffers: [&wgpu::Buffer; 4],
+    count: u32,
+) {
+    let bg = bind_group(
+        device,
+        &pipeline.get_bind_group_layout(0),
+        &buffers.map(|b| b.as_entire_binding()),
+    );
+    dispatch(enc, pipeline, &bg, [count.div_ceil(64), 1, 1]);
+}

@@ -4,7 +4,7 @@
 
 use super::raycast::{RayBatch, RayCastPass};
 use crate::EngineError;
-use crate::gpu::{GBufferTargets, HDR_FORMAT, bind_group, shader, storage_empty};
+use crate::gpu::{GBufferTargets, bind_group, draw_fullscreen, fullscreen_pipeline, storage_empty};
 use glam::Vec3;
 
 pub struct CombinePass {
@@ -15,28 +15,8 @@ pub struct CombinePass {
 
 impl CombinePass {
     pub fn new(device: &wgpu::Device, targets: &GBufferTargets) -> Result<Self, EngineError> {
-        let module = shader(device, "combine", &crate::shaders::combine())?;
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("combine"),
-            layout: None,
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_fullscreen"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: Default::default(),
-            depth_stencil: None,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_combine"),
-                compilation_options: Default::default(),
-                targets: &[Some(HDR_FORMAT.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let pipeline =
+            fullscreen_pipeline(device, "combine", &crate::shaders::combine(), "fs_combine")?;
         let (qw, qh) = targets.quarter();
         let texels = (qw * qh) as usize;
         Ok(Self {
@@ -83,24 +63,6 @@ impl CombinePass {
                 self.traced.as_entire_binding(),
             ],
         );
-        let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("combine"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &targets.combined,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: None,
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &bg, &[]);
-        pass.draw(0..3, 0..1);
+        draw_fullscreen(enc, "combine", &self.pipeline, &bg, &targets.combined);
     }
 }

@@ -1,7 +1,9 @@
 //! G-buffer pass (thesis 3.2, Table 3.1): rasterises the opaque and alpha-tested geometry.
 
 use crate::EngineError;
-use crate::gpu::{GBUFFER_FORMATS, GBufferTargets, SceneBuffers, bind_group, shader};
+use crate::gpu::{
+    GBUFFER_FORMATS, GBufferTargets, SceneBuffers, bind_group, depth_write_state, shader,
+};
 
 pub struct GBufferPass {
     pipeline: wgpu::RenderPipeline,
@@ -52,13 +54,7 @@ impl GBufferPass {
                 buffers: &[Some(SceneBuffers::vertex_layout(false))],
             },
             primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: wgpu::TextureFormat::Depth32Float,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
+            depth_stencil: Some(depth_write_state()),
             multisample: Default::default(),
             fragment: Some(wgpu::FragmentState {
                 module: &module,

@@ -5,8 +5,8 @@
 use super::{lpv::LpvState, shadow::ShadowMaps, sky::SkyState};
 use crate::EngineError;
 use crate::gpu::{
-    GBufferTargets, HDR_FORMAT, bind_group, compute_pipeline, dispatch, shader, storage,
-    storage_empty,
+    GBufferTargets, bind_group, compute_pipeline, dispatch, draw_fullscreen, fullscreen_pipeline,
+    storage, storage_empty,
 };
 use bytemuck::{Pod, Zeroable};
 
@@ -49,28 +49,8 @@ pub struct LightingInputs<'a> {
 
 impl LightingPass {
     pub fn new(device: &wgpu::Device, targets: &GBufferTargets) -> Result<Self, EngineError> {
-        let module = shader(device, "lighting", &crate::shaders::lighting())?;
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("lighting"),
-            layout: None,
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_fullscreen"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: Default::default(),
-            depth_stencil: None,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_lighting"),
-                compilation_options: Default::default(),
-                targets: &[Some(HDR_FORMAT.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let pipeline =
+            fullscreen_pipeline(device, "lighting", &crate::shaders::lighting(), "fs_lighting")?;
         let n = targets.pixels() as u64;
         Ok(Self {
             queries: compute_pipeline(
@@ -151,24 +131,6 @@ impl LightingPass {
                 inputs.cube_depths.as_entire_binding(),
             ],
         );
-        let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("lighting"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &targets.lit,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: None,
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &bg, &[]);
-        pass.draw(0..3, 0..1);
+        draw_fullscreen(enc, "lighting", &self.pipeline, &bg, &targets.lit);
     }
 }

@@ -3,7 +3,7 @@
 //! injection and propagation on the GPU (`lpv::gpu::GpuLpv`), and a per-pixel lookup by the
 //! crate's own kernel.
 
-use crate::gpu::{Gpu, bind_group, compute_pipeline, dispatch, storage, uniform};
+use crate::gpu::{Gpu, compute_pipeline, dispatch_lookup, storage, uniform};
 use crate::{EngineError, Settings};
 use glam::{Mat4, Vec3};
 use lpv::gpu::{GpuGrid, GpuLookupParams};
@@ -165,16 +165,6 @@ impl LpvState {
             params.grids[i] = GpuGrid::new(&c.grid, 0, 1.0, 0);
         }
         let params = uniform(device, "lpv lookup", bytemuck::bytes_of(&params));
-        let bg = bind_group(
-            device,
-            &self.lookup.get_bind_group_layout(0),
-            &[
-                params.as_entire_binding(),
-                self.volumes.as_entire_binding(),
-                queries.as_entire_binding(),
-                out.as_entire_binding(),
-            ],
-        );
-        dispatch(enc, &self.lookup, &bg, [count.div_ceil(64), 1, 1]);
+        dispatch_lookup(device, enc, &self.lookup, [&params, &self.volumes, queries, out], count);
     }
 }

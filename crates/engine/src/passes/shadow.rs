@@ -2,7 +2,7 @@
 //! into one depth-texture array, and the PCSS parameter blocks the lighting pass filters with
 //! (`shaders/shadows/pcss.inc.wgsl`).
 
-use crate::gpu::{Gpu, SceneBuffers, storage, uniform};
+use crate::gpu::{Gpu, SceneBuffers, depth_write_state, storage, uniform};
 use crate::{EngineError, Settings};
 use bytemuck::{Pod, Zeroable};
 use glam::{DVec3, Vec3};
@@ -54,13 +54,7 @@ impl ShadowPass {
                 buffers: &[Some(SceneBuffers::vertex_layout(true))],
             },
             primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: wgpu::TextureFormat::Depth32Float,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
+            depth_stencil: Some(depth_write_state()),
             multisample: Default::default(),
             fragment: None,
             multiview_mask: None,

@@ -2,7 +2,7 @@
 //! the sun moved, and the sky-light irradiance volume from `sky_volume`, filled layer by
 //! layer over frames and looked up per pixel by its own WGSL kernel.
 
-use crate::gpu::{Gpu, bind_group, compute_pipeline, dispatch, storage, uniform};
+use crate::gpu::{Gpu, compute_pipeline, dispatch_lookup, storage, uniform};
 use crate::{EngineError, Settings};
 use atmosphere::{Sky, SkyMap, SkyMapSettings, SkyRadiance as _};
 use glam::Vec3;
@@ -121,16 +121,12 @@ impl SkyState {
         out: &wgpu::Buffer,
         count: u32,
     ) {
-        let bg = bind_group(
+        dispatch_lookup(
             device,
-            &self.lookup.get_bind_group_layout(0),
-            &[
-                self.lookup_params.as_entire_binding(),
-                self.probes.as_entire_binding(),
-                queries.as_entire_binding(),
-                out.as_entire_binding(),
-            ],
+            enc,
+            &self.lookup,
+            [&self.lookup_params, &self.probes, queries, out],
+            count,
         );
-        dispatch(enc, &self.lookup, &bg, [count.div_ceil(64), 1, 1]);
     }
 }
