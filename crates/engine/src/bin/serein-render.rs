@@ -28,7 +28,9 @@ struct Args {
     /// Quality preset: low, default, high.
     #[arg(long, default_value = "default")]
     preset: String,
-    /// Frames to render (the report describes the last; the sky volume fills over frames).
+    /// Still frames to render (the sky volume fills over them); one more frame follows with
+    /// the camera moved by 1 cm, so that every per-frame pass runs: that frame is the image
+    /// and the report's pass table.
     #[arg(long, default_value_t = 24)]
     frames: u32,
     /// Output folder.
