@@ -12,6 +12,10 @@
 //!   (`engine::compare::errors`: relative RMS over RGB with both images clamped at
 //!   `FIREFLY_CLAMP` times the reference's mean luminance); the unclamped `rel_rms`,
 //!   `mean_rel_luminance`, `luminance_ratio` and the reference's own noise are settings.
+//!   Also: median, sd, min and max frame ms, the mean ms of every pass over the timed frames
+//!   (`mean_pass_ms`: GPU ms for GPU passes, CPU ms for CPU and sync passes, whose CPU time
+//!   includes waiting for the GPU work before them) and what every pass did in the slowest
+//!   frame (`worst_frame_passes`).
 //! - `engine/flythrough_city_320x180_300`: the default preset along a fixed loop around the
 //!   city's central crossing at eye height, 300 frames after the warm-up; time = mean frame
 //!   ms; settings: standard deviation, min, max, the worst frame's index, the share of frames
@@ -46,32 +50,100 @@ const THESIS_FLY_SD_MS: f64 = 5.9;
 const THESIS_FLY_FRAMES: u32 = 5000;
 const THESIS_SETUP: &str = "GeForce GTX 260 + Core 2 Quad 2.66 GHz, 1600x900, ~19k-triangle city";
 
-/// Mean, standard deviation, min, max and the index of the max of `xs`.
-struct Stats {
-    mean: f64,
-    sd: f64,
-    min: f64,
-    max: f64,
-    worst: usize,
-}
-
-fn stats(xs: &[f64]) -> Stats {
-    let n = xs.len().max(1) as f64;
-    let mean = xs.iter().sum::<f64>() / n;
-    let var = xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0).max(1.0);
-    let (worst, max) = xs
-        .iter()
-        .copied()
-        .enumerate()
-        .fold((0, f64::NEG_INFINITY), |a, b| if b.1 > a.1 { b } else { a });
-    let min = xs.iter().copied().fold(f64::INFINITY, f64::min);
-    Stats { mean, sd: var.sqrt(), min, max, worst }
-}
-
 fn median(xs: &[f64]) -> f64 {
     let mut v = xs.to_vec();
     v.sort_by(f64::total_cmp);
     if v.is_empty() { f64::NAN } else { v[v.len() / 2] }
+}
+
+/// What a run of timed frames collects: wall times, how many ray traced, the mean time of each
+/// pass and the report of the slowest frame.
+#[derive(Default)]
+struct Timed {
+    ms: Vec<f64>,
+    ray_traced: usize,
+    /// (pass, sum of ms, frames it ran in): GPU ms for GPU passes, CPU ms for CPU and sync
+    /// passes (a sync pass's CPU time includes its wait for the GPU work before it).
+    passes: Vec<(String, f64, usize)>,
+    worst: Option<(usize, frame_scheduler::FrameReport)>,
+    last_passes_run: Vec<String>,
+}
+
+impl Timed {
+    fn add(&mut self, f: &Frame) {
+        if self.ms.iter().all(|&m| f.wall_ms > m) {
+            self.worst = Some((self.ms.len(), f.report.clone()));
+        }
+        self.ms.push(f.wall_ms);
+        self.ray_traced += usize::from(f.ray_traced);
+        self.last_passes_run.clear();
+        for p in f.report.passes.iter().filter(|p| p.outcome.executed()) {
+            self.last_passes_run.push(p.name.clone());
+            let Some(ms) = p.gpu_ms.or(p.cpu_ms) else { continue };
+            match self.passes.iter_mut().find(|s| s.0 == p.name) {
+                Some(s) => {
+                    s.1 += ms;
+                    s.2 += 1;
+                }
+                None => self.passes.push((p.name.clone(), ms, 1)),
+            }
+        }
+    }
+
+    fn mean(&self) -> f64 {
+        self.ms.iter().sum::<f64>() / self.ms.len().max(1) as f64
+    }
+
+    /// Sample standard deviation.
+    fn sd(&self) -> f64 {
+        let m = self.mean();
+        let n = self.ms.len() as f64;
+        (self.ms.iter().map(|x| (x - m).powi(2)).sum::<f64>() / (n - 1.0).max(1.0)).sqrt()
+    }
+
+    fn min(&self) -> f64 {
+        self.ms.iter().copied().fold(f64::INFINITY, f64::min)
+    }
+
+    fn max(&self) -> f64 {
+        self.ms.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+    }
+
+    fn mean_pass_ms(&self) -> serde_json::Map<String, serde_json::Value> {
+        self.passes.iter().map(|(name, sum, n)| (name.clone(), (sum / *n as f64).into())).collect()
+    }
+
+    /// Index (0-based) of the slowest frame and what each pass did in it (`"ran 12.3 ms"`, `"reused"`).
+    fn worst(&self) -> (usize, serde_json::Map<String, serde_json::Value>) {
+        let Some((i, report)) = &self.worst else { return (0, Default::default()) };
+        let passes = report
+            .passes
+            .iter()
+            .map(|p| {
+                let v = match p.gpu_ms.or(p.cpu_ms) {
+                    Some(ms) => format!("{} {ms:.1} ms", p.outcome),
+                    None => p.outcome.to_string(),
+                };
+                (p.name.clone(), v.into())
+            })
+            .collect();
+        (*i, passes)
+    }
+
+    /// The settings every timed entry shares (`worst_frame` counts from 1: the nudge in
+    /// millimetres, or the frame on the fly-through's path).
+    fn settings(&self, e: Entry) -> Entry {
+        let (worst, worst_passes) = self.worst();
+        e.setting("median_ms", median(&self.ms))
+            .setting("sd_ms", self.sd())
+            .setting("min_ms", self.min())
+            .setting("max_ms", self.max())
+            .setting("mean_pass_ms", self.mean_pass_ms())
+            .setting("worst_frame_passes", worst_passes)
+            .setting("worst_frame", worst + 1)
+            .setting("ray_traced_frames", self.ray_traced)
+            .setting("ray_traced_share", self.ray_traced as f64 / self.ms.len().max(1) as f64)
+    }
 }
 
 /// Where `ENGINE_SWEEP_IMAGES` asks for images, if it does.
@@ -194,7 +266,10 @@ fn preset_entry(sweep: &mut Sweep, view: &View, preset: Preset, timed: usize) {
     let approx = frame.image();
     write_images(&format!("{tag}_engine"), &approx, view.exposure);
     let e = view.errors(&approx);
-    let error_frame_ray_traced = frame.ray_traced;
+    let error_frame_ray_tracing = frame
+        .report
+        .pass(engine::pass::RAY_TRACING)
+        .map_or_else(|| "absent".to_owned(), |p| p.outcome.to_string());
 
     sweep.stage(&format!("{tag}: reused frames"));
     let reused: Vec<Frame> = (0..3).map(|_| render(&mut r)).collect();
@@ -202,41 +277,31 @@ fn preset_entry(sweep: &mut Sweep, view: &View, preset: Preset, timed: usize) {
     let reused_passes = passes_run(&reused[reused.len() - 1]);
 
     sweep.stage(&format!("{tag}: {timed} timed frames"));
-    let mut times = Vec::with_capacity(timed);
-    let mut traced = 0usize;
-    let mut last_passes = Vec::new();
+    let mut t = Timed::default();
     for k in 1..=timed {
         r.set_camera(nudged(&view.camera, k));
-        let f = render(&mut r);
-        times.push(f.wall_ms);
-        traced += usize::from(f.ray_traced);
-        last_passes = passes_run(&f);
+        t.add(&render(&mut r));
     }
-    let s = stats(&times);
     let software = r.is_software();
+    let entry = Entry::new(format!("engine/{tag}"), "engine", t.mean())
+        .setting("scene", view.name)
+        .setting("preset", preset)
+        .setting("width", w)
+        .setting("height", h)
+        .setting("timed_frames", timed)
+        .setting("camera_nudge_mm_per_frame", NUDGE_M * 1e3)
+        .setting(
+            "timing_method",
+            "mean wall ms of frames with the camera moved 1 mm sideways each frame, so every view-dependent pass reruns instead of being reused",
+        );
     sweep.entry(
-        Entry::new(format!("engine/{tag}"), "engine", s.mean)
-            .setting("scene", view.name)
-            .setting("preset", preset)
-            .setting("width", w)
-            .setting("height", h)
-            .setting("timed_frames", timed)
-            .setting("camera_nudge_mm_per_frame", NUDGE_M * 1e3)
-            .setting(
-                "timing_method",
-                "mean wall ms of frames with the camera moved 1 mm sideways each frame, so every view-dependent pass reruns instead of being reused",
-            )
-            .setting("median_ms", median(&times))
-            .setting("sd_ms", s.sd)
-            .setting("min_ms", s.min)
-            .setting("max_ms", s.max)
+        t.settings(entry)
+            .setting("timed_frame_passes_run", &t.last_passes_run)
             .setting("reused_frame_ms", reused_ms)
             .setting("reused_frame_passes_run", reused_passes)
-            .setting("timed_frame_passes_run", last_passes)
-            .setting("timed_frames_ray_traced", traced)
             .setting("warm_up_frames", warm_frames)
             .setting("sky_volume_complete", r.sky_volume_complete())
-            .setting("error_frame_ray_traced", error_frame_ray_traced)
+            .setting("error_frame_ray_tracing", error_frame_ray_tracing)
             .setting("rel_rms", e.rel_rms)
             .setting("rel_rms_clamped", e.rel_rms_clamped)
             .setting("mean_rel_luminance", e.mean_rel_luminance)
@@ -262,10 +327,11 @@ fn timing_note(software: bool, what: &str) -> String {
     }
 }
 
-/// Eye and target of frame `k` of `frames` on the loop around the city's central crossing:
-/// radius 4 m around the statue at eye height (1.7 m), one turn counter-clockwise, looking
-/// ahead along the path turned 35 degrees towards the statue (which, with the mirror across
-/// the crossing, brings ray-traced surfaces in and out of view).
+/// Frame `k` of `frames` (0: the warm-up's view; `frames`: back at the start) on the loop
+/// around the city's central crossing: radius 4 m around the statue at eye height (1.7 m),
+/// one turn counter-clockwise, looking ahead along the path turned 35 degrees towards the
+/// statue (which, with the mirror across the crossing, brings ray-traced surfaces in and out
+/// of view).
 fn flythrough_camera(k: usize, frames: usize, aspect: f32) -> Camera {
     let a = std::f32::consts::TAU * k as f32 / frames.max(1) as f32;
     let eye = Vec3::new(4.0 * a.cos(), 1.7, 4.0 * a.sin());
@@ -283,34 +349,25 @@ fn flythrough(sweep: &mut Sweep, city: &scene::Scene, w: u32, h: u32, frames: us
     let aspect = w as f32 / h as f32;
     r.set_camera(flythrough_camera(0, frames, aspect));
     let (_, warm_frames) = warm_up(&mut r);
-    let mut times = Vec::with_capacity(frames);
-    let mut traced = 0usize;
-    for k in 0..frames {
+    let mut t = Timed::default();
+    for k in 1..=frames {
         if k % 10 == 0 {
             sweep.stage(&format!("flythrough {w}x{h}: frame {k} of {frames}"));
         }
         r.set_camera(flythrough_camera(k, frames, aspect));
-        let f = render(&mut r);
-        times.push(f.wall_ms);
-        traced += usize::from(f.ray_traced);
+        t.add(&render(&mut r));
     }
-    let s = stats(&times);
     let software = r.is_software();
+    let entry = Entry::new(name, "engine", t.mean())
+        .setting("scene", "city")
+        .setting("preset", Preset::Default)
+        .setting("width", w)
+        .setting("height", h)
+        .setting("frames", frames)
+        .setting("path", "one counter-clockwise loop of radius 4 m around the central crossing's statue, eye at 1.7 m, looking ahead turned 35 deg inwards")
+        .setting("warm_up_frames", warm_frames);
     sweep.entry(
-        Entry::new(name, "engine", s.mean)
-            .setting("scene", "city")
-            .setting("preset", Preset::Default)
-            .setting("width", w)
-            .setting("height", h)
-            .setting("frames", frames)
-            .setting("path", "one counter-clockwise loop of radius 4 m around the central crossing's statue, eye at 1.7 m, looking ahead turned 35 deg inwards")
-            .setting("warm_up_frames", warm_frames)
-            .setting("sd_ms", s.sd)
-            .setting("min_ms", s.min)
-            .setting("max_ms", s.max)
-            .setting("median_ms", median(&times))
-            .setting("worst_frame", s.worst)
-            .setting("ray_traced_share", traced as f64 / frames.max(1) as f64)
+        t.settings(entry)
             .setting("thesis_mean_ms", THESIS_FLY_MEAN_MS)
             .setting("thesis_sd_ms", THESIS_FLY_SD_MS)
             .setting("thesis_frames", THESIS_FLY_FRAMES)
@@ -327,23 +384,40 @@ fn flythrough(sweep: &mut Sweep, city: &scene::Scene, w: u32, h: u32, frames: us
     );
 }
 
+/// One image size of the sweep.
+struct Size {
+    width: u32,
+    height: u32,
+    /// Samples per pixel of the reference images.
+    reference_spp: u32,
+    /// Timed (nudged) frames per preset.
+    timed_frames: usize,
+    /// Frames of the fly-through.
+    flythrough_frames: usize,
+}
+
+/// Quick: 320x180 only (about three minutes on 2 cores). Full: also 1600x900, the thesis's
+/// size (about half an hour: a 1600x900 frame takes seconds on lavapipe, the references
+/// minutes).
+const QUICK: &[Size] =
+    &[Size { width: 320, height: 180, reference_spp: 64, timed_frames: 5, flythrough_frames: 300 }];
+const FULL: &[Size] = &[
+    Size { width: 320, height: 180, reference_spp: 256, timed_frames: 20, flythrough_frames: 300 },
+    Size { width: 1600, height: 900, reference_spp: 128, timed_frames: 4, flythrough_frames: 100 },
+];
+
 fn main() {
     let mut sweep = Sweep::from_env("engine");
-    let quick = sweep.quick();
-    // (width, height, reference spp, timed frames per preset, fly-through frames)
-    let sizes: &[(u32, u32, u32, usize, usize)] = if quick {
-        &[(320, 180, 64, 5, 300)]
-    } else {
-        &[(320, 180, 256, 20, 300), (1600, 900, 64, 8, 100)]
-    };
-    for &(w, h, spp, timed, fly) in sizes {
+    let sizes = if sweep.quick() { QUICK } else { FULL };
+    for size in sizes {
+        let (w, h) = (size.width, size.height);
         for which in [Generated::City, Generated::CornellWindow] {
-            let view = View::new(&mut sweep, which, w, h, spp);
+            let view = View::new(&mut sweep, which, w, h, size.reference_spp);
             for preset in Preset::ALL {
-                preset_entry(&mut sweep, &view, preset, timed);
+                preset_entry(&mut sweep, &view, preset, size.timed_frames);
             }
             if which == Generated::City {
-                flythrough(&mut sweep, &view.scene, w, h, fly);
+                flythrough(&mut sweep, &view.scene, w, h, size.flythrough_frames);
             }
         }
     }
