@@ -5,12 +5,6 @@
 // had a ray and lie at a similar depth (the thesis's "smart" blur that masks aliasing along
 // silhouettes), with tent weights, and adds them with its own Fresnel weights.
 
-struct RayCast {
-    origin: vec4<f32>,
-    reflect: vec4<f32>,
-    refract: vec4<f32>,
-}
-
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var lit_t: texture_2d<f32>;
 @group(0) @binding(2) var normal_t: texture_2d<f32>;

@@ -31,6 +31,16 @@ struct Material {
     flags: vec4<u32>,
 }
 
+// One texel of the quarter-resolution ray casting buffer (thesis Table 6.1).
+struct RayCast {
+    // xyz origin, w view depth (0: no ray)
+    origin: vec4<f32>,
+    // xyz reflection direction, w weight
+    reflect: vec4<f32>,
+    // xyz refraction direction, w weight
+    refract: vec4<f32>,
+}
+
 const FLAG_SKY: u32 = 1u;
 const FLAG_BLINN: u32 = 2u;
 const FLAG_LPV: u32 = 4u;

@@ -5,15 +5,6 @@
 // their weights (reflect: reflectivity + transparency * Fresnel; refract: transparency *
 // (1 - Fresnel)). Texels without such a pixel have zero weights and are not traced.
 
-struct RayCast {
-    // xyz origin, w view depth (0: no ray)
-    origin: vec4<f32>,
-    // xyz reflection direction, w weight
-    reflect: vec4<f32>,
-    // xyz refraction direction, w weight
-    refract: vec4<f32>,
-}
-
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var normal_t: texture_2d<f32>;
 @group(0) @binding(2) var geometry_t: texture_2d<f32>;
