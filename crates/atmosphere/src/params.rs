@@ -2,7 +2,7 @@
 //! density profiles, the phase-function asymmetry, the sun's angular size and irradiance.
 //!
 //! Units: distances in kilometres, coefficients per kilometre. The Earth preset takes the
-//! constants of Bruneton (2017) and Hillaire (2020), which agree (see `REFERENCES.md`):
+//! constants of Bruneton (2017) and Hillaire (2020), which agree:
 //! Rayleigh (5.802, 13.558, 33.100) x 1e-6 /m with an 8 km scale height, Mie scattering
 //! 3.996e-6 /m and extinction 4.440e-6 /m with a 1.2 km scale height, ozone absorption
 //! (0.650, 1.881, 0.085) x 1e-6 /m in a tent profile from 10 to 40 km peaking at 25 km; the

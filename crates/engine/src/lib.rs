@@ -1,7 +1,7 @@
 //! # engine
 //!
 //! The hybrid real-time global-illumination renderer of the Serenity master's thesis
-//! (`seeds/serenity-thesis.txt`, chapters 3-7), composed from the workspace's technique
+//! (chapters 3-7; [`docs/ARCHITECTURE.md`](../../docs/ARCHITECTURE.md) has the pass graph), composed from the workspace's technique
 //! crates on wgpu. The engine only wires: each technique lives in its crate, each pass is a
 //! plain function over typed inputs ([`passes`]), and [`graph`] declares them to
 //! `frame_scheduler`, which runs only what the scene calls for and reports why.

@@ -19,7 +19,7 @@
 //!
 //! World frame: +Y up, +X east, -Z north, metres.
 //!
-//! References: the Serenity thesis (`seeds/serenity-thesis.txt`: 3.5 linear-space lighting,
+//! References: the master's thesis describing the Serenity engine (3.5 linear-space lighting,
 //! 5.3.3 occlusion quads, 6.2.3 textures for the ray tracer, Chapter 7 reference scene);
 //! IEC 61966-2-1 (sRGB transfer function); Khronos glTF 2.0 specification; Lengyel,
 //! "Computing tangent space basis vectors for an arbitrary mesh" (2001); Gribb & Hartmann,

@@ -25,7 +25,7 @@ pub struct Sun {
     pub angular_radius: f32,
 }
 
-/// The real sun's angular radius, radians (REFERENCES.md, Atmosphere).
+/// The real sun's angular radius, radians (the mean solar disk, 0.2679 deg).
 pub const SUN_ANGULAR_RADIUS: f32 = 0.004675;
 
 impl Sun {

@@ -1,7 +1,7 @@
 //! The `plane_box` test configuration and its sun-disk soft-shadow truth.
 //!
-//! A box standing on a ground plane under a sun of angular radius 0.004675 rad (REFERENCES.md,
-//! Bruneton/Hillaire). The truth is the visible fraction of the sun disk from each receiver on
+//! A box standing on a ground plane under a sun of angular radius 0.004675 rad (Bruneton 2017 and
+//! Hillaire 2020). The truth is the visible fraction of the sun disk from each receiver on
 //! the plane, estimated by Monte Carlo over the disk against the box with an analytic ray-box
 //! test ([`PlaneBox::reference_visibility`]). It stands behind one function boundary
 //! ([`PlaneBox::reference_image`]) so that the workspace's `reference` renderer's component
@@ -16,7 +16,7 @@ use crate::taps::{TapPattern, taps};
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 
-/// Sun angular radius in radians (REFERENCES.md, atmosphere section).
+/// Sun angular radius in radians (Bruneton 2017, Hillaire 2020).
 pub const SUN_ANGULAR_RADIUS: f32 = 0.004675;
 
 /// A box on a plane lit by the sun; the receivers are a square grid on the plane around the
