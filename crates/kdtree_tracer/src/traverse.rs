@@ -101,7 +101,7 @@ impl KdTree {
             2e-6 * (self.scale + ray.origin.abs().max_element()) / ray.dir.abs().max_element();
         let (mut t0, mut t1) = clip_box(self, r, t_min, t_max, eps)?;
         let nodes: &[Node] = &self.nodes;
-        let tris = &self.tris;
+        let packs = &self.packs;
         let mut stack = [Entry::default(); STACK];
         let mut sp = 0usize;
         let mut node = nodes[0];
@@ -157,19 +157,14 @@ impl KdTree {
                 continue;
             }
             let start = node.offset() as usize;
-            let end = start + node.count() as usize;
-            for (k, tri) in tris[start..end].iter().enumerate() {
-                if let Some((t, u, v)) = r.intersect_k::<KZ>(tri, t_min, best_t) {
+            let end = start + node.count().div_ceil(4) as usize;
+            for pack in &packs[start..end] {
+                if let Some((t, u, v, lane)) = r.intersect4::<KZ>(pack, t_min, best_t) {
                     if ANY {
-                        return Some(Hit {
-                            t,
-                            triangle: tri.triangle(),
-                            mesh: tri.mesh(),
-                            barycentrics: glam::Vec2::new(u, v),
-                        });
+                        return Some(self.hit(pack.rec[lane], t, u, v));
                     }
                     best_t = t;
-                    best = Some(((start + k) as u32, u, v));
+                    best = Some((pack.rec[lane], u, v));
                 }
             }
             // Pop the next node whose interval still starts before the best hit. (No separate

@@ -6,6 +6,7 @@ use rayon::prelude::*;
 use crate::aabb::Aabb;
 use crate::build;
 use crate::error::Error;
+use crate::leaf4::Tri4;
 use crate::mesh::Mesh;
 use crate::node::{MAX_FIELD, Node};
 use crate::settings::{MAX_DEPTH_LIMIT, Settings};
@@ -22,7 +23,11 @@ pub const MAX_TRIANGLES: usize = MAX_FIELD as usize;
 #[derive(Clone, Debug, PartialEq)]
 pub struct KdTree {
     pub(crate) nodes: Vec<Node>,
+    /// Triangle records, each leaf's contiguous (hit ids, `validate`).
     pub(crate) tris: Vec<LeafTri>,
+    /// Each leaf's records packed four at a time (what traversal reads); a leaf node's
+    /// offset is its first pack here.
+    pub(crate) packs: Vec<Tri4>,
     pub(crate) bounds: Aabb,
     /// Largest absolute coordinate of `bounds` (scales the traversal's epsilon).
     pub(crate) scale: f32,
@@ -84,14 +89,20 @@ impl KdTree {
         if built.nodes.len() > MAX_FIELD as usize || built.refs.len() > u32::MAX as usize {
             return Err(Error::TooManyTriangles(built.refs.len()));
         }
-        let tris = built
+        let tris: Vec<LeafTri> = built
             .refs
             .par_iter()
             .map(|&g| LeafTri::new(corners[g as usize], g, mesh.mesh_of(g)))
             .collect();
+        let mut nodes = built.nodes;
+        let packs = pack_leaves(&mut nodes, &tris);
+        if packs.len() > u32::MAX as usize {
+            return Err(Error::TooManyTriangles(tris.len()));
+        }
         Ok(Self {
-            nodes: built.nodes,
+            nodes,
             tris,
+            packs,
             bounds,
             scale: if bounds.is_empty() {
                 0.0
@@ -130,7 +141,8 @@ impl KdTree {
             }
         }
         let bytes = self.nodes.len() * std::mem::size_of::<Node>()
-            + self.tris.len() * std::mem::size_of::<LeafTri>();
+            + self.tris.len() * std::mem::size_of::<LeafTri>()
+            + self.packs.len() * std::mem::size_of::<Tri4>();
         TreeStats {
             triangles: self.triangle_count,
             indexed_triangles: self.indexed_count,
@@ -221,10 +233,20 @@ impl KdTree {
         let n = self.nodes[i as usize];
         if n.is_leaf() {
             let (o, c) = (n.offset() as usize, n.count() as usize);
-            let Some(recs) = self.tris.get(o..o + c) else {
-                return bad(format!("leaf {i} range {o}+{c} out of range"));
+            let Some(packs) = self.packs.get(o..o + c.div_ceil(4)) else {
+                return bad(format!("leaf {i} packs {o}+{c} out of range"));
             };
-            let mut ids: Vec<u32> = recs.iter().map(|r| r.triangle()).collect();
+            let mut ids = Vec::with_capacity(c);
+            for k in 0..c {
+                let (pack, lane) = (&packs[k / 4], k % 4);
+                let Some(r) = self.tris.get(pack.rec[lane] as usize) else {
+                    return bad(format!("leaf {i} lane {k} names record {}", pack.rec[lane]));
+                };
+                if pack.corners(lane) != r.corners() {
+                    return bad(format!("leaf {i} lane {k} differs from its record"));
+                }
+                ids.push(r.triangle());
+            }
             ids.sort_unstable();
             for &t in &ids {
                 present[t as usize] = true;
@@ -257,6 +279,21 @@ impl KdTree {
         }
         Ok(l + r)
     }
+}
+
+/// Packs each leaf's records (`offset`, `count` into `tris`) four at a time, and points the
+/// leaf at its first pack instead.
+fn pack_leaves(nodes: &mut [Node], tris: &[LeafTri]) -> Vec<Tri4> {
+    let mut packs = Vec::with_capacity(tris.len() / 2 + 1);
+    for n in nodes.iter_mut().filter(|n| n.is_leaf()) {
+        let (o, c) = (n.offset() as usize, n.count() as usize);
+        let first = packs.len() as u32;
+        for k in (0..c).step_by(4) {
+            packs.push(Tri4::new(&tris[o + k..o + c.min(k + 4)], (o + k) as u32));
+        }
+        *n = Node::leaf(c as u32, first);
+    }
+    packs
 }
 
 /// True when the triangle reaches into the box's interior (the box shrunk by a relative 1e-6

@@ -65,9 +65,9 @@ pub(crate) struct PreparedRay {
     pub d: [f32; 4],
     pub inv: [f32; 4],
     pub kz: usize,
-    sx: f32,
-    sy: f32,
-    sz: f32,
+    pub sx: f32,
+    pub sy: f32,
+    pub sz: f32,
 }
 
 impl PreparedRay {
