@@ -259,6 +259,10 @@ fn main() -> std::io::Result<()> {
         ("reference".into(), Settings::reference()),
     ];
     if !quick {
+        for ki in [0.25f32, 0.3, 0.55, 1.0] {
+            settings
+                .push((format!("ki{ki}"), Settings { intersection_cost: ki, ..Settings::DEFAULT }));
+        }
         for leaf in [1u32, 2, 4, 8] {
             for bonus in [0.0f32, 0.2, 0.5] {
                 for perfect in [false, true] {

@@ -62,7 +62,6 @@ fn main() -> Result<()> {
         leaf_size: env_f32("KD_LEAF", Settings::DEFAULT.leaf_size as f32) as u32,
         max_depth: env_f32("KD_DEPTH", 0.0) as u32,
         perfect_splits: env_f32("KD_PERFECT", Settings::DEFAULT.perfect_splits as u32 as f32) > 0.5,
-        ..Settings::DEFAULT
     };
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build()?;
     let mut log = 0.0;

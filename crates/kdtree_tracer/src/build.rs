@@ -178,6 +178,12 @@ fn find_split(ctx: &Ctx, input: &NodeInput) -> Option<Split> {
     if n == 0 || n <= s.leaf_size as usize || input.depth >= ctx.max_depth {
         return None;
     }
+    // Every split costs at least `traversal_cost * (1 - empty_bonus)` (rounding is monotone),
+    // so when the leaf is no dearer no sweep can find a cheaper split: skip the sweeps (most
+    // nodes are this small; the tree is the same).
+    if s.intersection_cost * blocks(n) <= s.traversal_cost * (1.0 - s.empty_bonus) {
+        return None;
+    }
     let sweep = |axis: usize| sweep_axis(s, input, axis);
     let per_axis: [Option<Split>; 3] = if n >= PAR_SWEEP {
         let (a, (b, c)) = rayon::join(|| sweep(0), || rayon::join(|| sweep(1), || sweep(2)));

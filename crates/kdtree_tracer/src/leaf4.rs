@@ -28,8 +28,8 @@ impl Tri4 {
             let k = lane.min(recs.len() - 1);
             let r = &recs[k];
             for (c, v) in [&r.v0, &r.v1, &r.v2].into_iter().enumerate() {
-                for axis in 0..3 {
-                    out.p[3 * c + axis][lane] = v[axis];
+                for (axis, &x) in v[..3].iter().enumerate() {
+                    out.p[3 * c + axis][lane] = x;
                 }
             }
             out.rec[lane] = first + k as u32;

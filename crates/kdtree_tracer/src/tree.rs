@@ -18,8 +18,8 @@ pub const MAX_TRIANGLES: usize = MAX_FIELD as usize;
 /// A static SAH kd-tree over a [`Mesh`].
 ///
 /// Nodes are 8 bytes ([`TreeStats::bytes`] reports the total); each leaf's triangles are
-/// stored contiguously as 48-byte precomputed records (corners + ids), so a leaf is one linear
-/// read. Queries are [`KdTree::intersect`] (closest hit) and [`KdTree::occluded`] (any hit).
+/// stored contiguously in packs of four (160 bytes, structure of arrays, tested together), so
+/// a leaf is one linear read; 48-byte records (corners + ids) keep the ids. Queries are [`KdTree::intersect`] (closest hit) and [`KdTree::occluded`] (any hit).
 #[derive(Clone, Debug, PartialEq)]
 pub struct KdTree {
     pub(crate) nodes: Vec<Node>,
