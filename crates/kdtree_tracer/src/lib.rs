@@ -47,7 +47,9 @@
 //!
 //! Swept and not kept (no gain beyond the scatter, same rays): intersection cost 0.3 / 0.55
 //! per pack, empty bonus 0 / 0.1 / 0.5, perfect splits as the default (fewer references,
-//! slower build), a larger leaf size. The pack-counting SAH gives trees with half the leaves
+//! slower build), a larger leaf size, and AVX testing two packs at once (the traversal
+//! compiled twice, chosen with `is_x86_feature_detected!`: geomean 1.10 against 1.16 for SSE
+//! alone, alternating runs at load 11). The pack-counting SAH gives trees with half the leaves
 //! of the per-triangle sweep at the same speed (city 1634 leaves against 3410), which builds
 //! faster; nodes whose leaf cost is already below the cheapest possible split
 //! (`traversal_cost * (1 - empty_bonus)`) skip the plane sweeps: the 1M-triangle build went
