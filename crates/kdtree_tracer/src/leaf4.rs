@@ -10,20 +10,21 @@
 
 use crate::triangle::{LeafTri, PreparedRay};
 
-/// Up to four leaf triangles: `p[3 * corner + axis][lane]`, and each lane's index into the
-/// tree's triangle records. 160 bytes.
+/// Up to four leaf triangles: `p[3 * corner + axis][lane]`, and each lane's triangle and mesh
+/// ids. 176 bytes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C, align(16))]
 pub(crate) struct Tri4 {
     pub p: [[f32; 4]; 9],
-    pub rec: [u32; 4],
+    pub tri: [u32; 4],
+    pub mesh: [u32; 4],
 }
 
 impl Tri4 {
-    /// Packs `recs` (1 to 4 records, whose indices start at `first`), repeating the last.
-    pub fn new(recs: &[LeafTri], first: u32) -> Self {
+    /// Packs `recs` (1 to 4 records), repeating the last.
+    pub fn new(recs: &[LeafTri]) -> Self {
         debug_assert!((1..=4).contains(&recs.len()));
-        let mut out = Self { p: [[0.0; 4]; 9], rec: [0; 4] };
+        let mut out = Self { p: [[0.0; 4]; 9], tri: [0; 4], mesh: [0; 4] };
         for lane in 0..4 {
             let k = lane.min(recs.len() - 1);
             let r = &recs[k];
@@ -32,7 +33,8 @@ impl Tri4 {
                     out.p[3 * c + axis][lane] = x;
                 }
             }
-            out.rec[lane] = first + k as u32;
+            out.tri[lane] = r.triangle();
+            out.mesh[lane] = r.mesh();
         }
         out
     }
@@ -213,13 +215,13 @@ mod tests {
         lo: f32,
         hi: f32,
     ) -> Option<(f32, f32, f32, usize)> {
-        let pack = Tri4::new(recs, 0);
+        let pack = Tri4::new(recs);
         let hit = match r.kz {
             0 => r.intersect4::<0>(&pack, lo, hi),
             1 => r.intersect4::<1>(&pack, lo, hi),
             _ => r.intersect4::<2>(&pack, lo, hi),
         };
-        hit.map(|(t, u, v, l)| (t, u, v, pack.rec[l] as usize))
+        hit.map(|(t, u, v, l)| (t, u, v, pack.tri[l] as usize))
     }
 
     fn bits(h: Option<(f32, f32, f32, usize)>) -> Option<(u32, u32, u32, usize)> {

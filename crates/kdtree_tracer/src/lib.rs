@@ -11,7 +11,8 @@
 //! - **Layout**: 8-byte nodes (I. Wald, "Realtime Ray Tracing and Interactive Global
 //!   Illumination", PhD thesis 2004), siblings adjacent; each leaf's triangles packed four at
 //!   a time in structure-of-arrays form and tested together with SSE (bit-for-bit the scalar
-//!   test, including its exact-zero rule), and the SAH counts a leaf's cost in such packs.
+//!   test, including its exact-zero rule) with their triangle and mesh ids, and the SAH counts
+//!   a leaf's cost in such packs.
 //! - **Queries**: [`KdTree::intersect`] (closest hit) and [`KdTree::occluded`] (any hit)
 //!   through the [`RayQuery`] trait; fixed stack, no allocation per ray; robust to zero and
 //!   negative-zero direction components, rays in and on split planes, `t_min`/`t_max` edges.
@@ -33,7 +34,8 @@
 //!
 //! Ratios are kd-tree / obvhs CWBVH (medium build, this crate's triangle test in its leaves)
 //! throughput on the same incoherent rays, raced interleaved in one process on one thread
-//! (`examples/kdrace.rs`, 40-50k rays per mesh, median of 7-15 rounds), so machine load
+//! (`examples/kdrace.rs`, 40-50k rays per mesh, median of 7-15 rounds; a range where the
+//! step was run more than once, the last row alternating with the one before), so machine load
 //! cancels out; they were taken on a 2-core machine shared with other builds (load 3.5-13),
 //! where one run's ratios scatter by about +-10%. Geomean over the city block (20k),
 //! blob (82k, closed organic), cable (48k, long thin) and atrium (62k, architectural).
@@ -43,7 +45,8 @@
 //! | start: scalar leaves, SAH costs 1 : 1.5 per triangle | 0.80 | 0.33 | 0.59 | 0.97 | 0.62 |
 //! | leaves packed by four, tested with SSE (same tree) | 0.82 | 0.44 | 0.73 | 0.98 | 0.71 |
 //! | SAH cost sweep: traversal 8 : intersection 1.5 (bigger leaves) | 1.03-1.37 | 0.80 | 1.33-1.46 | 1.33-1.37 | 1.11-1.21 |
-//! | SAH counting packs, `ceil(N/4)`, costs 1 : 0.4 (the default) | 1.00-1.08 | 0.82-0.95 | 1.35-1.56 | 1.26-1.37 | 1.12-1.19 |
+//! | SAH counting packs, `ceil(N/4)`, costs 1 : 0.4 | 1.00-1.08 | 0.82-0.95 | 1.35-1.56 | 1.26-1.37 | 1.12-1.19 |
+//! | ids in the packs, no separate 48-byte records (54 B/tri on the city, was 106) | 1.14 | 0.91-0.99 | 1.30-1.51 | 1.42-1.53 | 1.22 |
 //!
 //! Swept and not kept (no gain beyond the scatter, same rays): intersection cost 0.3 / 0.55
 //! per pack, empty bonus 0 / 0.1 / 0.5, perfect splits as the default (fewer references,
