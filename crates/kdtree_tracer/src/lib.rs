@@ -56,7 +56,8 @@
 //! of the per-triangle sweep at the same speed (city 1634 leaves against 3410), which builds
 //! faster; nodes whose leaf cost is already below the cheapest possible split
 //! (`traversal_cost * (1 - empty_bonus)`) skip the plane sweeps: the 1M-triangle build went
-//! from 2.77 s to 2.2-2.5 s of CPU time (same tree; CPU time too is noisy at load 12). The closed blob is where a BVH still wins:
+//! from 2.77 s to 2.2-2.5 s of CPU time (same tree; CPU time too is noisy at load 12). The
+//! closed blob is where a BVH still wins:
 //! rays leaving a curved surface cross many thin leaves around it (12 leaves, 50 steps per
 //! ray against 5 leaves, 25 steps on the city).
 //!
