@@ -1,13 +1,15 @@
 //! `cargo xtask bench --only kdtree_tracer`: the kd-tree against obvhs (interleaved, same
-//! triangles, same rays, same triangle test), the thesis's worst-case reflection buffer, the
-//! 1M-triangle build, and the SAH settings sweep.
+//! triangles, same rays, same triangle test) on the city block and on three meshes of other
+//! character (a closed organic blob, a long thin cable, an architectural atrium), incoherent
+//! and primary rays; the thesis's worst-case reflection buffer, the 1M-triangle build, and the
+//! SAH settings sweep.
 
 use std::time::Instant;
 
 use gi_report::{Comparison, Entry, Sweep, interleaved, time_ms};
 use kdtree_tracer::test_util::{self, Camera};
 use kdtree_tracer::{
-    BvhAccel, BvhKind, BvhPreset, DEFAULT_TILE, KdTree, Ray, RayQuery, Settings, trace_tiles,
+    BvhAccel, BvhKind, BvhPreset, DEFAULT_TILE, KdTree, Mesh, Ray, RayQuery, Settings, trace_tiles,
 };
 use rayon::prelude::*;
 
@@ -75,10 +77,10 @@ fn main() -> std::io::Result<()> {
     sweep.stage("obvhs builds");
     let presets: Vec<BvhPreset> =
         if quick { vec![BvhPreset::MediumBuild] } else { BvhPreset::ALL.to_vec() };
-    let best_of = |kind: BvhKind| {
+    let best_of_on = |mesh: &Mesh, rays: &[Ray], kind: BvhKind| {
         let mut best: Option<(f64, BvhPreset, BvhAccel)> = None;
         for &p in &presets {
-            let b = BvhAccel::build(&city, kind, p).expect("obvhs build");
+            let b = BvhAccel::build(mesh, kind, p).expect("obvhs build");
             let (ms, _) = pool(1).install(|| time_ms(3, || trace_all(&b, rays)));
             if best.as_ref().is_none_or(|(m, _, _)| ms < *m) {
                 best = Some((ms, p, b));
@@ -86,6 +88,7 @@ fn main() -> std::io::Result<()> {
         }
         best.expect("at least one preset")
     };
+    let best_of = |kind: BvhKind| best_of_on(&city, rays, kind);
     let (_, cw_preset, cw) = best_of(BvhKind::Cwbvh);
     let (_, b2_preset, b2) = best_of(BvhKind::Bvh2);
     let note = |p: BvhPreset| {
@@ -123,6 +126,67 @@ fn main() -> std::io::Result<()> {
             .note(note(b2_preset)),
         );
     }
+
+    // Three more meshes of different character, incoherent rays from their surfaces.
+    let n_extra = if quick { 40_000 } else { 200_000 };
+    let extra: [(&str, Mesh, &str); 3] = [
+        ("blob", test_util::blob(6), "closed organic blob (icosphere level 6, displaced)"),
+        ("cable", test_util::cable(2000, 12), "long thin tube wound along a 200-unit axis"),
+        ("atrium", test_util::atrium(), "three-storey hall with an open atrium, columns, walls"),
+    ];
+    for (name, mesh, what) in &extra {
+        sweep.stage(&format!("{name}: builds"));
+        let kd = KdTree::build(mesh, &Settings::DEFAULT).expect("build");
+        let rays = test_util::surface_rays(mesh, n_extra, 7);
+        let (_, preset, cw) = best_of_on(mesh, &rays, BvhKind::Cwbvh);
+        for threads in [1usize, 2] {
+            sweep.stage(&format!("{name}: race vs CWBVH, {threads} thread(s)"));
+            let (ours, theirs) = race(threads, rounds, &rays, &kd, &cw);
+            sweep.comparison(
+                Comparison::new(
+                    format!("kdtree_tracer/vs_obvhs_cwbvh_incoherent_{name}_{threads}t"),
+                    ours,
+                    theirs,
+                    "Mrays/s",
+                    true,
+                )
+                .note(format!(
+                    "{} incoherent rays (random points of random triangles, random hemisphere \
+                     on a random side) on the {}-triangle {what}; obvhs {} with this crate's \
+                     watertight triangle test in its leaves; interleaved, median of {rounds}",
+                    rays.len(),
+                    mesh.triangle_count(),
+                    preset.name()
+                )),
+            );
+        }
+    }
+    drop(extra);
+
+    // Coherent rays: the primary rays of a 1600x900 view of the city.
+    let primary = test_util::camera_rays(&cam, 1600, 900);
+    let prim_rounds = sweep.reps(10);
+    for threads in [1usize, 2] {
+        sweep.stage(&format!("primary 1600x900 vs CWBVH, {threads} thread(s)"));
+        let (ours, theirs) = race(threads, prim_rounds, &primary, &kd, &cw);
+        sweep.comparison(
+            Comparison::new(
+                format!("kdtree_tracer/vs_obvhs_cwbvh_primary_1600x900_{threads}t"),
+                ours,
+                theirs,
+                "Mrays/s",
+                true,
+            )
+            .note(format!(
+                "coherent rays: the {} primary rays of a 1600x900 view over the 20k-triangle \
+                 city block (closest hit, rays traced in row order in chunks of 1024); obvhs {}; \
+                 interleaved, median of {prim_rounds}",
+                primary.len(),
+                cw_preset.name()
+            )),
+        );
+    }
+    drop(primary);
 
     sweep.stage("reflections 800x450");
     let filled = screen.iter().filter(|r| r.is_some()).count();
@@ -195,6 +259,10 @@ fn main() -> std::io::Result<()> {
         ("reference".into(), Settings::reference()),
     ];
     if !quick {
+        for ki in [0.25f32, 0.3, 0.55, 1.0] {
+            settings
+                .push((format!("ki{ki}"), Settings { intersection_cost: ki, ..Settings::DEFAULT }));
+        }
         for leaf in [1u32, 2, 4, 8] {
             for bonus in [0.0f32, 0.2, 0.5] {
                 for perfect in [false, true] {

@@ -3,7 +3,7 @@
 //! mismatches against brute force on a sample of rays.
 //!
 //! cargo run --release -p kdtree_tracer --example kdbench -- MESH.obj [--rays N] [--json]
-//! cargo run --release -p kdtree_tracer --example kdbench -- --scene city|sphere|soup|cornell
+//! cargo run --release -p kdtree_tracer --example kdbench -- --scene city|sphere|soup|cornell|blob|cable|atrium
 
 use std::time::Instant;
 
@@ -102,7 +102,7 @@ fn main() -> Result<()> {
             }
             "-h" | "--help" => {
                 println!(
-                    "kdbench MESH.obj [--rays N] [--json] [--build-only] [--settings low|default|high|reference] | --scene city|sphere|soup|cornell"
+                    "kdbench MESH.obj [--rays N] [--json] [--build-only] [--settings low|default|high|reference] | --scene city|sphere|soup|cornell|blob|cable|atrium"
                 );
                 return Ok(());
             }
@@ -119,6 +119,9 @@ fn main() -> Result<()> {
             ("random_soup_1m".into(), test_util::random_soup(1, 1_000_000, 0.01))
         }
         (None, Some("cornell")) => ("cornell_box".into(), test_util::cornell_box()),
+        (None, Some("blob")) => ("blob_82k".into(), test_util::blob(6)),
+        (None, Some("cable")) => ("cable_48k".into(), test_util::cable(2000, 12)),
+        (None, Some("atrium")) => ("atrium".into(), test_util::atrium()),
         (None, Some(s)) => bail!("unknown scene {s}"),
     };
     let n_tris = mesh.triangle_count();

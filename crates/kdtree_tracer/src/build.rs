@@ -178,6 +178,12 @@ fn find_split(ctx: &Ctx, input: &NodeInput) -> Option<Split> {
     if n == 0 || n <= s.leaf_size as usize || input.depth >= ctx.max_depth {
         return None;
     }
+    // Every split costs at least `traversal_cost * (1 - empty_bonus)` (rounding is monotone),
+    // so when the leaf is no dearer no sweep can find a cheaper split: skip the sweeps (most
+    // nodes are this small; the tree is the same).
+    if s.intersection_cost * blocks(n) <= s.traversal_cost * (1.0 - s.empty_bonus) {
+        return None;
+    }
     let sweep = |axis: usize| sweep_axis(s, input, axis);
     let per_axis: [Option<Split>; 3] = if n >= PAR_SWEEP {
         let (a, (b, c)) = rayon::join(|| sweep(0), || rayon::join(|| sweep(1), || sweep(2)));
@@ -189,7 +195,14 @@ fn find_split(ctx: &Ctx, input: &NodeInput) -> Option<Split> {
         Some(b) if b.cost <= c.cost => Some(b),
         _ => Some(c),
     })?;
-    (best.cost < s.intersection_cost * n as f32).then_some(best)
+    (best.cost < s.intersection_cost * blocks(n)).then_some(best)
+}
+
+/// Ray/triangle tests a leaf of `n` triangles costs: its packs of four
+/// (`crate::leaf4::Tri4`), tested together.
+#[inline]
+fn blocks(n: usize) -> f32 {
+    n.div_ceil(4) as f32
 }
 
 /// One sweep over an axis's sorted events (Wald & Havran, Algorithm 4).
@@ -210,7 +223,7 @@ fn sweep_axis(s: &Settings, input: &NodeInput, axis: usize) -> Option<Split> {
     let inv_area = 1.0 / area;
     let (kt, ki, keep) = (s.traversal_cost, s.intersection_cost, 1.0 - s.empty_bonus);
     let cost = |pl: f32, pr: f32, nl: usize, nr: usize| {
-        let c = kt + ki * (pl * nl as f32 + pr * nr as f32);
+        let c = kt + ki * (pl * blocks(nl) + pr * blocks(nr));
         if nl == 0 || nr == 0 { c * keep } else { c }
     };
     let ev = &input.events[axis];

@@ -14,6 +14,7 @@
 //!   rest of the interval), and a zero or negative-zero direction component is handled by the
 //!   IEEE infinities of `1/d` (`+-inf` never lies inside the interval).
 
+use crate::leaf4::Tri4;
 use crate::node::Node;
 use crate::ray::{Hit, Ray, RayQuery};
 use crate::settings::MAX_DEPTH_LIMIT;
@@ -101,12 +102,12 @@ impl KdTree {
             2e-6 * (self.scale + ray.origin.abs().max_element()) / ray.dir.abs().max_element();
         let (mut t0, mut t1) = clip_box(self, r, t_min, t_max, eps)?;
         let nodes: &[Node] = &self.nodes;
-        let tris = &self.tris;
+        let packs = &self.packs;
         let mut stack = [Entry::default(); STACK];
         let mut sp = 0usize;
         let mut node = nodes[0];
         let mut best_t = t_max;
-        let mut best: Option<(u32, f32, f32)> = None;
+        let mut best: Option<(u32, usize, f32, f32)> = None;
         loop {
             if !node.is_leaf() {
                 let axis = node.axis() & 3;
@@ -157,19 +158,14 @@ impl KdTree {
                 continue;
             }
             let start = node.offset() as usize;
-            let end = start + node.count() as usize;
-            for (k, tri) in tris[start..end].iter().enumerate() {
-                if let Some((t, u, v)) = r.intersect_k::<KZ>(tri, t_min, best_t) {
+            let end = start + node.count().div_ceil(4) as usize;
+            for (k, pack) in packs[start..end].iter().enumerate() {
+                if let Some((t, u, v, lane)) = r.intersect4::<KZ>(pack, t_min, best_t) {
                     if ANY {
-                        return Some(Hit {
-                            t,
-                            triangle: tri.triangle(),
-                            mesh: tri.mesh(),
-                            barycentrics: glam::Vec2::new(u, v),
-                        });
+                        return Some(hit(pack, lane, t, u, v));
                     }
                     best_t = t;
-                    best = Some(((start + k) as u32, u, v));
+                    best = Some(((start + k) as u32, lane, u, v));
                 }
             }
             // Pop the next node whose interval still starts before the best hit. (No separate
@@ -178,7 +174,7 @@ impl KdTree {
             // as soon as the best hit precedes every pending node.)
             loop {
                 if sp == 0 {
-                    return best.map(|(i, u, v)| self.hit(i, best_t, u, v));
+                    return best.map(|(i, lane, u, v)| hit(&packs[i as usize], lane, best_t, u, v));
                 }
                 sp -= 1;
                 let e = stack[sp];
@@ -191,12 +187,11 @@ impl KdTree {
             }
         }
     }
+}
 
-    #[inline]
-    fn hit(&self, record: u32, t: f32, u: f32, v: f32) -> Hit {
-        let r = &self.tris[record as usize];
-        Hit { t, triangle: r.triangle(), mesh: r.mesh(), barycentrics: glam::Vec2::new(u, v) }
-    }
+#[inline]
+fn hit(pack: &Tri4, lane: usize, t: f32, u: f32, v: f32) -> Hit {
+    Hit { t, triangle: pack.tri[lane], mesh: pack.mesh[lane], barycentrics: glam::Vec2::new(u, v) }
 }
 
 impl RayQuery for KdTree {

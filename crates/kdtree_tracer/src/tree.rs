@@ -6,6 +6,7 @@ use rayon::prelude::*;
 use crate::aabb::Aabb;
 use crate::build;
 use crate::error::Error;
+use crate::leaf4::Tri4;
 use crate::mesh::Mesh;
 use crate::node::{MAX_FIELD, Node};
 use crate::settings::{MAX_DEPTH_LIMIT, Settings};
@@ -17,12 +18,14 @@ pub const MAX_TRIANGLES: usize = MAX_FIELD as usize;
 /// A static SAH kd-tree over a [`Mesh`].
 ///
 /// Nodes are 8 bytes ([`TreeStats::bytes`] reports the total); each leaf's triangles are
-/// stored contiguously as 48-byte precomputed records (corners + ids), so a leaf is one linear
-/// read. Queries are [`KdTree::intersect`] (closest hit) and [`KdTree::occluded`] (any hit).
+/// stored contiguously in packs of four (176 bytes: corners in structure-of-arrays form and
+/// ids, tested together), so a leaf is one linear read. Queries are [`KdTree::intersect`] (closest hit) and [`KdTree::occluded`] (any hit).
 #[derive(Clone, Debug, PartialEq)]
 pub struct KdTree {
     pub(crate) nodes: Vec<Node>,
-    pub(crate) tris: Vec<LeafTri>,
+    /// Each leaf's triangles packed four at a time, with their ids; a leaf node's offset is
+    /// its first pack here.
+    pub(crate) packs: Vec<Tri4>,
     pub(crate) bounds: Aabb,
     /// Largest absolute coordinate of `bounds` (scales the traversal's epsilon).
     pub(crate) scale: f32,
@@ -84,14 +87,16 @@ impl KdTree {
         if built.nodes.len() > MAX_FIELD as usize || built.refs.len() > u32::MAX as usize {
             return Err(Error::TooManyTriangles(built.refs.len()));
         }
-        let tris = built
-            .refs
-            .par_iter()
-            .map(|&g| LeafTri::new(corners[g as usize], g, mesh.mesh_of(g)))
-            .collect();
+        let mut nodes = built.nodes;
+        let packs = pack_leaves(&mut nodes, &built.refs, |g| {
+            LeafTri::new(corners[g as usize], g, mesh.mesh_of(g))
+        });
+        if packs.len() > u32::MAX as usize {
+            return Err(Error::TooManyTriangles(built.refs.len()));
+        }
         Ok(Self {
-            nodes: built.nodes,
-            tris,
+            nodes,
+            packs,
             bounds,
             scale: if bounds.is_empty() {
                 0.0
@@ -116,7 +121,7 @@ impl KdTree {
 
     /// Node count, leaf count, references, depth and memory.
     pub fn stats(&self) -> TreeStats {
-        let (mut leaves, mut empty, mut max_depth) = (0, 0, 0);
+        let (mut leaves, mut empty, mut max_depth, mut refs) = (0, 0, 0, 0);
         let mut stack = vec![(0u32, 0u32)];
         while let Some((i, d)) = stack.pop() {
             let n = self.nodes[i as usize];
@@ -124,20 +129,21 @@ impl KdTree {
             if n.is_leaf() {
                 leaves += 1;
                 empty += usize::from(n.count() == 0);
+                refs += n.count() as usize;
             } else {
                 stack.push((n.first_child(), d + 1));
                 stack.push((n.first_child() + 1, d + 1));
             }
         }
         let bytes = self.nodes.len() * std::mem::size_of::<Node>()
-            + self.tris.len() * std::mem::size_of::<LeafTri>();
+            + self.packs.len() * std::mem::size_of::<Tri4>();
         TreeStats {
             triangles: self.triangle_count,
             indexed_triangles: self.indexed_count,
             nodes: self.nodes.len(),
             leaves,
             empty_leaves: empty,
-            references: self.tris.len(),
+            references: refs,
             max_depth,
             bytes,
             bytes_per_triangle: if self.triangle_count == 0 {
@@ -165,16 +171,18 @@ impl KdTree {
         if self.nodes.is_empty() {
             return bad("no root node".into());
         }
-        for (i, r) in self.tris.iter().enumerate() {
-            let t = r.triangle();
-            if t as usize >= self.triangle_count {
-                return bad(format!("record {i} names triangle {t}"));
-            }
-            if r.corners() != mesh.triangle(t) || r.mesh() != mesh.mesh_of(t) {
-                return bad(format!("record {i} does not match triangle {t}"));
-            }
-            if mesh.is_degenerate(t) {
-                return bad(format!("degenerate triangle {t} is in a leaf"));
+        for (i, pack) in self.packs.iter().enumerate() {
+            for lane in 0..4 {
+                let t = pack.tri[lane];
+                if t as usize >= self.triangle_count {
+                    return bad(format!("pack {i} lane {lane} names triangle {t}"));
+                }
+                if pack.corners(lane) != mesh.triangle(t) || pack.mesh[lane] != mesh.mesh_of(t) {
+                    return bad(format!("pack {i} lane {lane} does not match triangle {t}"));
+                }
+                if mesh.is_degenerate(t) {
+                    return bad(format!("degenerate triangle {t} is in a leaf"));
+                }
             }
         }
         let mut seen = vec![false; self.nodes.len()];
@@ -221,10 +229,10 @@ impl KdTree {
         let n = self.nodes[i as usize];
         if n.is_leaf() {
             let (o, c) = (n.offset() as usize, n.count() as usize);
-            let Some(recs) = self.tris.get(o..o + c) else {
-                return bad(format!("leaf {i} range {o}+{c} out of range"));
+            let Some(packs) = self.packs.get(o..o + c.div_ceil(4)) else {
+                return bad(format!("leaf {i} packs {o}+{c} out of range"));
             };
-            let mut ids: Vec<u32> = recs.iter().map(|r| r.triangle()).collect();
+            let mut ids: Vec<u32> = (0..c).map(|k| packs[k / 4].tri[k % 4]).collect();
             ids.sort_unstable();
             for &t in &ids {
                 present[t as usize] = true;
@@ -257,6 +265,23 @@ impl KdTree {
         }
         Ok(l + r)
     }
+}
+
+/// Packs each leaf's triangles (`offset`, `count` into `refs`, global ids made into records by
+/// `record`) four at a time, and points the leaf at its first pack instead.
+fn pack_leaves(nodes: &mut [Node], refs: &[u32], record: impl Fn(u32) -> LeafTri) -> Vec<Tri4> {
+    let mut packs = Vec::with_capacity(refs.len() / 2 + 1);
+    for n in nodes.iter_mut().filter(|n| n.is_leaf()) {
+        let (o, c) = (n.offset() as usize, n.count() as usize);
+        let first = packs.len() as u32;
+        for k in (0..c).step_by(4) {
+            let m = (c - k).min(4);
+            let recs: [LeafTri; 4] = std::array::from_fn(|j| record(refs[o + k + j.min(m - 1)]));
+            packs.push(Tri4::new(&recs[..m]));
+        }
+        *n = Node::leaf(c as u32, first);
+    }
+    packs
 }
 
 /// True when the triangle reaches into the box's interior (the box shrunk by a relative 1e-6

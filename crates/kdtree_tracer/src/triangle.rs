@@ -36,13 +36,6 @@ impl LeafTri {
     pub fn mesh(&self) -> u32 {
         self.v1[3].to_bits()
     }
-    pub fn corners(&self) -> [Vec3; 3] {
-        [
-            Vec3::new(self.v0[0], self.v0[1], self.v0[2]),
-            Vec3::new(self.v1[0], self.v1[1], self.v1[2]),
-            Vec3::new(self.v2[0], self.v2[1], self.v2[2]),
-        ]
-    }
 }
 
 /// True when the triangle has exactly zero area (f64 cross product of its edges is zero).
@@ -65,9 +58,9 @@ pub(crate) struct PreparedRay {
     pub d: [f32; 4],
     pub inv: [f32; 4],
     pub kz: usize,
-    sx: f32,
-    sy: f32,
-    sz: f32,
+    pub sx: f32,
+    pub sy: f32,
+    pub sz: f32,
 }
 
 impl PreparedRay {

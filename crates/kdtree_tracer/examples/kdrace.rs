@@ -1,0 +1,107 @@
+//! kdrace: the kd-tree raced against obvhs's CWBVH (medium build), interleaved in one process,
+//! on several generated meshes; prints kd-tree / CWBVH throughput ratios (load cancels out).
+//! A development tool for tuning: settings come from the environment (`KD_KI`, `KD_KT`,
+//! `KD_BONUS`, `KD_LEAF`, `KD_PERFECT=1`), rays per mesh from `--rays N`, threads `--threads T`.
+//!
+//! cargo run --release -p kdtree_tracer --example kdrace -- [--rays N] [--threads T] [MESH...]
+
+use std::time::Instant;
+
+use anyhow::{Context, Result};
+use gi_report::interleaved;
+use kdtree_tracer::test_util::{self, Camera};
+use kdtree_tracer::{BvhAccel, BvhKind, BvhPreset, KdTree, Mesh, Ray, RayQuery, Settings};
+use rayon::prelude::*;
+
+fn env_f32(name: &str, default: f32) -> f32 {
+    std::env::var(name).ok().and_then(|v| v.parse().ok()).unwrap_or(default)
+}
+
+fn trace_all(accel: &(impl RayQuery + ?Sized), rays: &[Ray]) -> usize {
+    rays.par_chunks(1024)
+        .map(|c| c.iter().filter(|r| accel.intersect(r, f32::INFINITY).is_some()).count())
+        .sum()
+}
+
+fn mesh(name: &str) -> Option<Mesh> {
+    Some(match name {
+        "city" => test_util::city_block(1, 20_000),
+        "blob" => test_util::blob(6),
+        "cable" => test_util::cable(2000, 12),
+        "atrium" => test_util::atrium(),
+        "soup" => test_util::random_soup(1, 100_000, 0.02),
+        _ => return None,
+    })
+}
+
+fn main() -> Result<()> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let (mut n, mut threads, mut names) = (100_000usize, 1usize, Vec::new());
+    let mut i = 0;
+    while i < args.len() {
+        match args[i].as_str() {
+            "--rays" => {
+                i += 1;
+                n = args.get(i).context("--rays N")?.parse()?;
+            }
+            "--threads" => {
+                i += 1;
+                threads = args.get(i).context("--threads T")?.parse()?;
+            }
+            a => names.push(a.to_owned()),
+        }
+        i += 1;
+    }
+    if names.is_empty() {
+        names = ["city", "blob", "cable", "atrium"].map(String::from).to_vec();
+    }
+    let s = Settings {
+        traversal_cost: env_f32("KD_KT", Settings::DEFAULT.traversal_cost),
+        intersection_cost: env_f32("KD_KI", Settings::DEFAULT.intersection_cost),
+        empty_bonus: env_f32("KD_BONUS", Settings::DEFAULT.empty_bonus),
+        leaf_size: env_f32("KD_LEAF", Settings::DEFAULT.leaf_size as f32) as u32,
+        max_depth: env_f32("KD_DEPTH", 0.0) as u32,
+        perfect_splits: env_f32("KD_PERFECT", Settings::DEFAULT.perfect_splits as u32 as f32) > 0.5,
+    };
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build()?;
+    let mut log = 0.0;
+    for name in &names {
+        let m = mesh(name).with_context(|| format!("unknown mesh {name}"))?;
+        let t = Instant::now();
+        let kd = KdTree::build(&m, &s)?;
+        let build = t.elapsed().as_secs_f64() * 1e3;
+        let cw = BvhAccel::build(&m, BvhKind::Cwbvh, BvhPreset::MediumBuild)?;
+        let rays = if name == "city" {
+            let cam = Camera::over_city(&m);
+            let all = test_util::screen_incoherent_rays(&kd, &m, &cam, 800, 450, 17);
+            all.into_iter().flatten().take(n).collect()
+        } else {
+            test_util::surface_rays(&m, n, 7)
+        };
+        let (a, b) = pool.install(|| {
+            interleaved(
+                15,
+                || {
+                    std::hint::black_box(trace_all(&kd, &rays));
+                },
+                || {
+                    std::hint::black_box(trace_all(&cw, &rays));
+                },
+            )
+        });
+        let st = kd.stats();
+        log += (b / a).ln();
+        println!(
+            "{name:8} {:7} tris  kd {:6.2} Mrays/s  cw {:6.2}  ratio {:.3}  build {build:6.0} ms  refs/tri {:.2} leaves {} depth {}",
+            m.triangle_count(),
+            rays.len() as f64 / a / 1e3,
+            rays.len() as f64 / b / 1e3,
+            b / a,
+            st.references as f64 / st.indexed_triangles.max(1) as f64,
+            st.leaves,
+            st.max_depth
+        );
+    }
+    println!("geomean ratio {:.3}", (log / names.len() as f64).exp());
+    Ok(())
+}
