@@ -153,7 +153,7 @@ fn cornell_area_equal_time(sweep: &mut Sweep, quick: bool) {
     let t_new = t0.elapsed().as_secs_f64();
     let (e_old, e_new) = (old.mean_rel_std_error(), new.mean_rel_std_error());
     let ratio = (e_old / e_new).powi(2);
-    let per_sample = ratio * new.samples() as f64 / spp_old as f64;
+    let per_sample = ratio * spp_old as f64 / new.samples() as f64;
     sweep.entry(
         Entry::new("reference/cornell_area_320x180_equal_time", "path_tracing", t_new * 1e3)
             .setting("spp", new.samples())
