@@ -259,10 +259,9 @@ pub(crate) fn trace_path_from(
         }
         let u_lobe = rng.next_f32();
         let Some(s) = m.sample(n, wo, front, u_lobe, rng.next_2d()) else { break };
-        prev = PrevVertex {
-            position: h.position,
-            pdf: (!s.delta).then(|| m.sample_pdf(n, wo, s.dir)),
-        };
+        // The density is only needed to weigh emission against emitter samples.
+        let mis = !s.delta && settings.emitter_sampling && world.emitters().any();
+        prev = PrevVertex { position: h.position, pdf: mis.then(|| m.sample_pdf(n, wo, s.dir)) };
         beta *= s.weight;
         specular = s.delta;
         origin = world.offset(h.position, h.normal, s.dir);

@@ -133,8 +133,8 @@ impl Emitters {
 pub(crate) struct EmitterSample {
     /// Unit direction from the shading point towards the emitter point.
     pub wi: Vec3,
-    /// Distance to the emitter point.
-    pub dist: f32,
+    /// The emitter point.
+    pub point: Vec3,
     /// Emitted radiance towards the shading point (unoccluded).
     pub radiance: Vec3,
     /// Solid-angle density of `wi` at the shading point.
@@ -166,15 +166,20 @@ pub(crate) fn sample_emitter(world: &World, p: Vec3, rng: &mut Rng) -> Option<Em
     if !(pdf > 0.0 && pdf.is_finite()) {
         return None;
     }
-    Some(EmitterSample { wi, dist, radiance, pdf })
+    Some(EmitterSample { wi, point: y, radiance, pdf })
 }
 
 /// Shadow ray from `p` (normal `n`) to a sampled emitter point (separate from
-/// [`sample_emitter`] so a caller skips it when the BRDF is zero there).
+/// [`sample_emitter`] so a caller skips it when the BRDF is zero there). The ray is aimed
+/// from the offset origin at the point itself: a ray along `wi` from the offset origin runs
+/// parallel to the true segment and, at grazing angles, meets the emitter's own plane
+/// before its end (the light would shadow itself).
 pub(crate) fn visible(world: &World, p: Vec3, n: Vec3, s: &EmitterSample) -> bool {
     let o = world.offset(p, n, s.wi);
-    let t = (s.dist - (o - p).length()) - 2.0 * world.epsilon().max(s.dist * 4e-6);
-    t > 0.0 && !world.occluded(o, s.wi, t)
+    let d = s.point - o;
+    let len = d.length();
+    let t = len * (1.0 - 1e-4) - world.epsilon();
+    t > 0.0 && !world.occluded(o, d / len, t)
 }
 
 /// Solid-angle density with which [`sample_emitter`] would have chosen the point hit at `h`
