@@ -1,16 +1,19 @@
 //! Accuracy-vs-time sweep of the reference renderer.
 //!
 //! Headline entries: `reference/city_320x180_16spp` (whole image; error = mean relative
-//! standard error), `reference/city_800x450_64spp` (full sweep only) and
-//! `reference/furnace` (error against the analytic furnace radiance). Also: the image
+//! standard error; samples per second), `reference/city_800x450_64spp` (full sweep only),
+//! `reference/cornell_area_320x180_equal_time` (the area-lit Cornell box rendered with
+//! emitter sampling for as long as the estimator without it took; the variance ratio at
+//! equal time) and `reference/furnace` (error against the analytic furnace radiance). Also: the image
 //! error of low sample counts against a higher-sample render (the comparison helpers every
 //! crate uses), and the camera-path throughput.
 
 use gi_report::{Entry, Sweep, time_ms};
 use reference::{
-    Component, Estimate, QuerySettings, RenderSettings, SceneLighting, camera_from_scene, compare,
-    radiance, render, world_from_scene,
+    Component, Estimate, QuerySettings, RenderSettings, Renderer, SceneLighting, camera_from_scene,
+    compare, radiance, render, world_from_scene,
 };
+use std::time::Instant;
 
 fn threads() -> usize {
     rayon::current_num_threads()
@@ -60,6 +63,7 @@ fn main() {
                 .setting("spp", spp)
                 .setting("max_bounces", s.path.max_bounces)
                 .setting("camera_paths_per_s_millions", paths / ms * 1e-3)
+                .setting("samples_per_s", paths / ms * 1e3)
                 .error("mean_rel_std_error", r.mean_rel_std_error(), "own_variance")
                 .threads(threads()),
         );
@@ -97,6 +101,8 @@ fn main() {
         );
     }
 
+    cornell_area_equal_time(&mut sweep, quick);
+
     sweep.stage("furnace");
     let furnace = scene::Generated::Furnace.build(1);
     let fw = world_from_scene(&furnace, &SceneLighting::low()).expect("furnace world");
@@ -123,4 +129,47 @@ fn main() {
             .threads(threads()),
     );
     sweep.finish().expect("writing the sweep");
+}
+
+/// The area-lit Cornell box at 320x180: first without emitter sampling (`spp` samples, time
+/// `t`), then with it, one sample per pixel at a time until it has run as long; the ratio of
+/// the squared mean relative standard errors is the variance ratio at equal time.
+fn cornell_area_equal_time(sweep: &mut Sweep, quick: bool) {
+    sweep.stage("cornell_area equal time");
+    let s = scene::Generated::CornellArea.build(1);
+    let world = world_from_scene(&s, &SceneLighting::DEFAULT).expect("cornell_area world");
+    let cam = camera_from_scene(&s);
+    let spp_old = if quick { 16 } else { 64 };
+    let base = RenderSettings { spp: spp_old, ..RenderSettings::DEFAULT };
+    let old_settings = RenderSettings { path: base.path.with_emitter_sampling(false), ..base };
+    let t0 = Instant::now();
+    let old = render(&world, cam, old_settings, false).expect("render");
+    let t_old = t0.elapsed().as_secs_f64();
+    let mut new = Renderer::new(&world, cam, base).expect("renderer");
+    let t0 = Instant::now();
+    while new.samples() == 0 || t0.elapsed().as_secs_f64() < t_old {
+        new.add_samples(1);
+    }
+    let t_new = t0.elapsed().as_secs_f64();
+    let (e_old, e_new) = (old.mean_rel_std_error(), new.mean_rel_std_error());
+    let ratio = (e_old / e_new).powi(2);
+    let per_sample = ratio * spp_old as f64 / new.samples() as f64;
+    sweep.entry(
+        Entry::new("reference/cornell_area_320x180_equal_time", "path_tracing", t_new * 1e3)
+            .setting("spp", new.samples())
+            .setting("spp_without_emitter_sampling", spp_old)
+            .setting("ms_without_emitter_sampling", t_old * 1e3)
+            .setting("mean_rel_std_error_without", e_old)
+            .setting("variance_ratio_equal_time", ratio)
+            .setting("variance_ratio_per_sample", per_sample)
+            .error("mean_rel_std_error", e_new, "own_variance")
+            .note(format!(
+                "emitter sampling + MIS: {} spp in {:.1} s; without: {spp_old} spp in {:.1} s; \
+                 variance ratio at equal time {ratio:.1}",
+                new.samples(),
+                t_new,
+                t_old
+            ))
+            .threads(threads()),
+    );
 }

@@ -15,7 +15,7 @@ use std::time::Instant;
 #[derive(Parser, Debug)]
 #[command(about = "Reference Monte Carlo render of a generated scene")]
 struct Args {
-    /// city, cornell_window, two_rooms, plane_box or furnace.
+    /// city, cornell_window, cornell_area, two_rooms, plane_box or furnace.
     #[arg(long, default_value = "city")]
     scene: String,
     /// Scene generator seed.
@@ -32,6 +32,9 @@ struct Args {
     component: String,
     #[arg(long, default_value_t = 64)]
     max_bounces: u32,
+    /// Turns next-event estimation of emissive triangles off (the older estimator).
+    #[arg(long)]
+    no_emitter_sampling: bool,
     /// PNG exposure multiplier; automatic (mean luminance to 0.18) when absent.
     #[arg(long)]
     exposure: Option<f32>,
@@ -44,7 +47,7 @@ fn main() -> Result<()> {
     let args = Args::parse();
     let Some(generated) = scene::Generated::from_name(&args.scene) else {
         bail!(
-            "unknown scene {:?} (city, cornell_window, two_rooms, plane_box, furnace)",
+            "unknown scene {:?} (city, cornell_window, cornell_area, two_rooms, plane_box, furnace)",
             args.scene
         );
     };
@@ -65,7 +68,8 @@ fn main() -> Result<()> {
         height: args.height,
         spp: args.spp,
         component,
-        path: PathSettings { max_bounces: args.max_bounces, ..PathSettings::DEFAULT },
+        path: PathSettings { max_bounces: args.max_bounces, ..PathSettings::DEFAULT }
+            .with_emitter_sampling(!args.no_emitter_sampling),
         seed: args.seed,
     };
     let t1 = Instant::now();

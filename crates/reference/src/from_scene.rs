@@ -3,9 +3,9 @@
 //! - Geometry: every mesh in world space, one material per mesh; geometric normals (the
 //!   scene's shading normals and normal maps are not used).
 //! - Materials: albedo, glossiness, specular power, reflectivity, transparency + IOR,
-//!   emission and the alpha mask (its texture's alpha, bilinear on level 0, at the
-//!   interpolated UV) map one to one; the albedo texture (bilinear, level 0) multiplies the
-//!   albedo at each hit.
+//!   emission (one-sided unless the material is `double_sided`) and the alpha mask (its
+//!   texture's alpha, bilinear on level 0, at the interpolated UV) map one to one; the
+//!   albedo texture (bilinear, level 0) multiplies the albedo at each hit.
 //! - Sun: with `scene.sky` the irradiance is `sun.color * atmosphere::Sky::sun_colour` (the
 //!   Earth atmosphere's transmittance, in units of the solar irradiance at the top) and the
 //!   sky radiance comes from an `atmosphere::SkyMap`; without a sky the sun's colour is read
@@ -84,6 +84,7 @@ pub fn world_from_scene(scene: &scene::Scene, lighting: &SceneLighting) -> Resul
         b.material(Material {
             albedo: sm.albedo,
             emission: sm.emission,
+            double_sided: sm.double_sided,
             glossiness: sm.glossiness,
             specular_power: sm.specular_power,
             reflectivity: sm.reflectivity,

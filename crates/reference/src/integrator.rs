@@ -1,5 +1,7 @@
 //! The path tracer and the component estimators, one sample at a time.
 
+use crate::lights::{balance, emitter_pdf, sample_emitter, visible};
+use crate::material::Material;
 use crate::rng::Rng;
 use crate::sampling::{cosine_hemisphere, uniform_cone};
 use crate::world::{SurfaceHit, World};
@@ -57,10 +59,25 @@ pub struct PathSettings {
     pub max_bounces: u32,
     /// Russian roulette starts after this many bounces.
     pub rr_start: u32,
+    /// Next-event estimation of emissive triangles, combined with BRDF sampling by multiple
+    /// importance sampling (balance heuristic). `false`: emitters only count when a path
+    /// happens to hit them (the estimator before light sampling, kept for comparisons).
+    pub emitter_sampling: bool,
 }
 
 impl PathSettings {
-    pub const DEFAULT: Self = Self { max_bounces: 64, rr_start: 3 };
+    pub const DEFAULT: Self = Self { max_bounces: 64, rr_start: 3, emitter_sampling: true };
+
+    /// Bounce limits with the default light sampling.
+    pub const fn new(max_bounces: u32, rr_start: u32) -> Self {
+        Self { max_bounces, rr_start, ..Self::DEFAULT }
+    }
+
+    /// The same settings with emitter sampling on or off.
+    pub const fn with_emitter_sampling(mut self, on: bool) -> Self {
+        self.emitter_sampling = on;
+        self
+    }
 }
 
 impl Default for PathSettings {
@@ -125,16 +142,86 @@ fn point_lights(world: &World, p: Vec3, n: Vec3, mut f: impl FnMut(Vec3) -> Vec3
     sum
 }
 
+/// Emitter light reflected at a surface point by `f` (BRDF times base weight, a function of
+/// the incident direction), one emitter sample weighted against BRDF sampling of density
+/// `bsdf_pdf` (balance heuristic). Zero when emitter sampling is off or there are none.
+fn emitters_direct(
+    world: &World,
+    p: Vec3,
+    n: Vec3,
+    settings: &PathSettings,
+    rng: &mut Rng,
+    f: impl Fn(Vec3) -> Vec3,
+    bsdf_pdf: impl Fn(Vec3) -> f32,
+) -> Vec3 {
+    if !settings.emitter_sampling || !world.emitters().any() {
+        return Vec3::ZERO;
+    }
+    let Some(s) = sample_emitter(world, p, rng) else { return Vec3::ZERO };
+    let cos = s.wi.dot(n);
+    if cos <= 0.0 {
+        return Vec3::ZERO;
+    }
+    let fv = f(s.wi);
+    if fv == Vec3::ZERO || !visible(world, p, n, &s) {
+        return Vec3::ZERO;
+    }
+    fv * s.radiance * (cos / s.pdf * balance(s.pdf, bsdf_pdf(s.wi)))
+}
+
+/// The vertex a path segment left from, for weighting the emission it finds: its position
+/// and the solid-angle density its direction was sampled with (`None`: a delta bounce or
+/// the eye, where no emitter sample was taken, so emission counts fully).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PrevVertex {
+    pub position: Vec3,
+    pub pdf: Option<f32>,
+}
+
+/// MIS weight of emission `le` found at `h` by a ray from `prev`.
+fn emission_weight(
+    world: &World,
+    settings: &PathSettings,
+    prev: PrevVertex,
+    h: &SurfaceHit,
+) -> f32 {
+    match prev.pdf {
+        Some(p) if settings.emitter_sampling => {
+            balance(p, emitter_pdf(world, prev.position, h.position, h.triangle))
+        }
+        _ => 1.0,
+    }
+}
+
 /// Radiance arriving along a ray through a full path (all light), starting with throughput
 /// `beta` after `depth` bounces; `specular` says whether the previous vertex was the eye or
-/// a mirror/glass bounce (then the sun disk is seen directly).
+/// a mirror/glass bounce (then the sun disk is seen directly). Emission at the first hit
+/// counts fully (no emitter sample was taken where the ray started).
 #[allow(clippy::too_many_arguments)] // the path state, spelled out
 pub(crate) fn trace_path(
+    world: &World,
+    origin: Vec3,
+    dir: Vec3,
+    beta: Vec3,
+    specular: bool,
+    start_depth: u32,
+    settings: &PathSettings,
+    rng: &mut Rng,
+) -> Vec3 {
+    let prev = PrevVertex { position: origin, pdf: None };
+    trace_path_from(world, origin, dir, beta, specular, prev, start_depth, settings, rng)
+}
+
+/// [`trace_path`] from a vertex that took an emitter sample (`prev`), so the emission the
+/// ray finds is weighted against it.
+#[allow(clippy::too_many_arguments)] // the path state, spelled out
+pub(crate) fn trace_path_from(
     world: &World,
     mut origin: Vec3,
     mut dir: Vec3,
     mut beta: Vec3,
     mut specular: bool,
+    mut prev: PrevVertex,
     start_depth: u32,
     settings: &PathSettings,
     rng: &mut Rng,
@@ -155,7 +242,10 @@ pub(crate) fn trace_path(
         let m = world.shade(&h);
         let wo = -dir;
         let (n, front) = facing(&h, wo);
-        l += beta * m.emission;
+        let le = m.emitted(front);
+        if le != Vec3::ZERO {
+            l += beta * le * emission_weight(world, settings, prev, &h);
+        }
         if depth >= settings.max_bounces {
             break;
         }
@@ -165,9 +255,13 @@ pub(crate) fn trace_path(
                 l += beta * wb * m.eval_base(n, wo, wi) * e;
             }
             l += beta * wb * point_lights(world, h.position, n, |wi| m.eval_base(n, wo, wi));
+            l += beta * surface_emitters(world, &m, h.position, n, wo, settings, rng);
         }
         let u_lobe = rng.next_f32();
         let Some(s) = m.sample(n, wo, front, u_lobe, rng.next_2d()) else { break };
+        // The density is only needed to weigh emission against emitter samples.
+        let mis = !s.delta && settings.emitter_sampling && world.emitters().any();
+        prev = PrevVertex { position: h.position, pdf: mis.then(|| m.sample_pdf(n, wo, s.dir)) };
         beta *= s.weight;
         specular = s.delta;
         origin = world.offset(h.position, h.normal, s.dir);
@@ -182,6 +276,28 @@ pub(crate) fn trace_path(
         }
     }
     l
+}
+
+/// Emitter light reflected by a material's base part towards `wo`.
+fn surface_emitters(
+    world: &World,
+    m: &Material,
+    p: Vec3,
+    n: Vec3,
+    wo: Vec3,
+    settings: &PathSettings,
+    rng: &mut Rng,
+) -> Vec3 {
+    let wb = m.base_weight();
+    emitters_direct(
+        world,
+        p,
+        n,
+        settings,
+        rng,
+        |wi| wb * m.eval_base(n, wo, wi),
+        |wi| m.sample_pdf(n, wo, wi),
+    )
 }
 
 /// Sun irradiance at a surface point, one disk sample.
@@ -222,11 +338,14 @@ pub(crate) fn irradiance(
             }
         }
         Component::Full | Component::Reflections => {
-            let direct =
-                sun_irradiance(world, p, n, rng) + point_lights(world, p, n, |_| Vec3::ONE);
+            let cos_pdf = |wi: Vec3| wi.dot(n).max(0.0) / PI;
+            let direct = sun_irradiance(world, p, n, rng)
+                + point_lights(world, p, n, |_| Vec3::ONE)
+                + PI * emitters_direct(world, p, n, settings, rng, |_| Vec3::ONE / PI, cos_pdf);
             let wi = cosine_hemisphere(n, rng.next_2d());
             let o = world.offset(p, n, wi);
-            direct + PI * trace_path(world, o, wi, Vec3::ONE, false, 1, settings, rng)
+            let prev = PrevVertex { position: p, pdf: Some(cos_pdf(wi)) };
+            direct + PI * trace_path_from(world, o, wi, Vec3::ONE, false, prev, 1, settings, rng)
         }
     }
 }

@@ -5,7 +5,12 @@
 //! [`kdtree_tracer`], with
 //!
 //! - **next-event estimation** towards the sun's disk (uniform cone sampling over its
-//!   angular radius 0.004675 rad, so shadows get true penumbrae) and point lights;
+//!   angular radius 0.004675 rad, so shadows get true penumbrae), point lights and
+//!   **emissive triangles** (one chosen by power from a Walker alias table, a point on it
+//!   uniform in area), the latter combined with BRDF sampling by multiple importance
+//!   sampling (balance heuristic; [`PathSettings::emitter_sampling`] turns it off);
+//! - **emission as the scene says**: from the wound front side only, unless the material
+//!   is double-sided ([`Material::double_sided`]);
 //! - **sky light** from any radiance function (`atmosphere`'s sky map, a constant),
 //!   importance-sampled with the BRDF (cosine / Phong lobe);
 //! - **multiple importance sampling** of the base BRDF's diffuse and Phong lobes (one-sample
@@ -52,6 +57,7 @@ mod error;
 mod from_scene;
 mod image;
 mod integrator;
+mod lights;
 mod material;
 mod query;
 mod render;

@@ -55,8 +55,12 @@ impl fmt::Debug for AlbedoTexture {
 pub struct Material {
     /// Diffuse albedo, linear RGB in `[0, 1]`.
     pub albedo: Vec3,
-    /// Emitted radiance (both sides for double-sided use; the side facing the viewer).
+    /// Emitted radiance, from the wound front side (`(p1 - p0) x (p2 - p0)`) only unless
+    /// `double_sided`.
     pub emission: Vec3,
+    /// Emits from both sides (the scene material's `double_sided`); one-sided otherwise,
+    /// as glTF means by default.
+    pub double_sided: bool,
     /// Share `g` of the base BRDF in the Phong lobe, `[0, 1]`.
     pub glossiness: f32,
     /// Phong exponent `n >= 1`.
@@ -79,6 +83,7 @@ impl Material {
         Self {
             albedo,
             emission: Vec3::ZERO,
+            double_sided: false,
             glossiness: 0.0,
             specular_power: 1.0,
             reflectivity: 0.0,
@@ -104,9 +109,24 @@ impl Material {
         Self { transparency: 1.0, ior, ..Self::diffuse(Vec3::ZERO) }
     }
 
-    /// A diffuse emitter.
+    /// A diffuse emitter, one-sided (see [`Material::two_sided`]).
     pub fn emissive(albedo: Vec3, emission: Vec3) -> Self {
         Self { emission, ..Self::diffuse(albedo) }
+    }
+
+    /// The same material emitting from both sides.
+    pub fn two_sided(self) -> Self {
+        Self { double_sided: true, ..self }
+    }
+
+    /// Radiance emitted towards a viewer on the front (`front`) or back side.
+    pub fn emitted(&self, front: bool) -> Vec3 {
+        if front || self.double_sided { self.emission } else { Vec3::ZERO }
+    }
+
+    /// True when the material emits light.
+    pub fn is_emitter(&self) -> bool {
+        self.emission.max_element() > 0.0
     }
 
     /// Weight of the base BRDF.
@@ -184,6 +204,17 @@ impl Material {
             return 0.0;
         }
         pd * cos / PI + (1.0 - pd) * phong_pdf(self.specular_power, reflect(-wo, n).dot(wi))
+    }
+
+    /// Solid-angle density with which [`Material::sample`] returns the non-delta direction
+    /// `wi` (the base part's selection probability times [`Material::base_pdf`]): the BRDF
+    /// side of the multiple importance sampling against emitter sampling.
+    pub fn sample_pdf(&self, n: Vec3, wo: Vec3, wi: Vec3) -> f32 {
+        let (r, t, b) = (self.reflectivity, self.transparency, self.base_share());
+        if !(b > 0.0) {
+            return 0.0;
+        }
+        b / (r + t + b) * self.base_pdf(n, wo, wi)
     }
 
     /// Rough directional albedo of the base part (`w_b ((1 - g) Y(albedo) + g)`), used to

@@ -18,14 +18,14 @@ pub struct QuerySettings {
 
 impl QuerySettings {
     pub const fn low() -> Self {
-        Self { samples: 64, seed: 1, path: PathSettings { max_bounces: 8, rr_start: 2 } }
+        Self { samples: 64, seed: 1, path: PathSettings::new(8, 2) }
     }
     pub const DEFAULT: Self = Self { samples: 256, seed: 1, path: PathSettings::DEFAULT };
     pub const fn high() -> Self {
         Self { samples: 4096, seed: 1, path: PathSettings::DEFAULT }
     }
     pub const fn reference() -> Self {
-        Self { samples: 65_536, seed: 1, path: PathSettings { max_bounces: 256, rr_start: 4 } }
+        Self { samples: 65_536, seed: 1, path: PathSettings::new(256, 4) }
     }
     pub fn validate(&self) -> Result<(), crate::Error> {
         if self.samples == 0 {

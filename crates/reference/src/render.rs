@@ -33,7 +33,7 @@ impl RenderSettings {
             height: 90,
             spp: 4,
             component: Component::Full,
-            path: PathSettings { max_bounces: 4, rr_start: 2 },
+            path: PathSettings::new(4, 2),
             seed: 1,
         }
     }
@@ -53,7 +53,7 @@ impl RenderSettings {
             width: 1600,
             height: 900,
             spp: 1024,
-            path: PathSettings { max_bounces: 256, rr_start: 4 },
+            path: PathSettings::new(256, 4),
             ..Self::DEFAULT
         }
     }

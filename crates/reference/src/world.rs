@@ -1,6 +1,7 @@
 //! The world the renderer traces: world-space triangles with one material each, the sun,
 //! point lights and an optional sky, over a kd-tree.
 
+use crate::lights::Emitters;
 use crate::{Error, Material};
 use glam::{Vec2, Vec3};
 use kdtree_tracer::{KdTree, Mesh, Ray, Settings};
@@ -170,6 +171,10 @@ impl WorldBuilder {
         let extent =
             mesh.bounds().map_or(1.0, |(lo, hi)| lo.abs().max(hi.abs()).max_element().max(1.0));
         let sun = self.sun.map(|s| Sun { direction: s.direction.normalize(), ..s });
+        let emitters = Emitters::new((0..mesh.triangle_count()).map(|t| {
+            let m = &self.materials[self.tri_material[t] as usize];
+            (mesh.triangle(t as u32), m.emission, m.double_sided)
+        }));
         Ok(World {
             mesh,
             tree,
@@ -181,6 +186,7 @@ impl WorldBuilder {
             sky: self.sky,
             any_alpha,
             epsilon: 2e-5 * extent,
+            emitters,
         })
     }
 }
@@ -209,6 +215,7 @@ pub struct World {
     sky: Option<Arc<SkyFn>>,
     any_alpha: bool,
     epsilon: f32,
+    emitters: Emitters,
 }
 
 impl World {
@@ -241,6 +248,30 @@ impl World {
                 std::borrow::Cow::Owned(owned)
             }
         }
+    }
+
+    /// Number of emissive triangles (sampled by next-event estimation).
+    pub fn emitter_count(&self) -> usize {
+        self.emitters.count()
+    }
+
+    pub(crate) fn emitters(&self) -> &Emitters {
+        &self.emitters
+    }
+
+    /// Corners of triangle `t`.
+    pub(crate) fn triangle(&self, t: u32) -> [Vec3; 3] {
+        self.mesh.triangle(t)
+    }
+
+    /// Unit geometric normal of triangle `t` as wound.
+    pub(crate) fn normal(&self, t: u32) -> Vec3 {
+        self.normals[t as usize]
+    }
+
+    /// Material id of triangle `t`.
+    pub(crate) fn triangle_material(&self, t: u32) -> u32 {
+        self.tri_material[t as usize]
     }
 
     pub fn sun(&self) -> Option<&Sun> {
@@ -293,7 +324,7 @@ impl World {
         if normal.dot(dir) >= 0.0 { p + normal * e } else { p - normal * e }
     }
 
-    fn passes_alpha(&self, triangle: u32, bary: Vec2) -> bool {
+    pub(crate) fn passes_alpha(&self, triangle: u32, bary: Vec2) -> bool {
         match &self.materials[self.tri_material[triangle as usize] as usize].alpha {
             Some(a) => (a.coverage)(triangle, bary) >= a.cutoff,
             None => true,

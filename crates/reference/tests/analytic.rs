@@ -56,11 +56,7 @@ fn energy_never_increases_with_bounce_count() {
     let mut prev_total: Option<(f64, f64)> = None;
     let mut prev_inc = f64::INFINITY;
     for k in 0..6 {
-        let q = QuerySettings {
-            samples: 256,
-            seed: 7,
-            path: PathSettings { max_bounces: k, rr_start: 100 },
-        };
+        let q = QuerySettings { samples: 256, seed: 7, path: PathSettings::new(k, 100) };
         let (total, se) = pooled(&radiance(&world, Component::Full, &rays, &q).unwrap());
         // Analytic: e (1 + a + ... + a^k).
         let expected = (e * (1.0 - a.powi(k as i32 + 1)) / (1.0 - a)) as f64;
@@ -254,11 +250,7 @@ fn point_light_irradiance_is_i_cos_over_d2_within_its_radius() {
         radius: 5.0,
     });
     let world = b.build().unwrap();
-    let q = QuerySettings {
-        samples: 1,
-        path: PathSettings { max_bounces: 0, rr_start: 0 },
-        ..QuerySettings::DEFAULT
-    };
+    let q = QuerySettings { samples: 1, path: PathSettings::new(0, 0), ..QuerySettings::DEFAULT };
     let pts = [
         QueryPoint::new(Vec3::new(2.0, 0.0, 0.0), Vec3::Y),
         QueryPoint::new(Vec3::new(6.0, 0.0, 0.0), Vec3::Y),

@@ -1,4 +1,4 @@
-//! The five generated scenes: valid, deterministic from a seed, and physically what they
+//! The six generated scenes: valid, deterministic from a seed, and physically what they
 //! claim (the city's size and contents, closed rooms, a window the sun shines through).
 
 mod common;
@@ -160,4 +160,24 @@ fn plane_box_casts_a_shadow() {
         cast(&tris, Vec3::new(-6.0, 0.01, 6.0), sun).is_none()
             || cast(&tris, Vec3::new(6.0, 0.01, -6.0), sun).is_none()
     );
+}
+
+#[test]
+fn cornell_area_is_lit_by_a_one_sided_ceiling_light_facing_down() {
+    let c = Generated::CornellArea.build(2);
+    assert!(c.sun.is_none() && !c.sky && c.point_lights.is_empty());
+    let lights: Vec<_> = c
+        .meshes
+        .iter()
+        .filter(|m| c.materials[m.material.index()].emission != Vec3::ZERO)
+        .collect();
+    assert_eq!(lights.len(), 1);
+    let light = lights[0];
+    assert!(!c.materials[light.material.index()].double_sided);
+    for t in &light.indices {
+        let [a, b, cc] = t.map(|i| light.transform.transform_point3(light.positions[i as usize]));
+        let n = (b - a).cross(cc - a).normalize();
+        assert!(n.dot(-Vec3::Y) > 0.999, "light triangle faces {n}");
+        assert!(a.y > 5.4 && a.y < 5.5);
+    }
 }

@@ -5,7 +5,8 @@ use glam::Vec3;
 use reference::{Material, World, WorldBuilder};
 use std::f32::consts::PI;
 
-/// A closed UV sphere of radius `r` around the origin (shared vertices: watertight).
+/// A closed UV sphere of radius `r` around the origin (shared vertices: watertight), its
+/// faces wound outwards.
 pub fn sphere(b: &mut WorldBuilder, r: f32, slices: u32, stacks: u32, material: u32) {
     let mut p = vec![Vec3::new(0.0, r, 0.0)];
     for i in 1..stacks {
@@ -32,10 +33,12 @@ pub fn sphere(b: &mut WorldBuilder, r: f32, slices: u32, stacks: u32, material: 
     b.triangles(&p, &idx, material);
 }
 
-/// The furnace: a closed sphere with albedo `a` and emission `e` (radiance `e / (1 - a)`).
+/// The furnace: a closed sphere with albedo `a` and emission `e` (radiance `e / (1 - a)`),
+/// emitting from both sides (its faces point outwards; the scene crate's furnace is wound
+/// inwards and one-sided).
 pub fn furnace(a: f32, e: f32) -> World {
     let mut b = World::builder();
-    let m = b.material(Material::emissive(Vec3::splat(a), Vec3::splat(e)));
+    let m = b.material(Material::emissive(Vec3::splat(a), Vec3::splat(e)).two_sided());
     sphere(&mut b, 1.0, 24, 12, m);
     b.build().unwrap()
 }

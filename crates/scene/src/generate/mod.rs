@@ -2,11 +2,13 @@
 
 mod builder;
 mod city;
+mod cornell_area;
 mod rooms;
 mod simple;
 mod textures;
 
 pub use city::city;
+use cornell_area::cornell_area;
 pub use rooms::{cornell_window, two_rooms};
 pub use simple::{FURNACE_ALBEDO, FURNACE_EMISSION, furnace, furnace_radiance, plane_box};
 
@@ -17,19 +19,27 @@ use crate::Scene;
 pub enum Generated {
     City,
     CornellWindow,
+    CornellArea,
     TwoRooms,
     PlaneBox,
     Furnace,
 }
 
 impl Generated {
-    pub const ALL: [Self; 5] =
-        [Self::City, Self::CornellWindow, Self::TwoRooms, Self::PlaneBox, Self::Furnace];
+    pub const ALL: [Self; 6] = [
+        Self::City,
+        Self::CornellWindow,
+        Self::CornellArea,
+        Self::TwoRooms,
+        Self::PlaneBox,
+        Self::Furnace,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
             Self::City => "city",
             Self::CornellWindow => "cornell_window",
+            Self::CornellArea => "cornell_area",
             Self::TwoRooms => "two_rooms",
             Self::PlaneBox => "plane_box",
             Self::Furnace => "furnace",
@@ -45,6 +55,7 @@ impl Generated {
         match self {
             Self::City => city(seed),
             Self::CornellWindow => cornell_window(seed),
+            Self::CornellArea => cornell_area(seed),
             Self::TwoRooms => two_rooms(seed),
             Self::PlaneBox => plane_box(seed),
             Self::Furnace => furnace(seed),

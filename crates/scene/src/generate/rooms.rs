@@ -35,7 +35,13 @@ fn wall_with_hole(
     }
 }
 
-fn quad_occluder(g: &mut Geo, quads: &mut Vec<OcclusionQuad>, corner: Vec3, u: Vec3, v: Vec3) {
+pub(super) fn quad_occluder(
+    g: &mut Geo,
+    quads: &mut Vec<OcclusionQuad>,
+    corner: Vec3,
+    u: Vec3,
+    v: Vec3,
+) {
     wall_with_hole(g, quads, corner, u, v, (0.0, 0.0), (0.0, 0.0));
 }
 
