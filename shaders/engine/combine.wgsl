@@ -18,6 +18,11 @@
 @fragment
 fn fs_combine(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     let px = vec2<i32>(frag.xy);
+    let component = frame.csm.w;
+    if component != COMPONENT_FULL && component != COMPONENT_REFLECTIONS {
+        return textureLoad(lit_t, px, 0);
+    }
+    // The reflections component alone: what the traced rays add (the lit view holds 0).
     let lit = textureLoad(lit_t, px, 0);
     let depth = textureLoad(depth_t, px, 0).x;
     if depth <= 0.0 {

@@ -16,7 +16,8 @@ struct Frame {
     size: vec4<u32>,
     // SSAO radius (m), SSAO samples, sky-map size, frame index
     params: vec4<f32>,
-    // cascades, shadow-map resolution, point-light cube-map size (0: no cube shadows), unused
+    // cascades, shadow-map resolution, point-light cube-map size (0: no cube shadows),
+    // component shown (COMPONENT_*)
     csm: vec4<u32>,
     // world-to-light rotation rows (x right, y up, z towards the light)
     light_rot: array<vec4<f32>, 3>,
@@ -47,6 +48,15 @@ const FLAG_LPV: u32 = 4u;
 const FLAG_SKY_VOLUME: u32 = 8u;
 const FLAG_SHADOWS: u32 = 16u;
 const PI: f32 = 3.14159265;
+// The lighting component a frame shows (engine::components::code): the full frame, or one
+// term alone, in the units of the reference path tracer's matching component.
+const COMPONENT_FULL: u32 = 0u;
+const COMPONENT_SUN_DIRECT: u32 = 1u;
+const COMPONENT_SUN_INDIRECT: u32 = 2u;
+const COMPONENT_SKY_IRRADIANCE: u32 = 3u;
+const COMPONENT_REFLECTIONS: u32 = 4u;
+const COMPONENT_POINT_LIGHTS: u32 = 5u;
+const COMPONENT_EMISSION: u32 = 6u;
 
 // The full-screen triangle of the lighting and combine passes.
 @vertex

@@ -227,7 +227,11 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     let px = vec2<i32>(frag.xy);
     let depth = textureLoad(depth_t, px, 0).x;
     let pxf = vec2<f32>(px);
+    let component = frame.csm.w;
     if depth <= 0.0 {
+        if component != COMPONENT_FULL {
+            return vec4<f32>(0.0, 0.0, 0.0, 1.0);
+        }
         return vec4<f32>(sky_radiance(view_ray(frame, pxf)), 1.0);
     }
     let a = textureLoad(albedo_t, px, 0);
@@ -241,13 +245,14 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     let g = a.w;
     let power = max(ns.w, 1.0);
     let base = max(1.0 - m.params.y - m.params.z, 0.0);
-    var direct = vec3<f32>(0.0);
+    var sun = vec3<f32>(0.0);
     if frame.sun_dir.w > 0.0 {
         let f = base_brdf_cos(a.rgb, g, power, n, frame.sun_dir.xyz, v);
         if any(f > vec3<f32>(0.0)) {
-            direct += f * frame.sun_irradiance.rgb * sun_visibility(p, gn, depth);
+            sun = f * frame.sun_irradiance.rgb * sun_visibility(p, gn, depth);
         }
     }
+    var points = vec3<f32>(0.0);
     for (var i = 0u; i < frame.size.z; i = i + 1u) {
         let l = lights[i];
         let d = l.position.xyz - p;
@@ -257,18 +262,33 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
         }
         let f = base_brdf_cos(a.rgb, g, power, n, d * inverseSqrt(dist2), v);
         if any(f > vec3<f32>(0.0)) {
-            direct += f * l.color.rgb / dist2 * point_visibility(l, p, gn);
+            points += f * l.color.rgb / dist2 * point_visibility(l, p, gn);
         }
     }
     let i = u32(px.y) * frame.size.x + u32(px.x);
-    var indirect = vec3<f32>(0.0);
+    // The sky volume's lookup is albedo E / pi with albedo 1 (queries.wgsl): E / pi.
+    var sky_e_over_pi = vec3<f32>(0.0);
     if (frame.size.w & FLAG_SKY_VOLUME) != 0u {
-        indirect += sky[i].xyz * (1.0 - g) * a.rgb;
+        sky_e_over_pi = sky[i].xyz;
     }
+    var lpv_e = vec3<f32>(0.0);
     if (frame.size.w & FLAG_LPV) != 0u {
-        indirect += lpv[i].xyz * (1.0 - g) * a.rgb / PI;
+        lpv_e = lpv[i].xyz;
     }
     let ao = ambient_occlusion(vec2<u32>(px), p, gn);
-    let c = base * (direct + indirect * ao) + m.emission.rgb;
+    let diffuse = base * (1.0 - g) * a.rgb;
+    var c: vec3<f32>;
+    switch component {
+        case COMPONENT_SUN_DIRECT: { c = base * sun; }
+        case COMPONENT_POINT_LIGHTS: { c = base * points; }
+        // Irradiance at the surface, as the reference's SkyIrradiance image.
+        case COMPONENT_SKY_IRRADIANCE: { c = PI * sky_e_over_pi * ao; }
+        case COMPONENT_SUN_INDIRECT: { c = diffuse / PI * lpv_e * ao; }
+        case COMPONENT_EMISSION: { c = m.emission.rgb; }
+        case COMPONENT_REFLECTIONS: { c = vec3<f32>(0.0); }
+        default: {
+            c = base * (sun + points) + diffuse * (sky_e_over_pi + lpv_e / PI) * ao + m.emission.rgb;
+        }
+    }
     return vec4<f32>(max(c, vec3<f32>(0.0)), 1.0);
 }

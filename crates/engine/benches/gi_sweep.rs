@@ -20,6 +20,13 @@
 //!   city's central crossing at eye height, 300 frames after the warm-up; time = mean frame
 //!   ms; settings: standard deviation, min, max, the worst frame's index, the share of frames
 //!   that ray traced, and the thesis's Table 7.3 figures beside ours.
+//! - `engine/components_{city,cornell_window,two_rooms}_320x180_{low,default,high}_<component>`:
+//!   the component ledger (`engine::ledger`), one entry per lighting component of
+//!   `engine::components::COMPONENTS`: time = ms of the passes that produce the component in
+//!   a frame where every per-frame pass ran (camera nudged 1 mm after the warm-up); error =
+//!   the component image's relative RMS against the reference's same component
+//!   (`engine/reference_<scene>_320x180_<spp>spp_<component>`, 16 spp quick, 64 full);
+//!   settings: luminance ratio and the reference's own noise.
 //! - Full sweep only: the same at 1600x900 (`engine/city_1600x900_*`,
 //!   `engine/cornell_window_1600x900_*`, `engine/flythrough_city_1600x900_100`), with
 //!   references of more samples per pixel.
@@ -30,7 +37,10 @@
 //! Set `ENGINE_SWEEP_IMAGES=<dir>` to also write each engine frame and each reference as PNG
 //! (same exposure per view) and EXR there, to look at what an error figure measures.
 
-use engine::compare::{ReferenceErrors, errors, reference_image};
+use engine::compare::{
+    ReferenceErrors, ReferenceRender, errors, reference_component, reference_image,
+};
+use engine::components::{COMPONENTS, passes, passes_ms, render_components};
 use engine::{Frame, Preset, Renderer, Settings};
 use gi_report::{Entry, Sweep};
 use glam::Vec3;
@@ -384,6 +394,63 @@ fn flythrough(sweep: &mut Sweep, city: &scene::Scene, w: u32, h: u32, frames: us
     );
 }
 
+/// The component ledger of `which` at `w x h`: references once, then per preset the engine's
+/// components.
+fn components(sweep: &mut Sweep, which: Generated, w: u32, h: u32, spp: u32) {
+    let name = which.name();
+    let scene = which.build(1);
+    let mut camera = scene.camera;
+    camera.aspect = w as f32 / h as f32;
+    let refs: Vec<(ReferenceRender, String)> = COMPONENTS
+        .iter()
+        .map(|&c| {
+            sweep.stage(&format!("components {name} {w}x{h}: reference {}", c.name()));
+            let r = reference_component(&scene, &camera, (w, h), spp, c, false)
+                .expect("reference component");
+            let rname = format!("engine/reference_{name}_{w}x{h}_{spp}spp_{}", c.name());
+            sweep.entry(
+                Entry::new(&rname, "reference", r.ms)
+                    .setting("scene", name)
+                    .setting("component", c.name())
+                    .setting("spp", spp)
+                    .setting("rel_std_error", r.rel_std_error)
+                    .threads(rayon::current_num_threads())
+                    .note("the truth of one lighting component: reference::render with RenderSettings::with_component"),
+            );
+            (r, rname)
+        })
+        .collect();
+    for preset in Preset::ALL {
+        let tag = format!("components_{name}_{w}x{h}_{preset}");
+        sweep.stage(&tag);
+        let mut r = renderer(&scene, Settings::preset(preset, w, h));
+        r.set_camera(camera);
+        warm_up(&mut r);
+        r.set_camera(nudged(&camera, 1));
+        let frame = render(&mut r);
+        let images = render_components(&mut r).expect("component images");
+        let software = r.is_software();
+        for (img, (reference, rname)) in images.iter().zip(&refs) {
+            let c = img.component;
+            let f =
+                engine::ledger::figures("all", &img.image, reference, 0..img.image.pixels.len());
+            sweep.entry(
+                Entry::new(format!("engine/{tag}_{}", c.name()), "engine", passes_ms(&frame.report, c))
+                    .setting("scene", name)
+                    .setting("preset", preset)
+                    .setting("component", c.name())
+                    .setting("passes", passes(c))
+                    .setting("luminance_ratio", f.luminance_ratio)
+                    .setting("reference_rel_std_error", f.reference_rel_std_error)
+                    .setting("software_adapter", software)
+                    .error("rel_rms", f.rel_rms, rname)
+                    .threads(rayon::current_num_threads())
+                    .note(timing_note(software, "the passes that produce the component, in a frame where every per-frame pass ran")),
+            );
+        }
+    }
+}
+
 /// One image size of the sweep.
 struct Size {
     width: u32,
@@ -418,6 +485,12 @@ fn main() {
             }
             if which == Generated::City {
                 flythrough(&mut sweep, &view.scene, w, h, size.flythrough_frames);
+            }
+        }
+        if w == 320 {
+            let spp = if sweep.quick() { 16 } else { 64 };
+            for which in [Generated::City, Generated::CornellWindow, Generated::TwoRooms] {
+                components(&mut sweep, which, w, h, spp);
             }
         }
     }

@@ -22,6 +22,9 @@ pub struct RenderJob {
     pub out: PathBuf,
     /// Samples per pixel of the reference image, if wanted.
     pub reference_spp: Option<u32>,
+    /// With a reference: also the component ledger (`crate::ledger`), its images and
+    /// contact sheet.
+    pub components: bool,
     pub seed: u64,
     pub progress: bool,
 }
@@ -39,6 +42,7 @@ impl Default for RenderJob {
             frames: 24,
             out: PathBuf::from("target/render"),
             reference_spp: None,
+            components: false,
             seed: 1,
             progress: true,
         }
@@ -145,6 +149,16 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
         }
         None => None,
     };
+    let ledger = match job.reference_spp.filter(|_| job.components) {
+        Some(spp) => Some(crate::ledger::run_ledger(
+            &mut renderer,
+            &frame.report,
+            spp,
+            Some(&job.out),
+            job.progress,
+        )?),
+        None => None,
+    };
     let mut notes: Vec<String> = frame
         .needs
         .iter()
@@ -172,6 +186,7 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
         frame_ms,
         ray_traced_frames: traced,
         errors: errors.map(|e| serde_json::to_value(e).unwrap_or_default()),
+        ledger,
         notes,
     };
     write_report(&job.out, &info, &frame.report)?;

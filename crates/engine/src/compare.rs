@@ -2,7 +2,7 @@
 
 use crate::renderer::io_err;
 use crate::{EngineError, Frame, Renderer};
-use reference::{Image, RenderSettings, SceneLighting};
+use reference::{Component, Image, RenderSettings, SceneLighting};
 use std::path::Path;
 
 /// Reference pixels brighter than this many times the reference's mean luminance are
@@ -36,15 +36,48 @@ pub fn reference_image(
     spp: u32,
     progress: bool,
 ) -> Result<(Image, f64, f64), EngineError> {
+    let r = reference_component(scene, camera, (width, height), spp, Component::Full, progress)?;
+    Ok((r.mean, r.rel_std_error, r.ms))
+}
+
+/// One reference image with its per-pixel standard error.
+pub struct ReferenceRender {
+    pub mean: Image,
+    pub std_error: Image,
+    /// Mean relative standard error of the whole image.
+    pub rel_std_error: f64,
+    pub spp: u32,
+    pub ms: f64,
+}
+
+/// Renders one component of the reference (see [`crate::components`] for what each is):
+/// the mean image, its mean relative standard error and the milliseconds it took.
+pub fn reference_component(
+    scene: &scene::Scene,
+    camera: &scene::Camera,
+    (width, height): (u32, u32),
+    spp: u32,
+    component: Component,
+    progress: bool,
+) -> Result<ReferenceRender, EngineError> {
     let t0 = std::time::Instant::now();
     let tech = |e| EngineError::technique("reference", e);
     let world = reference::world_from_scene(scene, &SceneLighting::DEFAULT).map_err(tech)?;
     let mut cam_scene = scene.clone();
     cam_scene.camera = *camera;
     let cam = reference::camera_from_scene(&cam_scene);
-    let settings = RenderSettings::DEFAULT.with_size(width, height).with_spp(spp.max(1));
+    let settings = RenderSettings::DEFAULT
+        .with_size(width, height)
+        .with_spp(spp.max(1))
+        .with_component(component);
     let r = reference::render(&world, cam, settings, progress).map_err(tech)?;
-    Ok((r.mean(), r.mean_rel_std_error(), t0.elapsed().as_secs_f64() * 1e3))
+    Ok(ReferenceRender {
+        mean: r.mean(),
+        std_error: r.std_error(),
+        rel_std_error: r.mean_rel_std_error(),
+        spp: spp.max(1),
+        ms: t0.elapsed().as_secs_f64() * 1e3,
+    })
 }
 
 fn luminance(p: glam::Vec3) -> f32 {

@@ -85,6 +85,7 @@ fn write_frame_uniform(c: &FrameCtx) {
     let sky_size = s.sky.as_ref().and_then(|k| k.read().ok()).map_or(0, |k| k.map_size());
     u.size = [set.width, set.height, s.scene_lights(), flags];
     u.params = [set.ssao_radius, set.ssao_samples as f32, sky_size as f32, c.frame as f32];
+    u.csm[3] = c.component;
     s.gpu.queue.write_buffer(&s.frame, 0, bytemuck::bytes_of(&u));
 }
 
@@ -285,6 +286,7 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
         .reads(lpv)
         .writes(lit)
         .cached()
+        .key("lighting component shown", |c: &FrameCtx| c.component)
         .run(move |io| -> PassResult {
             let c = io.ctx();
             let s = &c.state;
@@ -322,6 +324,7 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
         .writes(combined)
         .run_if("a mirror or glass surface is in view", |c: &FrameCtx| c.needs.ray_tracing())
         .cached()
+        .key("lighting component shown", |c: &FrameCtx| c.component)
         .run(move |io| -> PassResult {
             let c = io.ctx();
             let s = &c.state;

@@ -41,7 +41,8 @@
 //! # Ok::<(), engine::EngineError>(())
 //! ```
 //! `cargo xtask render` (binary `serein-render`, module [`cli`]) is the same from the command
-//! line; [`compare`] measures a frame against the `reference` path tracer.
+//! line; [`compare`] measures a frame against the `reference` path tracer, and
+//! [`components`] splits it into the lighting terms the reference computes one by one.
 //!
 //! ## What differs from the thesis
 //! - The traced hits are shaded on the CPU with the same BRDF as the deferred pass (sun with
@@ -55,11 +56,15 @@
 
 pub mod cli;
 pub mod compare;
+pub mod components;
+pub mod contact_sheet;
 pub mod error;
 mod frame;
 mod gpu;
 pub mod graph;
+pub mod ledger;
 pub mod passes;
+pub mod regions;
 mod renderer;
 pub mod report;
 pub mod settings;

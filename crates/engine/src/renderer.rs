@@ -68,6 +68,7 @@ pub struct Renderer {
     last_frame: Option<Instant>,
     /// Seconds per frame for eye adaptation (None: wall clock).
     fixed_dt: Option<f32>,
+    component: Option<reference::Component>,
 }
 
 impl Renderer {
@@ -90,6 +91,7 @@ impl Renderer {
             tonemapper: ToneMapper::default(),
             last_frame: None,
             fixed_dt: None,
+            component: None,
         })
     }
 
@@ -124,6 +126,12 @@ impl Renderer {
     /// Changes the sun (time of day); the sky map and volume follow when it moved.
     pub fn set_sun(&mut self, sun: Option<scene::Sun>) {
         self.scene.sun = sun;
+    }
+
+    /// Which lighting component the next frames show (`None`: the full frame); see
+    /// [`crate::components`] for what each one means.
+    pub fn set_component(&mut self, component: Option<reference::Component>) {
+        self.component = component;
     }
 
     /// Eye adaptation advances by `dt` seconds per frame instead of the wall clock (for
@@ -163,6 +171,7 @@ impl Renderer {
             needs: needs.clone(),
             sun: self.sun_light()?,
             frame: self.scheduler.frames(),
+            component: crate::components::code(self.component),
         };
         let mut timer = TimestampTimer::new(&self.state.gpu.device, &self.state.gpu.queue);
         let report = self.scheduler.run_frame_timed(&ctx, &mut timer).map_err(|e| match e {

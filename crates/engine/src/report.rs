@@ -45,6 +45,8 @@ pub struct RunInfo {
     pub ray_traced_frames: usize,
     /// Image errors against the reference, when computed.
     pub errors: Option<Value>,
+    /// The component ledger (`--components`), when computed.
+    pub ledger: Option<crate::ledger::Ledger>,
     pub notes: Vec<String>,
 }
 
@@ -146,6 +148,9 @@ pub fn markdown(info: &RunInfo, last: &FrameReport) -> String {
     }
     if let Some(errors) = &info.errors {
         let _ = write!(s, "\n## Image error against the reference\n\n{}", errors_md(errors));
+    }
+    if let Some(ledger) = &info.ledger {
+        let _ = write!(s, "\n## Component ledger\n\n{}", ledger.to_markdown());
     }
     if !info.notes.is_empty() {
         s.push_str("\n## Notes\n\n");
@@ -291,6 +296,7 @@ mod tests {
             frame_ms: vec![10.0, 12.0, 14.0, 16.0],
             ray_traced_frames: 3,
             errors: Some(json!({ "rel_rms": 0.05, "psnr_db": 31.2 })),
+            ledger: None,
             notes: vec!["a note".to_owned()],
         }
     }

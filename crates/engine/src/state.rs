@@ -59,6 +59,8 @@ pub struct FrameCtx {
     pub needs: scene::SceneNeeds,
     pub sun: Option<SunLight>,
     pub frame: u64,
+    /// Which lighting component the frame shows (`crate::components::code`; 0 the full frame).
+    pub component: u32,
 }
 
 impl State {

@@ -15,6 +15,9 @@
 //!   which absorbs edge and shadow-boundary noise but catches a wrong object, a misplaced
 //!   shadow or a broken reflection covering more than 1% of the frame.
 //!
+//! The lighting components of the scenes (`engine::components`) have goldens of their own,
+//! `<scene>_<component>.png`, at the full frame's exposure.
+//!
 //! `SEREIN_BLESS=1 cargo test -p engine --test golden` rewrites the goldens. On a failure the
 //! rendered image is written as `tests/golden/<scene>.actual.png` and the absolute difference
 //! (x4) as `tests/golden/<scene>.diff.png` (both gitignored), and the message names the files
@@ -110,13 +113,18 @@ fn render(g: Generated) -> Option<Vec<u8>> {
 
 fn check(g: Generated) {
     let Some(actual) = render(g) else { return };
+    check_image(g.name(), &actual);
+}
+
+/// Compares `actual` (RGBA8, `WIDTH x HEIGHT`) with `tests/golden/<name>.png`.
+fn check_image(name: &str, actual: &[u8]) {
     let dir = golden_dir();
-    let expected_path = dir.join(format!("{}.png", g.name()));
-    let actual_path = dir.join(format!("{}.actual.png", g.name()));
-    let diff_path = dir.join(format!("{}.diff.png", g.name()));
+    let expected_path = dir.join(format!("{name}.png"));
+    let actual_path = dir.join(format!("{name}.actual.png"));
+    let diff_path = dir.join(format!("{name}.diff.png"));
     if bless_requested() {
         std::fs::create_dir_all(&dir).expect("create tests/golden");
-        save(&expected_path, &actual, WIDTH, HEIGHT);
+        save(&expected_path, actual, WIDTH, HEIGHT);
         let _ = std::fs::remove_file(&actual_path);
         let _ = std::fs::remove_file(&diff_path);
         eprintln!("SEREIN_BLESS=1: wrote {}", expected_path.display());
@@ -125,30 +133,30 @@ fn check(g: Generated) {
     let expected = match image::open(&expected_path) {
         Ok(im) => im.to_rgba8(),
         Err(e) => {
-            save(&actual_path, &actual, WIDTH, HEIGHT);
+            save(&actual_path, actual, WIDTH, HEIGHT);
             panic!(
                 "{}: cannot read golden image {} ({e}); the rendered image is {}. \
                  Run with SEREIN_BLESS=1 to create the golden.",
-                g.name(),
+                name,
                 expected_path.display(),
                 actual_path.display()
             );
         }
     };
     if expected.dimensions() != (WIDTH, HEIGHT) {
-        save(&actual_path, &actual, WIDTH, HEIGHT);
+        save(&actual_path, actual, WIDTH, HEIGHT);
         panic!(
             "{}: golden {} is {:?}, the render is {WIDTH}x{HEIGHT} ({})",
-            g.name(),
+            name,
             expected_path.display(),
             expected.dimensions(),
             actual_path.display()
         );
     }
-    let d = diff(&actual, expected.as_raw());
+    let d = diff(actual, expected.as_raw());
     let worst_mean = d.mean.iter().copied().fold(0.0, f64::max);
     if worst_mean >= MEAN_TOLERANCE || d.p99 >= P99_TOLERANCE {
-        save(&actual_path, &actual, WIDTH, HEIGHT);
+        save(&actual_path, actual, WIDTH, HEIGHT);
         let amplified: Vec<u8> = actual
             .chunks_exact(4)
             .zip(expected.as_raw().chunks_exact(4))
@@ -164,7 +172,7 @@ fn check(g: Generated) {
              {:.2}, {:.2}, {:.2} (tolerance < {MEAN_TOLERANCE})\n  99th percentile of the \
              per-pixel max channel difference: {} (tolerance < {P99_TOLERANCE}), max {}\n  \
              If the change is intended, rerun with SEREIN_BLESS=1.",
-            g.name(),
+            name,
             expected_path.display(),
             actual_path.display(),
             diff_path.display(),
@@ -177,12 +185,7 @@ fn check(g: Generated) {
     }
     eprintln!(
         "{}: mean abs difference {:.3} {:.3} {:.3}, p99 {}, max {}",
-        g.name(),
-        d.mean[0],
-        d.mean[1],
-        d.mean[2],
-        d.p99,
-        d.max
+        name, d.mean[0], d.mean[1], d.mean[2], d.p99, d.max
     );
     let _ = std::fs::remove_file(&actual_path);
     let _ = std::fs::remove_file(&diff_path);
@@ -211,6 +214,50 @@ fn golden_plane_box() {
 #[test]
 fn golden_furnace() {
     check(Generated::Furnace);
+}
+
+/// Every lighting component of `g` (`engine::components`) as its own golden,
+/// `tests/golden/<scene>_<component>.png`, tone-mapped at the full frame's exposure (so a
+/// component too bright or too dark shows as such).
+fn check_components(g: Generated) {
+    let Some(mut r) = common::generated(g, WIDTH, HEIGHT) else { return };
+    let mut full = None;
+    for _ in 0..r.sky_volume_frames() + 1 {
+        full = Some(r.render_frame().unwrap_or_else(|e| panic!("{}: {e}", g.name())));
+    }
+    let exposure = full.expect("a frame").image().auto_exposure();
+    let images = engine::components::render_components(&mut r)
+        .unwrap_or_else(|e| panic!("{}: components: {e}", g.name()));
+    for c in images.iter().filter(|c| c.component != reference::Component::Full) {
+        assert!(c.image.pixels.iter().all(|p| p.is_finite() && p.min_element() >= 0.0));
+        let rgba: Vec<u8> = c
+            .image
+            .to_srgb8(exposure)
+            .chunks_exact(3)
+            .flat_map(|p| [p[0], p[1], p[2], 255])
+            .collect();
+        check_image(&format!("{}_{}", g.name(), c.component.name()), &rgba);
+    }
+}
+
+#[test]
+fn golden_components_city() {
+    check_components(Generated::City);
+}
+
+#[test]
+fn golden_components_cornell_window() {
+    check_components(Generated::CornellWindow);
+}
+
+#[test]
+fn golden_components_two_rooms() {
+    check_components(Generated::TwoRooms);
+}
+
+#[test]
+fn golden_components_plane_box() {
+    check_components(Generated::PlaneBox);
 }
 
 /// The comparison itself: identical images pass, a black image and a shifted exposure fail.

@@ -26,15 +26,24 @@ pub enum Component {
     Reflections,
     /// Everything: emission, sun, point lights and sky, all bounces. Points: irradiance.
     Full,
+    /// Direct light of the point lights, shadowed (one shadow ray each): the truth for the
+    /// engine's point lights with cube shadow maps. Images: reflected radiance; points:
+    /// irradiance.
+    PointLights,
+    /// Emission seen directly (no bounce). Images: the first surface's emitted radiance;
+    /// points: irradiance from emitters one cosine-sampled ray away.
+    Emission,
 }
 
 impl Component {
-    pub const ALL: [Self; 5] = [
+    pub const ALL: [Self; 7] = [
         Self::SunDirect,
         Self::SunIndirectDiffuse,
         Self::SkyIrradiance,
         Self::Reflections,
         Self::Full,
+        Self::PointLights,
+        Self::Emission,
     ];
 
     pub fn name(self) -> &'static str {
@@ -44,6 +53,8 @@ impl Component {
             Self::SkyIrradiance => "sky_irradiance",
             Self::Reflections => "reflections",
             Self::Full => "full",
+            Self::PointLights => "point_lights",
+            Self::Emission => "emission",
         }
     }
 
@@ -337,6 +348,14 @@ pub(crate) fn irradiance(
                 None => Vec3::ZERO,
             }
         }
+        Component::PointLights => point_lights(world, p, n, |_| Vec3::ONE),
+        Component::Emission => {
+            let wi = cosine_hemisphere(n, rng.next_2d());
+            let o = world.offset(p, n, wi);
+            world
+                .intersect(o, wi, f32::INFINITY)
+                .map_or(Vec3::ZERO, |h| PI * world.shade(&h).emission)
+        }
         Component::Full | Component::Reflections => {
             let cos_pdf = |wi: Vec3| wi.dot(n).max(0.0) / PI;
             let direct = sun_irradiance(world, p, n, rng)
@@ -376,6 +395,10 @@ pub(crate) fn radiance(
                 * irradiance(world, component, h.position, n, settings, rng)
         }
         Component::SkyIrradiance => irradiance(world, component, h.position, n, settings, rng),
+        Component::PointLights => {
+            m.base_weight() * point_lights(world, h.position, n, |wi| m.eval_base(n, wo, wi))
+        }
+        Component::Emission => m.emission,
         Component::Reflections => {
             if settings.max_bounces == 0 {
                 return Vec3::ZERO;

@@ -40,6 +40,12 @@ struct Args {
     /// error figures and a difference image.
     #[arg(long)]
     reference: Option<u32>,
+    /// With --reference: also the component ledger: per lighting component (sun direct, sky
+    /// irradiance, LPV bounce, reflections, point lights, emission, full) and per named
+    /// region, the engine against the reference; writes engine_/reference_/difference_<c>.exr,
+    /// components.png (contact sheet) and a ledger section in report.md / report.json.
+    #[arg(long, requires = "reference")]
+    components: bool,
     /// Seed of generated scenes.
     #[arg(long, default_value_t = 1)]
     seed: u64,
@@ -62,6 +68,7 @@ fn main() -> anyhow::Result<()> {
         frames: a.frames,
         out: a.out.clone(),
         reference_spp: a.reference,
+        components: a.components,
         seed: a.seed,
         progress: !a.quiet,
     };
