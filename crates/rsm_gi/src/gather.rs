@@ -12,6 +12,8 @@ pub(crate) struct GatherKernel<'a> {
     width: u32,
     height: u32,
     projection: RsmProjection,
+    /// How far the VPLs were moved against their normals.
+    offset: f32,
     /// Per sub-buffer: (offset in texels, weight in texels).
     pub subsets: Vec<Vec<(Vec2, f32)>>,
     /// Every sample as one set (the non-interleaved estimate).
@@ -23,7 +25,7 @@ impl<'a> GatherKernel<'a> {
         rsm: &RsmInput,
         texels: &'a [Texel],
         samples: &[Sample],
-        r_max: f32,
+        (r_max, offset): (f32, f32),
         cells: u32,
     ) -> Self {
         let radius = r_max * rsm.width as f32;
@@ -32,14 +34,22 @@ impl<'a> GatherKernel<'a> {
             width: rsm.width,
             height: rsm.height,
             projection: rsm.projection,
+            offset,
             subsets: (0..cells).map(|c| subset(samples, c, cells, radius)).collect(),
             all: subset(samples, 0, 1, radius),
         }
     }
 
-    /// Irradiance at a pixel from the samples `set`.
+    /// Irradiance at a pixel from the samples `set`, keeping only the VPLs
+    /// `visible(from, to)` says the point sees (`from` 1 cm in front of the point, `to`
+    /// 1 cm in front of the VPL's surface; the plain gather's closure is `true`).
     #[inline]
-    pub fn at(&self, p: &Pixel, set: &[(Vec2, f32)]) -> Vec3 {
+    pub fn at_with(
+        &self,
+        p: &Pixel,
+        set: &[(Vec2, f32)],
+        visible: &(impl Fn(Vec3, Vec3) -> bool + ?Sized),
+    ) -> Vec3 {
         let centre = self.projection.texel(p.position);
         if !centre.is_finite() {
             return Vec3::ZERO;
@@ -52,8 +62,17 @@ impl<'a> GatherKernel<'a> {
                 continue;
             }
             let t = &self.texels[q.y as usize * self.width as usize + q.x as usize];
-            if t.flux != Vec3::ZERO {
-                e += weight * vpl_irradiance(p.position, p.normal, t.position, t.normal, t.flux);
+            if t.flux == Vec3::ZERO {
+                continue;
+            }
+            let c = vpl_irradiance(p.position, p.normal, t.position, t.normal, t.flux);
+            if c != Vec3::ZERO
+                && visible(
+                    p.position + 0.01 * p.normal,
+                    t.position + (self.offset + 0.01) * t.normal,
+                )
+            {
+                e += weight * c;
             }
         }
         e

@@ -85,6 +85,9 @@ mod pipeline;
 mod settings;
 mod splat;
 
+#[cfg(feature = "gpu")]
+pub mod gpu;
+
 pub use error::RsmGiError;
 pub use input::{GBuffer, RsmInput, RsmProjection, Stats, vpl_irradiance};
 pub use interleave::Interleave;

@@ -25,6 +25,8 @@ pub struct Output {
 pub struct RsmGi {
     settings: Settings,
     samples: Vec<Sample>,
+    /// Skip the blur (the GPU gather kernel's parity twin).
+    unfiltered: bool,
 }
 
 /// The checked pixels of a G-buffer (`None` = not shaded) and their counts.
@@ -61,7 +63,13 @@ impl RsmGi {
     pub fn new(settings: Settings) -> Result<Self, RsmGiError> {
         settings.validate()?;
         let samples = samples(settings.sampling, settings.vpls, settings.seed);
-        Ok(Self { settings, samples })
+        Ok(Self { settings, samples, unfiltered: false })
+    }
+
+    /// The same pass without the blur over the pattern (each pixel keeps only its own
+    /// sub-buffer's estimate): what the GPU gather kernel writes before its blur passes.
+    pub fn without_blur(&self) -> Self {
+        Self { unfiltered: true, ..self.clone() }
     }
 
     pub fn settings(&self) -> &Settings {
@@ -94,7 +102,7 @@ impl RsmGi {
         let (w, h, f) = (g.width, g.height, s.low_res);
         let (low_px, lw, lh) = if f > 1 { coarse_pixels(&px, w, h, f) } else { (px.clone(), w, h) };
         let mut img = eval(&low_px, lw, lh);
-        if s.pattern != Interleave::NONE {
+        if s.pattern != Interleave::NONE && !self.unfiltered {
             img = blur(&img, &low_px, lw, lh, s.pattern.nx, s.pattern.ny, self.geometry());
         }
         if f == 1 {
@@ -110,6 +118,28 @@ impl RsmGi {
     /// around its projection into the RSM; the G-buffer is swizzled into the sub-buffers,
     /// shaded one sub-buffer at a time and un-swizzled.
     pub fn gather(&self, rsm: &RsmInput, g: &GBuffer) -> Result<Output, RsmGiError> {
+        self.gather_impl(rsm, g, &|_: Vec3, _: Vec3| true)
+    }
+
+    /// [`RsmGi::gather`] with each VPL's contribution kept only when `visible(from, to)`
+    /// (from 1 cm in front of the pixel to 1 cm in front of the VPL's surface): a
+    /// diagnostic that measures how much of the gather's light arrives through walls (the
+    /// technique itself has no occlusion). Not real time: one query per pixel and sample.
+    pub fn gather_occluded(
+        &self,
+        rsm: &RsmInput,
+        g: &GBuffer,
+        visible: &(dyn Fn(Vec3, Vec3) -> bool + Sync),
+    ) -> Result<Output, RsmGiError> {
+        self.gather_impl(rsm, g, visible)
+    }
+
+    fn gather_impl<V: Fn(Vec3, Vec3) -> bool + Sync + ?Sized>(
+        &self,
+        rsm: &RsmInput,
+        g: &GBuffer,
+        visible: &V,
+    ) -> Result<Output, RsmGiError> {
         rsm.validate()?;
         g.validate()?;
         let s = &self.settings;
@@ -117,7 +147,13 @@ impl RsmGi {
         let (texels, bad) = prepare_texels(rsm, s.vpl_offset);
         stats.non_finite_texels = bad;
         let pattern = s.pattern;
-        let kernel = GatherKernel::new(rsm, &texels, &self.samples, s.r_max, pattern.cells());
+        let kernel = GatherKernel::new(
+            rsm,
+            &texels,
+            &self.samples,
+            (s.r_max, s.vpl_offset),
+            pattern.cells(),
+        );
         let eval = |px: &[Option<Pixel>], w: u32, h: u32| {
             let sw = pattern.swizzle(px, w, h, None);
             let (tw, th) = pattern.tile_size(w, h);
@@ -128,13 +164,13 @@ impl RsmGi {
                 for (sx, (o, p)) in o.iter_mut().zip(p).enumerate() {
                     if let Some(p) = p {
                         let cell = sx as u32 / tw + pattern.nx * cy;
-                        *o = kernel.at(p, &kernel.subsets[cell as usize]);
+                        *o = kernel.at_with(p, &kernel.subsets[cell as usize], visible);
                     }
                 }
             });
             pattern.unswizzle(&out, w, h)
         };
-        let irradiance = self.run(g, &mut stats, eval, |p| kernel.at(p, &kernel.all));
+        let irradiance = self.run(g, &mut stats, eval, |p| kernel.at_with(p, &kernel.all, visible));
         Ok(Output { irradiance, stats })
     }
 
