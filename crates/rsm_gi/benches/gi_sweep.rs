@@ -199,7 +199,8 @@ fn main() {
                     );
                     if method == "splat" {
                         let s = Settings { splat_energy_scale: false, ..s };
-                        let (ms, frame) = pool.install(|| time_ms(reps(3), || c.frame(&run(s))));
+                        let f = run(s);
+                        let (ms, frame) = pool.install(|| time_ms(reps(3), || c.frame(&f)));
                         let a = c.at_receivers(&frame);
                         sweep.entry(entry(
                             format!("{name}_unscaled"),

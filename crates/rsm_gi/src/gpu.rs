@@ -370,7 +370,9 @@ impl GpuGather {
             queue.write_buffer(buf, 0, bytemuck::bytes_of(&v));
         }
         let groups = (g.width.div_ceil(WORKGROUP), g.height.div_ceil(WORKGROUP));
-        let res = |b: &wgpu::Buffer| b.as_entire_binding();
+        fn res(b: &wgpu::Buffer) -> wgpu::BindingResource<'_> {
+            b.as_entire_binding()
+        }
         let tv = wgpu::BindingResource::TextureView;
         let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("rsm_gi gather"),

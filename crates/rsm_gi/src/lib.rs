@@ -65,8 +65,8 @@
 //! // A one-pixel G-buffer: a ceiling point 2 m above the patch, facing down.
 //! let p = [Vec3::new(1.0, 2.0, 1.0)];
 //! let n = [-Vec3::Y];
-//! let view_proj = Mat4::perspective_rh(1.0, 1.0, 0.1, 100.0)
-//!     * Mat4::look_at_rh(Vec3::new(1.0, 1.0, 1.0), p[0], Vec3::X);
+//! let view_proj = glam::camera::rh::proj::directx::perspective(1.0, 1.0, 0.1, 100.0)
+//!     * glam::camera::rh::view::look_at_mat4(Vec3::new(1.0, 1.0, 1.0), p[0], Vec3::X);
 //! let g = GBuffer { width: 1, height: 1, position: &p, normal: &n, view_proj };
 //! let settings = Settings { r_max: 1.0, vpls: 256, ..Settings::REFERENCE };
 //! let out = RsmGi::new(settings).unwrap().gather(&rsm, &g).unwrap();

@@ -67,7 +67,7 @@ impl Settings {
         low_res: 1,
         depth_tolerance: 0.1,
         normal_power: 8.0,
-        seed: 0x5e7e_1a,
+        seed: 0x005e_7e1a,
     };
     /// 2x2 interleaving of 1024 VPLs.
     pub const HIGH: Self = Self { vpls: 1024, pattern: Interleave::P2X2, ..Self::DEFAULT };

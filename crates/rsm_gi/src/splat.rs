@@ -27,7 +27,7 @@ fn luminance(f: Vec3) -> f64 {
 /// without bias. No VPL when no texel emits.
 pub(crate) fn choose_vpls(texels: &[Texel], count: u32, seed: u64) -> Vec<SplatVpl> {
     let total: f64 = texels.iter().map(|t| luminance(t.flux)).sum();
-    if !(total > 0.0) || count == 0 {
+    if total.is_nan() || total <= 0.0 || count == 0 {
         return Vec::new();
     }
     let step = total / count as f64;
@@ -60,7 +60,7 @@ pub(crate) fn footprint(view_proj: &Mat4, c: Vec3, r: f32, w: u32, h: u32) -> (u
             if k & 4 == 0 { -r } else { r },
         );
         let clip = *view_proj * (c + s).extend(1.0);
-        if !(clip.w > 1e-4) {
+        if clip.w.is_nan() || clip.w <= 1e-4 {
             return (0, w, 0, h);
         }
         let ndc = clip.truncate().truncate() / clip.w;

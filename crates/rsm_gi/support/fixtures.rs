@@ -7,8 +7,8 @@ use rsm_gi::RsmProjection;
 
 /// A camera at `eye` looking down -z (fov 1 rad), for a `w x h` image.
 pub fn camera(eye: Vec3, w: u32, h: u32) -> Mat4 {
-    Mat4::perspective_rh(1.0, w as f32 / h as f32, 0.05, 200.0)
-        * Mat4::look_at_rh(eye, eye - Vec3::Z, Vec3::Y)
+    glam::camera::rh::proj::directx::perspective(1.0, w as f32 / h as f32, 0.05, 200.0)
+        * glam::camera::rh::view::look_at_mat4(eye, eye - Vec3::Z, Vec3::Y)
 }
 
 /// World point seen through pixel `(x, y)` centre at view depth `depth`.

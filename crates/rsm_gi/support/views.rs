@@ -103,8 +103,12 @@ impl View {
         }
         let f = cam.forward.normalize();
         let view_proj =
-            Mat4::perspective_rh(cam.fov_y_deg.to_radians(), w as f32 / h as f32, 0.02, 2000.0)
-                * Mat4::look_at_rh(cam.position, cam.position + f, cam.up);
+            glam::camera::rh::proj::directx::perspective(
+                cam.fov_y_deg.to_radians(),
+                w as f32 / h as f32,
+                0.02,
+                2000.0,
+            ) * glam::camera::rh::view::look_at_mat4(cam.position, cam.position + f, cam.up);
         Self { width: w, height: h, position, normal, view_proj, group }
     }
 
