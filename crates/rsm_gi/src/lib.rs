@@ -67,12 +67,17 @@
 //!   sees scores 0.51 (0.44x the LPV's best). On `two_rooms` the leak is 11% of the light
 //!   and 7% of the squared error, on the city 8%. Removing it is the job of an occlusion
 //!   structure (`radiance_cache`); [`RsmGi::gather_occluded`] measures it.
-//! - `r_max` matters more than the pattern on `cornell_window` (Poisson, 4x4, 512 VPLs):
-//!   6.0 / 3.5 / 1.2 / 0.98 at 0.1 / 0.3 / 0.6 / 1.0; the polar pattern is noisier at every
-//!   radius (10.5 / 10.8 / 8.8 / 4.8): its density compensation gives rim samples large
-//!   weights.
-//! - City, scene camera at 320x180 (CPU, 2 threads, loaded machine): default 40 ms,
-//!   `Settings::LOW` (half resolution) 18 ms; the 15 ms target is not met under that load.
+//! - `r_max` matters more than the pattern, and its best value depends on the scene's size
+//!   against the RSM's: on `cornell_window` (Poisson, 4x4, 512 VPLs) 6.0 / 3.5 / 1.2 / 0.98
+//!   at 0.1 / 0.3 / 0.6 / 1.0; with `r_max` 1 everywhere (a second run, 4x4 at 1024 VPLs)
+//!   `cornell_window` 1.07 (leaks then 17% of the squared error, 0.90 with visibility),
+//!   `two_rooms` 0.57, but the city 2.1 (its RSM spans 60 m: samples too sparse). The
+//!   default keeps 0.3, the city's best. The polar pattern is noisier at every radius
+//!   (10.5 / 10.8 / 8.8 / 4.8 on `cornell_window`): its density compensation gives rim
+//!   samples large weights.
+//! - City, scene camera at 320x180 (CPU, 2 threads, machine at load ~10): default 40 ms,
+//!   `Settings::LOW` (half resolution) 18 ms in one run; 16 ms and 9.7 ms (with `r_max` 1)
+//!   in another: about the 15 ms target, too noisy here to say more.
 //!
 //! ```
 //! use glam::{Mat4, Vec3};
