@@ -1,0 +1,51 @@
+// include: rsm_gi/common.inc.wgsl
+// rsm_gi geometry-aware blur, one direction of the separable Gaussian (pattern.w = 0: along
+// x with radius pattern.z, 1: along y), sigma = radius / 2 + 1/2; walks outwards from the
+// centre and stops at the first discontinuity. Workgroup 8 x 8, one invocation per pixel.
+
+@group(0) @binding(0) var<uniform> view: RsmGiView;
+@group(0) @binding(1) var g_position: texture_2d<f32>;
+@group(0) @binding(2) var g_normal: texture_2d<f32>;
+@group(0) @binding(3) var<storage, read> src: array<vec4<f32>>;
+@group(0) @binding(4) var<storage, read_write> dst: array<vec4<f32>>;
+
+fn pixel_at(t: vec2<i32>) -> RsmGiPixel {
+    return rsm_gi_make_pixel(textureLoad(g_position, t, 0).xyz, textureLoad(g_normal, t, 0).xyz, view.view_proj);
+}
+
+@compute @workgroup_size(8, 8)
+fn blur(@builtin(global_invocation_id) id: vec3<u32>) {
+    let w = i32(view.sizes.x);
+    let h = i32(view.sizes.y);
+    let here = vec2<i32>(id.xy);
+    if (here.x >= w || here.y >= h) {
+        return;
+    }
+    let i = here.y * w + here.x;
+    let c = pixel_at(here);
+    if (c.position.w <= 0.0) {
+        dst[i] = vec4<f32>(0.0);
+        return;
+    }
+    let r = i32(view.pattern.z);
+    let step = select(vec2<i32>(1, 0), vec2<i32>(0, 1), view.pattern.w == 1u);
+    let sigma = 0.5 * f32(r) + 0.5;
+    var sum = src[i].xyz;
+    var wsum = 1.0;
+    for (var side = -1; side <= 1; side = side + 2) {
+        for (var d = 1; d <= r; d = d + 1) {
+            let q = here + step * (side * d);
+            if (q.x < 0 || q.y < 0 || q.x >= w || q.y >= h) {
+                break;
+            }
+            let gw = rsm_gi_geometry_weight(c, pixel_at(q), view.knobs.y, view.knobs.z);
+            if (gw < 0.0) {
+                break;
+            }
+            let wt = exp(-f32(d * d) / (2.0 * sigma * sigma)) * gw;
+            sum = sum + src[q.y * w + q.x].xyz * wt;
+            wsum = wsum + wt;
+        }
+    }
+    dst[i] = vec4<f32>(sum / wsum, 0.0);
+}

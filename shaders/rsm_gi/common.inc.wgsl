@@ -1,0 +1,59 @@
+// rsm_gi: the pieces the gather and the blur share (CPU twin: crates/rsm_gi/src/input.rs,
+// filter.rs).
+
+const RSM_GI_PI: f32 = 3.14159265358979;
+
+// One view of one RSM: matrices, sizes (G-buffer w, h; RSM w, h), pattern (nx, ny, blur
+// radius, 1 = vertical blur pass), knobs (vpl offset, depth tolerance, normal power).
+struct RsmGiView {
+    world_to_texel: mat4x4<f32>,
+    view_proj: mat4x4<f32>,
+    sizes: vec4<u32>,
+    pattern: vec4<u32>,
+    knobs: vec4<f32>,
+}
+
+// A G-buffer pixel: xyz position, w view depth (0 = not shaded); and its unit normal.
+struct RsmGiPixel {
+    position: vec4<f32>,
+    normal: vec3<f32>,
+}
+
+// Irradiance at (x, n) from a VPL at p facing np with flux `flux` (the point-to-point form
+// factor: flux max(0, np.(x - p)) max(0, n.(p - x)) / (pi |x - p|^4)).
+fn rsm_gi_vpl_irradiance(x: vec3<f32>, n: vec3<f32>, p: vec3<f32>, np: vec3<f32>, flux: vec3<f32>) -> vec3<f32> {
+    let d = x - p;
+    let r2 = dot(d, d);
+    let c = max(dot(np, d), 0.0) * max(dot(n, -d), 0.0);
+    if (r2 <= 1e-12 || c <= 0.0) {
+        return vec3<f32>(0.0);
+    }
+    return flux * (c / (RSM_GI_PI * r2 * r2));
+}
+
+// The pixel as the passes see it: a zero normal or a point behind the camera is not shaded
+// (w = 0). Inputs are finite (the upload or the producing pass guarantees it).
+fn rsm_gi_make_pixel(position: vec3<f32>, normal: vec3<f32>, view_proj: mat4x4<f32>) -> RsmGiPixel {
+    var px: RsmGiPixel;
+    px.position = vec4<f32>(position, 0.0);
+    px.normal = vec3<f32>(0.0);
+    let len = length(normal);
+    if (len > 0.0) {
+        let depth = (view_proj * vec4<f32>(position, 1.0)).w;
+        if (depth > 0.0) {
+            px.position.w = depth;
+            px.normal = normal / len;
+        }
+    }
+    return px;
+}
+
+// Geometry-aware weight of neighbour q for centre c: -1 at a discontinuity (depth beyond
+// the relative tolerance, or normals more than 60 degrees apart), else cos^power.
+fn rsm_gi_geometry_weight(c: RsmGiPixel, q: RsmGiPixel, tolerance: f32, power: f32) -> f32 {
+    let cosine = dot(c.normal, q.normal);
+    if (q.position.w <= 0.0 || abs(q.position.w - c.position.w) > tolerance * c.position.w || cosine < 0.5) {
+        return -1.0;
+    }
+    return pow(cosine, power);
+}
