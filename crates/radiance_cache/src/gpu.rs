@@ -11,16 +11,8 @@ use crate::pool::NONE;
 use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
 
-/// The WGSL snippet consumers include (lattice, octahedral moments, visibility weight).
-pub const COMMON_WGSL: &str = include_str!("../../../shaders/radiance_cache/common.inc.wgsl");
-/// The lookup kernel with its snippets prepended (`sh_math`'s basis, then ours).
-pub const LOOKUP_WGSL: &str = concat!(
-    include_str!("../../../shaders/sh_math/sh.inc.wgsl"),
-    "\n",
-    include_str!("../../../shaders/radiance_cache/common.inc.wgsl"),
-    "\n",
-    include_str!("../../../shaders/radiance_cache/lookup.wgsl"),
-);
+pub use crate::wgsl::{COMMON_WGSL, LOOKUP_WGSL};
+
 /// Threads per workgroup of the lookup.
 pub const WORKGROUP: u32 = 64;
 

@@ -56,6 +56,9 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+// `!(a > b)` is used on purpose: it is also true when either side is NaN.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 mod cache;
 mod error;
 mod lattice;
@@ -65,6 +68,7 @@ pub mod octa;
 mod pool;
 mod settings;
 mod vpls;
+pub mod wgsl;
 
 #[cfg(feature = "gpu")]
 pub mod gpu;

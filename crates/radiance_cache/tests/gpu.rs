@@ -1,10 +1,9 @@
-//! GPU parity of the lookup kernel against the CPU path (lavapipe/llvmpipe in CI), and
-//! naga validation of the shader.
+//! GPU parity of the lookup kernel against the CPU path (lavapipe/llvmpipe in CI).
 #![cfg(feature = "gpu")]
 
 use glam::Vec3;
 use kdtree_tracer::{KdTree, Mesh, Settings as TreeSettings};
-use radiance_cache::gpu::{GpuCacheData, GpuLookup, GpuQuery, LOOKUP_WGSL};
+use radiance_cache::gpu::{GpuCacheData, GpuLookup, GpuQuery};
 use radiance_cache::{RadianceCache, Settings, SurfacePoint};
 use shadows::Vpl;
 
