@@ -184,13 +184,11 @@ impl GpuLookup {
         data: &GpuCacheData,
         points: &[GpuQuery],
     ) -> Result<Vec<glam::Vec3>, CacheError> {
+        let one = [GpuQuery::default()];
+        let points_or_one = if points.is_empty() { &one[..] } else { points };
         let queries = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("radiance_cache queries"),
-            contents: bytemuck::cast_slice(if points.is_empty() {
-                &[GpuQuery::default()][..]
-            } else {
-                points
-            }),
+            contents: bytemuck::cast_slice(points_or_one),
             usage: wgpu::BufferUsages::STORAGE,
         });
         let output = device.create_buffer(&wgpu::BufferDescriptor {

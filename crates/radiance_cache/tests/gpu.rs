@@ -8,17 +8,6 @@ use radiance_cache::{RadianceCache, Settings, SurfacePoint};
 use shadows::Vpl;
 
 #[test]
-fn shader_validates_with_naga() {
-    let module = naga::front::wgsl::parse_str(LOOKUP_WGSL).expect("parses");
-    naga::valid::Validator::new(
-        naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::all(),
-    )
-    .validate(&module)
-    .expect("validates");
-}
-
-#[test]
 fn gpu_lookup_matches_the_cpu() {
     let Some(ctx) = gpu_harness::gpu_test_context() else { return };
     // A wall at x = 0 and a floor at y = 0; VPLs on the floor's sunlit side of the wall.
