@@ -27,6 +27,17 @@
 //!    8 caches around the point moved `normal_bias` spacings along its normal, normalised;
 //!    cascades blended finest first over `blend_cells` at each border.
 //!
+//! **Measured** (`benches/gi_sweep.rs`, quick sweep: reference at 128 spp, 8 converging
+//! frames; 2 shared cores): the closed room of `two_rooms` reads 0.0013 of the lit room's
+//! irradiance at the default preset (the reference: 0; the LPV without/with its geometry
+//! volume: 0.82/0.31): shadow rays plus the Chebyshev lookup stop the leak. The
+//! `cornell_window` error is 0.47 (low) / 0.61 (default) relative RMS, of which the
+//! reference's own noise is 0.32 at 128 spp; what remains is the 3-band SH's back lobe
+//! (a delta's clamped-cosine kernel is 1/17 of its peak straight behind, so caches just
+//! above a sunlit floor light the floor itself) and sampling noise. City: 2.2% of the full
+//! grids allocated, update 4-9 ms at the default budget of 512 caches. The lookup (8
+//! caches x octahedral depth-moment fetch) costs about 260 ns per pixel on 2 threads.
+//!
 //! The CPU path is rayon-parallel and deterministic whatever the thread count. Feature
 //! `gpu` adds the lookup as a WGSL compute kernel (`shaders/radiance_cache/lookup.wgsl`).
 //!

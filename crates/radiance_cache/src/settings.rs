@@ -37,7 +37,9 @@ pub struct Settings {
     /// The lookup point is moved this many spacings along the surface normal (DDGI's
     /// normal bias), so a cache inside the wall the point lies on is not trusted.
     pub normal_bias: f32,
-    /// A VPL closer to a cache than this many spacings counts as this far (the `1/d²` clamp).
+    /// A VPL closer to a cache than this many spacings counts as this far (the `1/d²` clamp;
+    /// 1.0 at the default preset measured better than 0.5 on `cornell_window`, 0.61 against
+    /// 0.78 relative RMS, and `two_rooms`, 0.48 against 0.55).
     pub min_distance: f32,
 }
 
@@ -80,7 +82,7 @@ impl Settings {
             moment_resolution: 8,
             blend_cells: 1.0,
             normal_bias: 0.25,
-            min_distance: 0.5,
+            min_distance: 1.0,
         }
     }
 
