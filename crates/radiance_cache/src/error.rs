@@ -1,0 +1,17 @@
+//! Typed errors.
+
+use thiserror::Error;
+
+/// What can go wrong building or driving a radiance cache.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum CacheError {
+    /// A setting outside its documented range.
+    #[error("invalid setting `{name}`: {reason}")]
+    InvalidSetting { name: &'static str, reason: String },
+    /// A structure broke one of its invariants (what [`crate::RadianceCache::validate`] finds).
+    #[error("invariant broken: {0}")]
+    Invariant(String),
+    /// GPU path: no adapter, or a device call failed.
+    #[error("gpu: {0}")]
+    Gpu(String),
+}

@@ -1,0 +1,239 @@
+//! The lookup as a resident WGSL compute pass (`shaders/radiance_cache/lookup.wgsl`).
+//!
+//! [`GpuLookup`] is built once from a device (it owns the pipeline); [`GpuCacheData`] owns
+//! the cache's GPU copy (tables, light, moments), rewritten from the CPU cache after each
+//! update; [`GpuLookup::record`] records one dispatch over the caller's query buffer into
+//! the caller's output buffer. [`read_back`] is separate, for parity tests.
+
+use crate::cache::RadianceCache;
+use crate::error::CacheError;
+use crate::pool::NONE;
+use bytemuck::{Pod, Zeroable};
+use wgpu::util::DeviceExt;
+
+pub use crate::wgsl::{COMMON_WGSL, LOOKUP_WGSL};
+
+/// Threads per workgroup of the lookup.
+pub const WORKGROUP: u32 = 64;
+
+/// `RcLattice` of the WGSL.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuLattice {
+    pub origin_key: [i32; 3],
+    pub res: u32,
+    pub spacing: f32,
+    pub table_offset: u32,
+    pub _pad: [u32; 2],
+}
+const _: () = assert!(std::mem::size_of::<GpuLattice>() == 32);
+
+/// `LookupParams` of the WGSL.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct LookupParams {
+    pub lattices: [GpuLattice; 4],
+    pub cascades: u32,
+    pub coefficients: u32,
+    pub moment_res: u32,
+    pub count: u32,
+    pub blend: f32,
+    pub normal_bias: f32,
+    pub _pad: [u32; 2],
+}
+const _: () = assert!(std::mem::size_of::<LookupParams>() == 160);
+
+/// One query: position (w unused) and normal (w unused), as the kernel reads them.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuQuery {
+    pub position: [f32; 4],
+    pub normal: [f32; 4],
+}
+
+impl GpuQuery {
+    pub fn new(p: glam::Vec3, n: glam::Vec3) -> Self {
+        Self { position: p.extend(0.0).to_array(), normal: n.extend(0.0).to_array() }
+    }
+}
+
+/// The GPU copy of a [`RadianceCache`]: its lattices (in the params), slot tables (unlit
+/// caches as `NONE`), light and moments.
+pub struct GpuCacheData {
+    params: LookupParams,
+    tables: wgpu::Buffer,
+    irradiance: wgpu::Buffer,
+    moments: wgpu::Buffer,
+}
+
+impl GpuCacheData {
+    /// Uploads `cache` (call again after each update; buffers are recreated when sizes change).
+    pub fn new(device: &wgpu::Device, cache: &RadianceCache) -> Self {
+        let s = cache.settings();
+        let mut params = LookupParams {
+            cascades: cache.lattices.len() as u32,
+            coefficients: s.coefficients() as u32,
+            moment_res: s.moment_resolution,
+            blend: s.blend_cells,
+            normal_bias: s.normal_bias,
+            ..LookupParams::default()
+        };
+        let mut tables = Vec::new();
+        for (i, (l, t)) in cache.lattices.iter().zip(&cache.tables).enumerate() {
+            params.lattices[i] = GpuLattice {
+                origin_key: l.origin_key.to_array(),
+                res: l.res,
+                spacing: l.spacing(),
+                table_offset: tables.len() as u32,
+                _pad: [0; 2],
+            };
+            tables.extend(t.iter().map(|&slot| {
+                if slot != NONE && cache.pool.last_lit[slot as usize] > 0 { slot } else { NONE }
+            }));
+        }
+        let storage = |label: &str, bytes: &[u8]| {
+            let pad = [0u8; 16];
+            let contents = if bytes.is_empty() { &pad[..] } else { bytes };
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            })
+        };
+        Self {
+            params,
+            tables: storage("radiance_cache tables", bytemuck::cast_slice(&tables)),
+            irradiance: storage(
+                "radiance_cache irradiance",
+                bytemuck::cast_slice(&cache.pool.irradiance),
+            ),
+            moments: storage("radiance_cache moments", bytemuck::cast_slice(&cache.pool.moments)),
+        }
+    }
+}
+
+/// The compiled lookup pipeline.
+pub struct GpuLookup {
+    pipeline: wgpu::ComputePipeline,
+}
+
+impl GpuLookup {
+    /// Compiles [`LOOKUP_WGSL`] on `device`; a shader or pipeline error is [`CacheError::Gpu`].
+    pub fn new(device: &wgpu::Device) -> Result<Self, CacheError> {
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("radiance_cache lookup"),
+            source: wgpu::ShaderSource::Wgsl(std::borrow::Cow::Borrowed(LOOKUP_WGSL)),
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("radiance_cache lookup"),
+            layout: None,
+            module: &module,
+            entry_point: Some("main"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        if let Some(err) = pollster::block_on(scope.pop()) {
+            return Err(CacheError::Gpu(err.to_string()));
+        }
+        Ok(Self { pipeline })
+    }
+
+    /// Records the lookup of `count` [`GpuQuery`]s in `queries` into `output` (one
+    /// `vec4<f32>` per query, RGB irradiance).
+    pub fn record(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        data: &GpuCacheData,
+        queries: &wgpu::Buffer,
+        count: u32,
+        output: &wgpu::Buffer,
+    ) {
+        let params = LookupParams { count, ..data.params };
+        let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("radiance_cache lookup params"),
+            contents: bytemuck::bytes_of(&params),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let entries = [&uniform, &data.tables, &data.irradiance, &data.moments, queries, output];
+        let entries: Vec<wgpu::BindGroupEntry> = entries
+            .iter()
+            .enumerate()
+            .map(|(i, b)| wgpu::BindGroupEntry {
+                binding: i as u32,
+                resource: b.as_entire_binding(),
+            })
+            .collect();
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("radiance_cache lookup"),
+            layout: &self.pipeline.get_bind_group_layout(0),
+            entries: &entries,
+        });
+        let mut pass = encoder.begin_compute_pass(&Default::default());
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &bind_group, &[]);
+        pass.dispatch_workgroups(count.div_ceil(WORKGROUP).max(1), 1, 1);
+    }
+
+    /// Uploads `points`, records, submits and reads the result back (tests, tools).
+    pub fn lookup_blocking(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        data: &GpuCacheData,
+        points: &[GpuQuery],
+    ) -> Result<Vec<glam::Vec3>, CacheError> {
+        let one = [GpuQuery::default()];
+        let points_or_one = if points.is_empty() { &one[..] } else { points };
+        let queries = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("radiance_cache queries"),
+            contents: bytemuck::cast_slice(points_or_one),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+        let output = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("radiance_cache lookup output"),
+            size: (points.len().max(1) * 16) as u64,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let mut encoder = device.create_command_encoder(&Default::default());
+        self.record(device, &mut encoder, data, &queries, points.len() as u32, &output);
+        queue.submit([encoder.finish()]);
+        if let Some(err) = pollster::block_on(scope.pop()) {
+            return Err(CacheError::Gpu(err.to_string()));
+        }
+        let v: Vec<[f32; 4]> = read_back(device, queue, &output)?;
+        Ok(v.iter().take(points.len()).map(|c| glam::Vec3::new(c[0], c[1], c[2])).collect())
+    }
+}
+
+/// Copies a storage buffer (with `COPY_SRC`) to the CPU (blocking).
+pub fn read_back<T: Pod>(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    buffer: &wgpu::Buffer,
+) -> Result<Vec<T>, CacheError> {
+    let staging = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("radiance_cache staging"),
+        size: buffer.size(),
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let mut encoder = device.create_command_encoder(&Default::default());
+    encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, buffer.size());
+    queue.submit([encoder.finish()]);
+    let slice = staging.slice(..);
+    let (tx, rx) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| CacheError::Gpu(e.to_string()))?;
+    rx.recv()
+        .map_err(|e| CacheError::Gpu(e.to_string()))?
+        .map_err(|e| CacheError::Gpu(e.to_string()))?;
+    let bytes = slice.get_mapped_range().map_err(|e| CacheError::Gpu(e.to_string()))?.to_vec();
+    staging.unmap();
+    Ok(bytemuck::pod_collect_to_vec(&bytes))
+}
