@@ -174,7 +174,7 @@ pub fn lines_step(lines: &mut Vec<String>, (op, a, b): Step, extra: &[&str]) {
         }
         4 if !extra.is_empty() => {
             let l = pick(extra, b).to_owned();
-            lines.insert((a % (n + 1)) as usize, l);
+            lines.insert((a % (lines.len() as u64 + 1)) as usize, l);
         }
         _ => {}
     }
