@@ -6,8 +6,11 @@
 //!   sweep, merged into `target/gi-report/` (report.json, report.md, one SVG per technique).
 //! - `cargo xtask render [ARGS]`: the engine's main job (see `serein-render --help`).
 //! - `cargo xtask report`: redraws report.md and the charts from an existing report.json.
+//! - `cargo xtask fuzz [--minutes N] [--target NAME] [--seed S]`: the loaders' structure-aware
+//!   fuzzer for N minutes (default 10) with a new seed; summary in `target/fuzz/`.
 
 mod bench;
+mod fuzz;
 mod report;
 mod shaders;
 mod test;
@@ -48,6 +51,18 @@ enum Command {
     },
     /// Redraw report.md and the SVG charts from target/gi-report/report.json.
     Report,
+    /// Fuzz the loaders (glTF, GLB, OBJ + MTL, scene TOML, PNG) with structure-aware mutations.
+    Fuzz {
+        /// Minutes in all, shared between the targets.
+        #[arg(long, default_value_t = 10.0)]
+        minutes: f64,
+        /// Only this target: gltf, gltf_nodes, glb, obj_mtl, scene_toml, png.
+        #[arg(long)]
+        target: Option<String>,
+        /// Replay this seed instead of drawing a new one.
+        #[arg(long)]
+        seed: Option<String>,
+    },
     /// Validate every top-level WGSL file under shaders/ with naga.
     Shaders,
     /// Render a scene with the engine (release build of `serein-render`): with no arguments
@@ -67,6 +82,9 @@ fn main() -> anyhow::Result<()> {
         Command::Test { test_args } => test::run(&root, &test_args),
         Command::Bench { quick, json, only } => bench::run(&root, quick, json, &only),
         Command::Report => report::redraw(&root.join("target/gi-report")),
+        Command::Fuzz { minutes, target, seed } => {
+            fuzz::run(&root, minutes, target.as_deref(), seed.as_deref())
+        }
         Command::Render { args } => render(&root, &args),
         Command::Shaders => shaders::validate_all(&root).map(|n| println!("{n} shaders valid")),
     }

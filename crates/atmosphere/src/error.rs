@@ -7,8 +7,8 @@ pub enum AtmosphereError {
     /// algorithm's supported years.
     #[error("invalid date {year:04}-{month:02}-{day:02}: {reason}")]
     InvalidDate { year: i32, month: u32, day: u32, reason: &'static str },
-    /// A time of day that is not a finite number of hours.
-    #[error("invalid UTC time {0} h: must be finite")]
+    /// A time of day that is not a finite number of hours within a year of the date.
+    #[error("invalid UTC time {0} h: must be finite and within 8784 h (366 days) of the date")]
     InvalidTime(f64),
     /// A latitude outside [-90, 90] degrees or not finite.
     #[error("invalid latitude {0} deg: must be finite and within [-90, 90]")]

@@ -75,6 +75,10 @@ impl CivilDate {
     }
 }
 
+/// Largest `|utc_hours|` [`solar_position`] accepts: a leap year of hours either side of the
+/// date's midnight.
+pub const MAX_UTC_HOURS: f64 = 366.0 * 24.0;
+
 /// Where the Sun is in the sky of an observer.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SolarPosition {
@@ -111,8 +115,9 @@ impl SolarPosition {
 }
 
 /// The Sun's position for an observer at (`latitude_deg` north, `longitude_deg` east) on
-/// `date` at `utc_hours` hours UTC (any finite value: 25.5 is 01:30 the next day, -1 is 23:00
-/// the day before, which makes local-time conversions easy).
+/// `date` at `utc_hours` hours UTC (any value within [`MAX_UTC_HOURS`] of the date's midnight:
+/// 25.5 is 01:30 the next day, -1 is 23:00 the day before, which makes local-time conversions
+/// easy; beyond a year either way the angles lose all precision and overflow to NaN).
 ///
 /// ```
 /// use atmosphere::{solar_position, CivilDate};
@@ -128,7 +133,7 @@ pub fn solar_position(
     longitude_deg: f64,
 ) -> Result<SolarPosition, AtmosphereError> {
     date.validate()?;
-    if !utc_hours.is_finite() {
+    if !utc_hours.is_finite() || utc_hours.abs() > MAX_UTC_HOURS {
         return Err(AtmosphereError::InvalidTime(utc_hours));
     }
     if !latitude_deg.is_finite() || latitude_deg.abs() > 90.0 {
@@ -173,6 +178,9 @@ pub fn solar_position(
     // Azimuth clockwise from north; at the poles the formula still gives a finite direction.
     let az = ha.sin().atan2(ha.cos() * lat.sin() - decl.tan() * lat.cos()) + std::f64::consts::PI;
     let azimuth = az.rem_euclid(std::f64::consts::TAU);
+    if !(elevation.is_finite() && azimuth.is_finite()) {
+        return Err(AtmosphereError::InvalidTime(utc_hours));
+    }
     Ok(SolarPosition { elevation, azimuth })
 }
 

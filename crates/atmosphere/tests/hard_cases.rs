@@ -2,7 +2,7 @@
 //! rays, cameras on, below and far above the ground, cosines of exactly +-1.
 
 use atmosphere::{
-    Atmosphere, Sky, SkyMap, SkyMapSettings, SkySettings, TransmittanceLut,
+    Atmosphere, AtmosphereError, Sky, SkyMap, SkyMapSettings, SkySettings, TransmittanceLut,
     transmittance_between_exact, transmittance_to_top_exact,
 };
 use glam::Vec3;
@@ -190,15 +190,27 @@ fn single_scattering_is_below_multiple() {
 fn invalid_inputs_are_typed_errors() {
     let mut atm = Atmosphere::EARTH;
     atm.mie_scattering = Vec3::new(f32::NAN, 0.0, 0.0);
-    assert!(Sky::new(atm, SkySettings::default()).is_err());
+    assert!(matches!(
+        Sky::new(atm, SkySettings::default()),
+        Err(AtmosphereError::InvalidParameter { name: "mie_scattering", .. })
+    ));
     let s = SkySettings { view_samples: 0, ..SkySettings::default() };
-    assert!(Sky::new(Atmosphere::EARTH, s).is_err());
-    assert!(TransmittanceLut::new(&Atmosphere::EARTH, 0, 64, 10).is_err());
-    assert!(SkyMap::new(sky(), SkyMapSettings::default(), Vec3::NAN).is_err());
-    assert!(
-        SkyMap::new(sky(), SkyMapSettings { size: 0, ..SkyMapSettings::default() }, Vec3::Y)
-            .is_err()
-    );
+    assert!(matches!(
+        Sky::new(Atmosphere::EARTH, s),
+        Err(AtmosphereError::InvalidSetting { name: "view_samples", value: 0, .. })
+    ));
+    assert!(matches!(
+        TransmittanceLut::new(&Atmosphere::EARTH, 0, 64, 10),
+        Err(AtmosphereError::InvalidSetting { value: 0, .. })
+    ));
+    assert!(matches!(
+        SkyMap::new(sky(), SkyMapSettings::default(), Vec3::NAN),
+        Err(AtmosphereError::InvalidVector { .. })
+    ));
+    assert!(matches!(
+        SkyMap::new(sky(), SkyMapSettings { size: 0, ..SkyMapSettings::default() }, Vec3::Y),
+        Err(AtmosphereError::InvalidSetting { value: 0, .. })
+    ));
     assert_eq!(sky().radiance(0.0, Vec3::ZERO, Vec3::Y), Vec3::ZERO);
     assert_eq!(sky().radiance(0.0, Vec3::Y, Vec3::NAN), Vec3::ZERO);
 }

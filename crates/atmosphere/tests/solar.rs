@@ -71,3 +71,20 @@ fn bad_inputs_are_typed_errors() {
     ));
     assert!(solar_position(CivilDate::new(2024, 2, 29), 12.0, 90.0, 0.0).is_ok());
 }
+
+/// Issue 22 item 6: `utc_hours = 1e300` was finite, so it passed, and the angles came out NaN.
+#[test]
+fn huge_times_are_invalid_not_nan() {
+    let d = CivilDate::new(2024, 6, 21);
+    for h in [1e300, -1e300, 1e20, atmosphere::MAX_UTC_HOURS + 1.0, f64::INFINITY] {
+        assert!(
+            matches!(solar_position(d, h, 38.7, -9.1), Err(AtmosphereError::InvalidTime(t)) if t == h),
+            "{h} h"
+        );
+    }
+    for h in [atmosphere::MAX_UTC_HOURS, -atmosphere::MAX_UTC_HOURS, 0.0, -1.0, 25.5] {
+        let p = solar_position(d, h, 38.7, -9.1).unwrap();
+        assert!(p.elevation.is_finite() && p.azimuth.is_finite(), "{h} h: {p:?}");
+        assert!((p.direction().length() - 1.0).abs() < 1e-5, "{h} h");
+    }
+}

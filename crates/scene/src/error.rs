@@ -32,6 +32,18 @@ pub enum LoadErrorKind {
     /// A value outside its allowed range (negative radius, zero-length axis, ...).
     #[error("invalid value: {0}")]
     InvalidValue(String),
+    /// A reference that is absolute or leaves the root folder (see [`crate::LoadOptions`]).
+    #[error("path outside the scene folder: {0}")]
+    PathEscapes(String),
+    /// A referenced path that is a device, FIFO or folder rather than a regular file.
+    #[error("not a regular file: {0}")]
+    NotAFile(String),
+    /// A scene file that references itself, directly or through others (the chain).
+    #[error("include cycle: {0}")]
+    IncludeCycle(String),
+    /// A limit of [`crate::LoadOptions`] or of the format's reader that the file exceeds.
+    #[error("over the budget of {limit} {what}")]
+    Budget { what: &'static str, limit: u64 },
 }
 
 /// A loading failure: which file, which element in it, and what.

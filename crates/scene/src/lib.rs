@@ -76,9 +76,9 @@ pub use generate::{
 };
 pub use light::{PointLight, SUN_ANGULAR_RADIUS, Sun, SunPosition};
 pub use load::gltf::{load_gltf, load_gltf_slice};
-pub use load::load;
 pub use load::obj::{load_obj, load_obj_slice};
 pub use load::scene_file::{load_scene_file, load_scene_str};
+pub use load::{LoadOptions, load, load_with};
 pub use material::{AlphaMask, Material, MaterialId, RAY_TRACE_THRESHOLD};
 pub use mesh::{Cleanup, Mesh, MeshData};
 pub use needs::{Need, SKY_DARK_ELEVATION_DEG, SceneNeeds};

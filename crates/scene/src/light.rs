@@ -70,8 +70,13 @@ impl Sun {
         Ok(self.elevation_deg()?.to_radians() < -self.angular_radius)
     }
 
+    /// Checks that the sun has a finite unit direction (a valid date, time and place), a
+    /// non-negative finite colour and an angular radius in [0, 0.5).
     pub fn validate(&self) -> Result<(), SceneError> {
-        self.direction()?;
+        let d = self.direction()?;
+        if !(d.is_finite() && (d.length() - 1.0).abs() < 1e-3) {
+            return Err(SceneError::invalid("sun", format!("direction {d} is not a unit vector")));
+        }
         if !self.color.is_finite() || self.color.min_element() < 0.0 {
             return Err(SceneError::invalid("sun", format!("colour {}", self.color)));
         }

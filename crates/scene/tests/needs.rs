@@ -52,7 +52,10 @@ fn sun_without_meshes_and_sun_below_the_horizon() {
     p.sun = Some(Sun::at_time(scene::CivilDate::new(2024, 2, 30), 2.0, 38.72, -9.14));
     let n = p.needs();
     assert!(!n.sun_lighting.needed && n.sun_lighting.reason.contains("unusable"));
-    assert!(p.validate().is_err());
+    assert!(matches!(
+        p.validate(),
+        Err(scene::SceneError::Solar(atmosphere::AtmosphereError::InvalidDate { day: 30, .. }))
+    ));
 }
 
 #[test]

@@ -38,9 +38,15 @@ fn one_by_one_texture_has_one_level_and_samples_its_colour_everywhere() {
 
 #[test]
 fn bad_sizes_are_errors() {
-    assert!(Texture::from_rgba8("z", 0, 4, &[], ColorSpace::Srgb).is_err());
-    assert!(Texture::from_rgba8("short", 2, 2, &[0; 15], ColorSpace::Srgb).is_err());
-    assert!(Texture::from_linear("nan", 1, 1, vec![Vec4::NAN]).is_err());
+    let invalid = |r: Result<Texture, scene::SceneError>, name: &str, why: &str| match r {
+        Err(scene::SceneError::Invalid { element, reason }) => {
+            assert!(element.contains(name) && reason.contains(why), "{element}: {reason}")
+        }
+        other => panic!("{name}: expected an invalid-texture error, got {other:?}"),
+    };
+    invalid(Texture::from_rgba8("z", 0, 4, &[], ColorSpace::Srgb), "z", "0");
+    invalid(Texture::from_rgba8("short", 2, 2, &[0; 15], ColorSpace::Srgb), "short", "15 bytes");
+    invalid(Texture::from_linear("nan", 1, 1, vec![Vec4::NAN]), "nan", "");
 }
 
 #[test]

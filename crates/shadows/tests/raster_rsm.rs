@@ -44,19 +44,32 @@ fn rasteriser_is_deterministic_across_thread_counts() {
 #[test]
 fn plane_box_validates_its_configuration() {
     PlaneBox::DEFAULT.validate().unwrap();
-    assert!(PlaneBox { sun_direction: Vec3::ZERO, ..PlaneBox::DEFAULT }.validate().is_err());
-    assert!(PlaneBox { box_min: Vec3::NAN, ..PlaneBox::DEFAULT }.validate().is_err());
-    assert!(
-        PlaneBox { box_max: Vec3::new(-1.0, 0.0, 0.0), ..PlaneBox::DEFAULT }.validate().is_err()
-    );
+    assert!(matches!(
+        PlaneBox { sun_direction: Vec3::ZERO, ..PlaneBox::DEFAULT }.validate(),
+        Err(ShadowError::InvalidParameter { .. })
+    ));
+    assert!(matches!(
+        PlaneBox { box_min: Vec3::NAN, ..PlaneBox::DEFAULT }.validate(),
+        Err(ShadowError::NonFinite(_))
+    ));
+    assert!(matches!(
+        PlaneBox { box_max: Vec3::new(-1.0, 0.0, 0.0), ..PlaneBox::DEFAULT }.validate(),
+        Err(ShadowError::Invariant(m)) if m.contains("empty box")
+    ));
 }
 
 #[test]
 fn rasteriser_rejects_bad_input() {
     let mut m = DepthMap::new(8, 8).unwrap();
     let vp = glam::DMat4::IDENTITY;
-    assert!(rasterize(&mut m, Some(&mut [0u32; 3]), &vp, &[]).is_err());
-    assert!(rasterize(&mut m, None, &glam::DMat4::NAN, &[]).is_err());
+    assert!(matches!(
+        rasterize(&mut m, Some(&mut [0u32; 3]), &vp, &[]),
+        Err(ShadowError::InvalidParameter { .. })
+    ));
+    assert!(matches!(
+        rasterize(&mut m, None, &glam::DMat4::NAN, &[]),
+        Err(ShadowError::NonFinite("view_proj"))
+    ));
     // NaN vertices are skipped, not drawn and not a panic.
     rasterize(&mut m, None, &vp, &[[Vec3::NAN, Vec3::ZERO, Vec3::X]]).unwrap();
     assert!(m.as_slice().iter().all(|&d| d == 1.0));
@@ -95,6 +108,9 @@ fn rsm_flux_and_vpls_conserve_energy() {
             vpls.iter().all(|v| (v.normal.length() - 1.0).abs() < 1e-4 && v.position.is_finite())
         );
     }
-    assert!(rsm.extract_vpls(0).is_err());
-    assert!(Rsm::render(&view, &tris, &albedo[..3], light).is_err());
+    assert!(matches!(rsm.extract_vpls(0), Err(ShadowError::InvalidParameter { .. })));
+    assert!(matches!(
+        Rsm::render(&view, &tris, &albedo[..3], light),
+        Err(ShadowError::InvalidParameter { .. })
+    ));
 }

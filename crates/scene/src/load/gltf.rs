@@ -26,7 +26,9 @@
 //! The first perspective camera, if any, becomes the scene's camera. Non-triangle primitives
 //! are skipped; sparse accessors are not supported (typed error).
 
+use super::context::{Ctx, LoadOptions};
 use super::image::decode;
+use super::uri::read_uri;
 use crate::{
     AlphaMask, Camera, ColorSpace, LoadError, LoadErrorKind, Material, MaterialId, Mesh, MeshData,
     Scene, SceneError, Texture, TextureId,
@@ -36,26 +38,44 @@ use gltf::accessor::{DataType, Dimensions};
 use std::collections::HashMap;
 use std::path::Path;
 
-/// Most elements one accessor may hold (protects against absurd counts in corrupt files).
-const MAX_ELEMENTS: usize = 1 << 26;
+/// Most components (elements x dimensions) one accessor may hold (protects against absurd
+/// counts in corrupt files).
+const MAX_COMPONENTS: usize = 1 << 26;
+/// Most components of an accessor without a buffer view (zeros that no bytes of the file back).
+const MAX_ZERO_COMPONENTS: usize = 1 << 20;
 /// Deepest node hierarchy followed (a cycle in a corrupt file stops here).
 const MAX_DEPTH: usize = 64;
 
-/// Loads a `.gltf` (with external or embedded buffers) or `.glb` file.
+/// Loads a `.gltf` (with external or embedded buffers) or `.glb` file; external files must lie
+/// in its folder (see [`LoadOptions`]).
 pub fn load_gltf(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
     let path = path.as_ref();
-    let bytes = super::read_file(path)?;
-    load_gltf_slice(&bytes, path.parent(), &path.display().to_string())
+    load_gltf_in(path, &mut Ctx::for_file(&LoadOptions::default(), path))
 }
 
-/// Loads glTF from bytes. `base_dir` resolves relative URIs (`None`: only embedded data is
-/// allowed); `file` names the source in errors.
+pub(crate) fn load_gltf_in(path: &Path, ctx: &mut Ctx) -> Result<Scene, SceneError> {
+    let bytes = super::read_file(path, ctx)?;
+    load_gltf_ctx(&bytes, path.parent(), &path.display().to_string(), ctx)
+}
+
+/// Loads glTF from bytes. `base_dir` resolves relative URIs and is the folder they may not
+/// leave (`None`: only embedded data is allowed); `file` names the source in errors.
 pub fn load_gltf_slice(
     bytes: &[u8],
     base_dir: Option<&Path>,
     file: &str,
 ) -> Result<Scene, SceneError> {
+    load_gltf_ctx(bytes, base_dir, file, &mut Ctx::new(&LoadOptions::default(), base_dir))
+}
+
+fn load_gltf_ctx(
+    bytes: &[u8],
+    base_dir: Option<&Path>,
+    file: &str,
+    ctx: &mut Ctx,
+) -> Result<Scene, SceneError> {
     let err = |element: String, kind| SceneError::from(LoadError::new(file, element, kind));
+    glb_header(bytes).map_err(|k| err("GLB header".into(), k))?;
     let doc = gltf::Gltf::from_slice_without_validation(bytes)
         .map_err(|e| err("document".into(), LoadErrorKind::Parse(e.to_string())))?;
     validate(doc.as_json()).map_err(|(el, k)| err(el, k))?;
@@ -68,7 +88,7 @@ pub fn load_gltf_slice(
                 err(el.clone(), LoadErrorKind::Inconsistent("GLB binary chunk missing".into()))
             })?,
             gltf::buffer::Source::Uri(uri) => {
-                read_uri(uri, base_dir).map_err(|k| err(el.clone(), k))?
+                read_uri(uri, base_dir, ctx).map_err(|k| err(el.clone(), k))?
             }
         };
         if data.len() < b.length() {
@@ -89,6 +109,7 @@ pub fn load_gltf_slice(
         buffers: &buffers,
         scene: Scene::new(file),
         images: HashMap::new(),
+        ctx,
     };
     let mut material_ids = Vec::new();
     for m in doc.materials() {
@@ -172,6 +193,12 @@ pub fn load_gltf_slice(
                     None => *default_material
                         .get_or_insert_with(|| loader.scene.add_material(Material::default())),
                 };
+                let triangles = match prim.indices() {
+                    Some(a) => a.count(),
+                    None => prim.get(&gltf::Semantic::Positions).map_or(0, |a| a.count()),
+                } as u64
+                    / 3;
+                loader.ctx.add_instance(triangles).map_err(|k| err(pel(), k))?;
                 let data = loader.primitive(&prim).map_err(|k| err(pel(), k))?;
                 let (mut m, c) = Mesh::build(pel(), data, material).map_err(|k| err(pel(), k))?;
                 m.name = mesh.name().map_or_else(
@@ -194,6 +221,22 @@ pub fn load_gltf_slice(
         .validate()
         .map_err(|e| err("scene".into(), LoadErrorKind::InvalidValue(e.to_string())))?;
     Ok(scene)
+}
+
+/// gltf 1.4 subtracts 12 from a GLB header's length field unchecked (a panic in debug builds
+/// for a length below 12): that field must cover the header and lie within the file.
+fn glb_header(bytes: &[u8]) -> Result<(), LoadErrorKind> {
+    if bytes.len() < 12 || &bytes[..4] != b"glTF" {
+        return Ok(()); // JSON, or too short for the crate to take it for GLB
+    }
+    let length = u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]) as usize;
+    if length < 12 || length > bytes.len() {
+        return Err(LoadErrorKind::Parse(format!(
+            "GLB length field {length} outside 12..={} (the file's size)",
+            bytes.len()
+        )));
+    }
+    Ok(())
 }
 
 /// The `gltf` crate's validation, preceded by the checks whose absence makes it (or the
@@ -239,6 +282,7 @@ fn validate(root: &gltf::json::Root) -> Result<(), (String, LoadErrorKind)> {
             ));
         }
     }
+    nodes_form_a_forest(root)?;
     let mut errors = Vec::new();
     root.validate(root, gltf::json::Path::new, &mut |path, e| {
         errors.push(format!("{}: {e}", path()))
@@ -261,6 +305,7 @@ struct Loader<'a> {
     buffers: &'a [Vec<u8>],
     scene: Scene,
     images: HashMap<(usize, bool), TextureId>,
+    ctx: &'a mut Ctx,
 }
 
 impl Loader<'_> {
@@ -297,14 +342,14 @@ impl Loader<'_> {
                     }
                 }
             }
-            gltf::image::Source::Uri { uri, .. } => read_uri(uri, self.base_dir)
+            gltf::image::Source::Uri { uri, .. } => read_uri(uri, self.base_dir, self.ctx)
                 .map_err(|k| match k {
                     LoadErrorKind::Io(_) => LoadErrorKind::MissingTexture(uri.to_owned()),
                     k => k,
                 })
                 .map_err(|k| self.err(el.clone(), k))?,
         };
-        let t = decode(&name, &bytes, space).map_err(|k| self.err(el, k))?;
+        let t = decode(&name, &bytes, space, self.ctx).map_err(|k| self.err(el, k))?;
         let id = self.scene.add_texture(t);
         self.images.insert(key, id);
         Ok(id)
@@ -400,9 +445,12 @@ impl Loader<'_> {
         };
         let indices = match prim.indices() {
             Some(a) => {
-                if a.dimensions() != Dimensions::Scalar || a.data_type() == DataType::F32 {
+                if a.dimensions() != Dimensions::Scalar
+                    || !matches!(a.data_type(), DataType::U8 | DataType::U16 | DataType::U32)
+                    || a.normalized()
+                {
                     return Err(LoadErrorKind::Inconsistent(
-                        "indices are not unsigned integer scalars".into(),
+                        "indices are not unnormalised unsigned integer scalars".into(),
                     ));
                 }
                 read(&a, self.buffers, "indices")?.into_iter().map(|i| i as u32).collect()
@@ -428,12 +476,22 @@ fn read(a: &gltf::Accessor, buffers: &[Vec<u8>], what: &str) -> Result<Vec<f64>,
     }
     let count = a.count();
     let dims = a.dimensions().multiplicity();
-    if count > MAX_ELEMENTS {
-        return Err(LoadErrorKind::Inconsistent(format!("{what}: {count} elements")));
-    }
+    let components = count.saturating_mul(dims);
     let Some(view) = a.view() else {
-        return Ok(vec![0.0; count * dims]); // no buffer view: all zeros (glTF 5.1.1)
+        if components > MAX_ZERO_COMPONENTS {
+            return Err(LoadErrorKind::Budget {
+                what: "components of an accessor without a buffer view",
+                limit: MAX_ZERO_COMPONENTS as u64,
+            });
+        }
+        return Ok(vec![0.0; components]); // no buffer view: all zeros (glTF 5.1.1)
     };
+    if components > MAX_COMPONENTS {
+        return Err(LoadErrorKind::Budget {
+            what: "components of one accessor",
+            limit: MAX_COMPONENTS as u64,
+        });
+    }
     let comp = a.data_type().size();
     let elem = comp * dims;
     let stride = view.stride().unwrap_or(elem);
@@ -489,84 +547,42 @@ fn snorm(v: f64, max: f64, normalized: bool) -> f64 {
     if normalized { (v / max).max(-1.0) } else { v }
 }
 
-/// Reads a `data:` URI (base64) or a file relative to `base`.
-fn read_uri(uri: &str, base: Option<&Path>) -> Result<Vec<u8>, LoadErrorKind> {
-    if let Some(rest) = uri.strip_prefix("data:") {
-        let payload = rest
-            .split_once(";base64,")
-            .map(|(_, d)| d)
-            .ok_or_else(|| LoadErrorKind::Unsupported("data URI that is not base64".into()))?;
-        return base64(payload)
-            .ok_or_else(|| LoadErrorKind::Parse("invalid base64 in data URI".into()));
-    }
-    if uri.contains("://") {
-        return Err(LoadErrorKind::Unsupported(format!("URI scheme of `{uri}`")));
-    }
-    let base = base.ok_or_else(|| {
-        LoadErrorKind::Unsupported(format!("external file `{uri}` in an in-memory load"))
-    })?;
-    let path = base.join(percent_decode(uri));
-    std::fs::read(&path).map_err(|e| LoadErrorKind::Io(format!("{}: {e}", path.display())))
-}
-
-fn percent_decode(s: &str) -> String {
-    let b = s.as_bytes();
-    let mut out = Vec::with_capacity(b.len());
-    let mut i = 0;
-    while i < b.len() {
-        let hex = |c: u8| (c as char).to_digit(16);
-        if b[i] == b'%'
-            && i + 2 < b.len()
-            && let (Some(h), Some(l)) = (hex(b[i + 1]), hex(b[i + 2]))
-        {
-            out.push((h * 16 + l) as u8);
-            i += 3;
-            continue;
-        }
-        out.push(b[i]);
-        i += 1;
-    }
-    String::from_utf8_lossy(&out).into_owned()
-}
-
-/// Standard base64 (RFC 4648) with optional padding; `None` on any other character.
-fn base64(s: &str) -> Option<Vec<u8>> {
-    let val = |c: u8| match c {
-        b'A'..=b'Z' => Some(c - b'A'),
-        b'a'..=b'z' => Some(c - b'a' + 26),
-        b'0'..=b'9' => Some(c - b'0' + 52),
-        b'+' | b'-' => Some(62),
-        b'/' | b'_' => Some(63),
-        _ => None,
-    };
-    let s = s.trim_end_matches('=');
-    let mut out = Vec::with_capacity(s.len() * 3 / 4);
-    let (mut acc, mut bits) = (0u32, 0);
-    for c in s.bytes() {
-        acc = (acc << 6) | val(c)? as u32;
-        bits += 6;
-        if bits >= 8 {
-            bits -= 8;
-            out.push((acc >> bits) as u8);
-            acc &= (1 << bits) - 1;
+/// glTF 2.0 (3.5.3): nodes form disjoint trees, so no node has two parents or is listed twice,
+/// and no scene root is another node's child. A file breaking this could instance a mesh
+/// exponentially often through a few nodes (a binary DAG of depth 64: 2^64 instances).
+fn nodes_form_a_forest(root: &gltf::json::Root) -> Result<(), (String, LoadErrorKind)> {
+    let mut parent: Vec<Option<usize>> = vec![None; root.nodes.len()];
+    let bad = |el: String, why: String| Err((el, LoadErrorKind::Inconsistent(why)));
+    for (i, n) in root.nodes.iter().enumerate() {
+        for c in n.children.iter().flatten() {
+            let c = c.value();
+            match parent.get(c) {
+                None => return bad(format!("node {i}"), format!("child {c} does not exist")),
+                Some(Some(p)) => {
+                    return bad(
+                        format!("node {c}"),
+                        format!("has two parents (nodes {p} and {i})"),
+                    );
+                }
+                Some(None) => parent[c] = Some(i),
+            }
         }
     }
-    Some(out)
-}
-
-#[cfg(test)]
-mod tests {
-    #[test]
-    fn base64_round_trips_known_values() {
-        assert_eq!(super::base64("aGVsbG8=").unwrap(), b"hello");
-        assert_eq!(super::base64("AAECAw").unwrap(), [0, 1, 2, 3]);
-        assert!(super::base64("a*b").is_none());
+    for (s, scene) in root.scenes.iter().enumerate() {
+        let mut listed = vec![false; root.nodes.len()];
+        for n in &scene.nodes {
+            let n = n.value();
+            match (parent.get(n), listed.get(n)) {
+                (Some(None), Some(false)) => listed[n] = true,
+                (Some(Some(p)), _) => {
+                    return bad(format!("scene {s}"), format!("root node {n} is a child of {p}"));
+                }
+                (Some(None), _) => {
+                    return bad(format!("scene {s}"), format!("lists node {n} twice"));
+                }
+                (None, _) => return bad(format!("scene {s}"), format!("node {n} does not exist")),
+            }
+        }
     }
-
-    #[test]
-    fn percent_decoding_survives_bad_escapes() {
-        assert_eq!(super::percent_decode("a%20b"), "a b");
-        assert_eq!(super::percent_decode("a%zz%"), "a%zz%");
-        assert_eq!(super::percent_decode("%FF"), "\u{fffd}");
-    }
+    Ok(())
 }

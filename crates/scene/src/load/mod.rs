@@ -1,35 +1,54 @@
 //! Loaders: glTF 2.0, OBJ + MTL, and the TOML scene file. Every error names the file and the
-//! element; malformed input never panics.
+//! element; malformed input never panics, and the budgets of [`LoadOptions`] bound what a
+//! small hostile file can make a load allocate.
 
+pub(crate) mod context;
 pub(crate) mod gltf;
 pub(crate) mod image;
 pub(crate) mod obj;
 pub(crate) mod scene_file;
+mod uri;
+
+pub use context::LoadOptions;
 
 use crate::{LoadError, LoadErrorKind, Scene, SceneError};
+use context::Ctx;
 use std::path::Path;
 
-/// Loads a scene by file extension: `.gltf`/`.glb`, `.obj`, `.toml` (scene file).
+/// Loads a scene by file extension: `.gltf`/`.glb`, `.obj`, `.toml` (scene file), with the
+/// default [`LoadOptions`] (references confined to the file's folder).
 pub fn load(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
+    load_with(path, &LoadOptions::default())
+}
+
+/// [`load`] with other limits.
+pub fn load_with(path: impl AsRef<Path>, options: &LoadOptions) -> Result<Scene, SceneError> {
     let path = path.as_ref();
+    load_in(path, &mut Ctx::for_file(options, path))
+}
+
+/// Loads `path` inside a load in progress, by extension.
+pub(crate) fn load_in(path: &Path, ctx: &mut Ctx) -> Result<Scene, SceneError> {
+    let file = || path.display().to_string();
+    ctx.enter(path).map_err(|k| LoadError::new(file(), "", k))?;
     let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
-    match ext.as_deref() {
-        Some("gltf" | "glb") => gltf::load_gltf(path),
-        Some("obj") => obj::load_obj(path),
-        Some("toml") => scene_file::load_scene_file(path),
+    let r = match ext.as_deref() {
+        Some("gltf" | "glb") => gltf::load_gltf_in(path, ctx),
+        Some("obj") => obj::load_obj_in(path, ctx),
+        Some("toml") => scene_file::load_scene_file_in(path, ctx),
         _ => Err(LoadError::new(
-            path.display().to_string(),
+            file(),
             "",
             LoadErrorKind::Unsupported(
                 "file extension (expected .gltf, .glb, .obj or .toml)".into(),
             ),
         )
         .into()),
-    }
+    };
+    ctx.leave();
+    r
 }
 
-pub(crate) fn read_file(path: &Path) -> Result<Vec<u8>, LoadError> {
-    std::fs::read(path).map_err(|e| {
-        LoadError::new(path.display().to_string(), "", LoadErrorKind::Io(e.to_string()))
-    })
+pub(crate) fn read_file(path: &Path, ctx: &Ctx) -> Result<Vec<u8>, LoadError> {
+    ctx.read(path).map_err(|k| LoadError::new(path.display().to_string(), "", k))
 }

@@ -6,6 +6,7 @@
 //! models) -> mirror reflectivity = largest `Ks` channel; `map_d` -> alpha-test mask (its red
 //! channel, cutoff 0.5); `Ke` -> emission. Objects without a material get a grey default.
 
+use super::context::{Ctx, LoadOptions};
 use super::image::decode;
 use crate::{
     AlphaMask, ColorSpace, LoadError, LoadErrorKind, Material, Mesh, MeshData, Scene, SceneError,
@@ -53,18 +54,24 @@ fn options() -> tobj::LoadOptions {
     }
 }
 
-/// Loads an `.obj` file, its `mtllib` files and their textures (paths relative to the file).
+/// Loads an `.obj` file, its `mtllib` files and their textures (paths relative to the file,
+/// which must lie in its folder: see [`LoadOptions`]).
 pub fn load_obj(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
     let path = path.as_ref();
-    let bytes = super::read_file(path)?;
+    load_obj_in(path, &mut Ctx::for_file(&LoadOptions::default(), path))
+}
+
+pub(crate) fn load_obj_in(path: &Path, ctx: &mut Ctx) -> Result<Scene, SceneError> {
+    let bytes = super::read_file(path, ctx)?;
     let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
-    let failed: RefCell<Option<(PathBuf, String)>> = RefCell::new(None);
+    let failed: RefCell<Option<(PathBuf, LoadErrorKind)>> = RefCell::new(None);
     let loader = |p: &Path| {
         let full = base.join(p);
-        match std::fs::read(&full) {
+        let read = ctx.resolve(&base, &p.to_string_lossy()).and_then(|full| ctx.read(&full));
+        match read {
             Ok(b) => tobj::load_mtl_buf(&mut std::io::Cursor::new(sanitize(&b))),
             Err(e) => {
-                *failed.borrow_mut() = Some((full.clone(), e.to_string()));
+                *failed.borrow_mut() = Some((full, e));
                 Err(tobj::LoadError::OpenFileFailed)
             }
         }
@@ -73,14 +80,9 @@ pub fn load_obj(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
     let result =
         tobj::load_obj_buf(&mut std::io::Cursor::new(sanitize(&bytes)), &options(), loader);
     if let Some((p, e)) = failed.into_inner() {
-        return Err(LoadError::new(
-            &file,
-            format!("mtllib \"{}\"", p.display()),
-            LoadErrorKind::Io(e),
-        )
-        .into());
+        return Err(LoadError::new(&file, format!("mtllib \"{}\"", p.display()), e).into());
     }
-    finish(result, &file, Some(&base))
+    finish(result, &file, Some(&base), ctx)
 }
 
 /// Loads OBJ text from memory with an optional MTL text (used for every `mtllib`); textures
@@ -89,10 +91,15 @@ pub fn load_obj_slice(obj: &[u8], mtl: Option<&[u8]>, file: &str) -> Result<Scen
     let mtl = sanitize(mtl.unwrap_or_default());
     let loader = |_: &Path| tobj::load_mtl_buf(&mut std::io::Cursor::new(mtl.as_bytes()));
     let result = tobj::load_obj_buf(&mut std::io::Cursor::new(sanitize(obj)), &options(), loader);
-    finish(result, file, None)
+    finish(result, file, None, &mut Ctx::new(&LoadOptions::default(), None))
 }
 
-fn finish(result: tobj::LoadResult, file: &str, base: Option<&Path>) -> Result<Scene, SceneError> {
+fn finish(
+    result: tobj::LoadResult,
+    file: &str,
+    base: Option<&Path>,
+    ctx: &mut Ctx,
+) -> Result<Scene, SceneError> {
     let err = |element: String, kind| SceneError::from(LoadError::new(file, element, kind));
     let (models, materials) =
         result.map_err(|e| err("document".into(), LoadErrorKind::Parse(e.to_string())))?;
@@ -113,9 +120,16 @@ fn finish(result: tobj::LoadResult, file: &str, base: Option<&Path>) -> Result<S
         let Some(base) = base else {
             return Err(err(el, LoadErrorKind::MissingTexture(name.to_owned())));
         };
-        let bytes = std::fs::read(base.join(name))
-            .map_err(|_| err(el.clone(), LoadErrorKind::MissingTexture(name.to_owned())))?;
-        let mut t = decode(name, &bytes, space).map_err(|k| err(el.clone(), k))?;
+        let bytes = ctx
+            .resolve(base, name)
+            .and_then(|p| {
+                ctx.read(&p).map_err(|k| match k {
+                    LoadErrorKind::Io(_) => LoadErrorKind::MissingTexture(name.to_owned()),
+                    k => k,
+                })
+            })
+            .map_err(|k| err(el.clone(), k))?;
+        let mut t = decode(name, &bytes, space, ctx).map_err(|k| err(el.clone(), k))?;
         if mask {
             // Alpha from the red channel of a grey mask image.
             for l in &mut t.levels {
@@ -203,6 +217,7 @@ fn finish(result: tobj::LoadResult, file: &str, base: Option<&Path>) -> Result<S
         let uvs = (!mesh.texcoords.is_empty()).then(|| {
             mesh.texcoords.chunks_exact(2).map(|c| Vec2::new(c[0], 1.0 - c[1])).collect::<Vec<_>>()
         });
+        ctx.add_instance(mesh.indices.len() as u64 / 3).map_err(|k| err(el.clone(), k))?;
         let data = MeshData { positions, normals, uvs, indices: mesh.indices.clone() };
         let (m, c) = Mesh::build(model.name.clone(), data, material).map_err(|k| err(el, k))?;
         scene.cleanup += c;

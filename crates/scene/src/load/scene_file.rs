@@ -47,6 +47,7 @@
 //! fov_y_deg = 60.0
 //! ```
 
+use super::context::{Ctx, LoadOptions};
 use crate::{
     Camera, CivilDate, Generated, LoadError, LoadErrorKind, OcclusionQuad, PointLight, Scene,
     SceneError, Sun,
@@ -142,22 +143,35 @@ struct CameraDef {
     far: Option<f32>,
 }
 
-/// Loads a scene file and everything it references.
+/// Loads a scene file and everything it references (mesh files, which may be scene files in
+/// turn, must lie in its folder and may not include themselves: see [`LoadOptions`]).
 pub fn load_scene_file(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
-    let path = path.as_ref();
-    let bytes = super::read_file(path)?;
+    super::load_with(path.as_ref(), &LoadOptions::default())
+}
+
+pub(crate) fn load_scene_file_in(path: &Path, ctx: &mut Ctx) -> Result<Scene, SceneError> {
+    let bytes = super::read_file(path, ctx)?;
     let file = path.display().to_string();
     let text = std::str::from_utf8(&bytes)
         .map_err(|e| LoadError::new(&file, "document", LoadErrorKind::Parse(e.to_string())))?;
-    load_scene_str(text, path.parent(), &file)
+    load_scene_ctx(text, path.parent(), &file, ctx)
 }
 
-/// Loads a scene file from text. `base_dir` resolves mesh files (`None`: only generated
-/// meshes may be referenced); `file` names the source in errors.
+/// Loads a scene file from text. `base_dir` resolves mesh files and is the folder they may not
+/// leave (`None`: only generated meshes may be referenced); `file` names the source in errors.
 pub fn load_scene_str(
     text: &str,
     base_dir: Option<&Path>,
     file: &str,
+) -> Result<Scene, SceneError> {
+    load_scene_ctx(text, base_dir, file, &mut Ctx::new(&LoadOptions::default(), base_dir))
+}
+
+fn load_scene_ctx(
+    text: &str,
+    base_dir: Option<&Path>,
+    file: &str,
+    ctx: &mut Ctx,
 ) -> Result<Scene, SceneError> {
     let err = |element: String, kind| SceneError::from(LoadError::new(file, element, kind));
     let f: File = toml::from_str(text).map_err(|e| {
@@ -179,7 +193,8 @@ pub fn load_scene_str(
                         LoadErrorKind::Unsupported(format!("mesh file `{p}` in an in-memory load")),
                     )
                 })?;
-                super::load(base.join(p))?
+                let path = ctx.resolve(base, p).map_err(|k| err(el.clone(), k))?;
+                super::load_in(&path, ctx)?
             }
             (None, Some(g)) => Generated::from_name(g)
                 .ok_or_else(|| {
