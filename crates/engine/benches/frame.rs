@@ -27,11 +27,11 @@ fn frames(c: &mut Criterion) {
             step += 1;
             let mut cam = base;
             cam.position.x += (step % 2) as f32 * 0.01;
-            r.set_camera(cam);
+            r.set_camera(cam).expect("camera");
             black_box(r.render_frame().expect("frame").wall_ms)
         })
     });
-    r.set_camera(base);
+    r.set_camera(base).expect("camera");
     r.render_frame().expect("frame");
     g.bench_function("reused_frame", |b| {
         b.iter(|| black_box(r.render_frame().expect("frame").wall_ms))

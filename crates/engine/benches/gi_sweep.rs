@@ -271,7 +271,7 @@ fn preset_entry(sweep: &mut Sweep, view: &View, preset: Preset, timed: usize) {
     let tag = format!("{}_{w}x{h}_{preset}", view.name);
     sweep.stage(&format!("{tag}: warm-up"));
     let mut r = renderer(&view.scene, Settings::preset(preset, w, h));
-    r.set_camera(view.camera);
+    r.set_camera(view.camera).expect("camera");
     let (frame, warm_frames) = warm_up(&mut r);
     let approx = frame.image();
     write_images(&format!("{tag}_engine"), &approx, view.exposure);
@@ -289,7 +289,7 @@ fn preset_entry(sweep: &mut Sweep, view: &View, preset: Preset, timed: usize) {
     sweep.stage(&format!("{tag}: {timed} timed frames"));
     let mut t = Timed::default();
     for k in 1..=timed {
-        r.set_camera(nudged(&view.camera, k));
+        r.set_camera(nudged(&view.camera, k)).expect("camera");
         t.add(&render(&mut r));
     }
     let software = r.is_software();
@@ -357,14 +357,14 @@ fn flythrough(sweep: &mut Sweep, city: &scene::Scene, w: u32, h: u32, frames: us
     sweep.stage(&format!("flythrough {w}x{h}: warm-up"));
     let mut r = renderer(city, Settings::preset(Preset::Default, w, h));
     let aspect = w as f32 / h as f32;
-    r.set_camera(flythrough_camera(0, frames, aspect));
+    r.set_camera(flythrough_camera(0, frames, aspect)).expect("camera");
     let (_, warm_frames) = warm_up(&mut r);
     let mut t = Timed::default();
     for k in 1..=frames {
         if k % 10 == 0 {
             sweep.stage(&format!("flythrough {w}x{h}: frame {k} of {frames}"));
         }
-        r.set_camera(flythrough_camera(k, frames, aspect));
+        r.set_camera(flythrough_camera(k, frames, aspect)).expect("camera");
         t.add(&render(&mut r));
     }
     let software = r.is_software();
@@ -424,9 +424,9 @@ fn components(sweep: &mut Sweep, which: Generated, w: u32, h: u32, spp: u32) {
         let tag = format!("components_{name}_{w}x{h}_{preset}");
         sweep.stage(&tag);
         let mut r = renderer(&scene, Settings::preset(preset, w, h));
-        r.set_camera(camera);
+        r.set_camera(camera).expect("camera");
         warm_up(&mut r);
-        r.set_camera(nudged(&camera, 1));
+        r.set_camera(nudged(&camera, 1)).expect("camera");
         let frame = render(&mut r);
         let images = render_components(&mut r).expect("component images");
         let software = r.is_software();

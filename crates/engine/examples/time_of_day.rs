@@ -18,7 +18,7 @@ fn main() -> anyhow::Result<()> {
     println!("adapter: {}", r.adapter());
     for local in [8.0, 12.0, 17.5, 20.5, 22.0] {
         // Lisbon, summer time (UTC+1).
-        r.set_sun(Some(Sun::at_time(CivilDate::new(2024, 6, 21), local - 1.0, 38.72, -9.14)));
+        r.set_sun(Some(Sun::at_time(CivilDate::new(2024, 6, 21), local - 1.0, 38.72, -9.14)))?;
         let mut frame = r.render_frame()?;
         let sky_map = frame.report.pass(pass::SKY_MAP).map(|p| p.outcome);
         for _ in 0..r.sky_volume_frames() {

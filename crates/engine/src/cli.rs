@@ -100,6 +100,12 @@ pub fn load_scene(job: &RenderJob) -> Result<scene::Scene, EngineError> {
             }
         };
         if let Some(t) = &job.time {
+            if !job.utc_offset_h.is_finite() || job.utc_offset_h.abs() > 24.0 {
+                return Err(EngineError::Settings(format!(
+                    "UTC offset {} h: expected a finite offset within 24 h",
+                    job.utc_offset_h
+                )));
+            }
             utc = parse_time(t)? - job.utc_offset_h;
         }
         if let Some(d) = &job.date {
@@ -137,7 +143,7 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
     // walk-through, the thesis's Table 7.1) while the sky stays cached.
     let mut cam = *renderer.camera();
     cam.position += cam.forward * 0.01;
-    renderer.set_camera(cam);
+    renderer.set_camera(cam)?;
     let frame = renderer.render_frame()?;
     traced += usize::from(frame.ray_traced);
     frame_ms.push(frame.wall_ms);

@@ -117,15 +117,24 @@ impl Renderer {
         &self.camera
     }
 
-    /// Moves the camera (its aspect is set to the image's).
-    pub fn set_camera(&mut self, mut camera: scene::Camera) {
+    /// Moves the camera (its aspect is set to the image's). A camera that fails
+    /// [`scene::Camera::validate`] (NaN position, zero forward, bad planes) is refused and the
+    /// previous one kept, as [`Renderer::new`] refuses it.
+    pub fn set_camera(&mut self, mut camera: scene::Camera) -> Result<(), EngineError> {
         camera.aspect = self.state.settings.width as f32 / self.state.settings.height as f32;
+        camera.validate()?;
         self.camera = camera;
+        Ok(())
     }
 
-    /// Changes the sun (time of day); the sky map and volume follow when it moved.
-    pub fn set_sun(&mut self, sun: Option<scene::Sun>) {
+    /// Changes the sun (time of day); the sky map and volume follow when it moved. A sun that
+    /// fails [`scene::Sun::validate`] is refused and the previous one kept.
+    pub fn set_sun(&mut self, sun: Option<scene::Sun>) -> Result<(), EngineError> {
+        if let Some(s) = &sun {
+            s.validate()?;
+        }
         self.scene.sun = sun;
+        Ok(())
     }
 
     /// Which lighting component the next frames show (`None`: the full frame); see

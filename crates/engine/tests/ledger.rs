@@ -38,7 +38,7 @@ fn ledger(g: Generated, spp: u32, out: Option<&std::path::Path>) -> Option<Ledge
     // The camera moved by 1 cm: every per-frame pass runs (and has a time).
     let mut cam = *r.camera();
     cam.position += cam.forward * 0.01;
-    r.set_camera(cam);
+    r.set_camera(cam).unwrap();
     let f = r.render_frame().unwrap();
     Some(run_ledger(&mut r, &f.report, spp, out, false).unwrap())
 }

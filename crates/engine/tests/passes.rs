@@ -52,7 +52,7 @@ fn no_mirror_in_view_no_ray_tracing_pass_ran() {
     assert!(f.ray_traced, "{}", f.report.to_markdown());
     assert_outcome(&f, pass::RAY_TRACING, Outcome::Ran, "mirror in view");
 
-    r.set_camera(camera);
+    r.set_camera(camera).unwrap();
     for i in 0..2 {
         let f = r.render_frame().expect("frame");
         let when = format!("no mirror in view, frame {i}");
@@ -80,7 +80,7 @@ fn sun_unchanged_for_10_frames_the_sky_map_is_built_once() {
         // The camera walks up the street: everything view-dependent reruns, the sky does not.
         let mut cam = start;
         cam.position += Vec3::Z * (0.5 * i as f32);
-        r.set_camera(cam);
+        r.set_camera(cam).unwrap();
         let f = r.render_frame().expect("frame");
         let when = format!("frame {i}");
         let expected = if i == 0 { Outcome::Ran } else { Outcome::Reused };
@@ -145,7 +145,7 @@ fn sun_moved_the_sky_map_is_rebuilt_and_the_sky_volume_restarts() {
     let dir = sun.direction().expect("sun direction");
     // Turn the sun 30 degrees about the vertical (same elevation, later in the afternoon).
     let turned = glam::Quat::from_rotation_y(30f32.to_radians()) * dir;
-    r.set_sun(Some(Sun { position: scene::SunPosition::Direction(turned), ..sun }));
+    r.set_sun(Some(Sun { position: scene::SunPosition::Direction(turned), ..sun })).unwrap();
     let f = r.render_frame().expect("frame");
     let when = "sun turned 30 degrees";
     assert_outcome(&f, pass::SKY_MAP, Outcome::Ran, when);
@@ -188,7 +188,7 @@ fn static_camera_the_g_buffer_is_reused() {
     }
     let mut cam = *r.camera();
     cam.position += Vec3::new(0.5, 0.0, -0.5);
-    r.set_camera(cam);
+    r.set_camera(cam).unwrap();
     let f = r.render_frame().expect("frame");
     let when = "camera moved";
     assert_outcome(&f, pass::GBUFFER, Outcome::Ran, when);
@@ -245,10 +245,10 @@ fn sunset_skips_the_sun_passes_and_relights_the_frame() {
     let needs = SceneNeeds::of(&Generated::City.build(common::SEED), &camera);
     assert!(!needs.ray_tracing() && !needs.point_light_shadows.needed, "{needs}");
     let Some(mut r) = common::generated(Generated::City, W, H) else { return };
-    r.set_camera(camera);
+    r.set_camera(camera).unwrap();
     let day = r.render_frame().expect("frame");
     let (day_lum, _) = common::hdr_stats(&day);
-    r.set_sun(Some(night_sun()));
+    r.set_sun(Some(night_sun())).unwrap();
     let night = r.render_frame().expect("frame");
     for p in SUN_PASSES {
         assert_outcome(&night, p, Outcome::Skipped, "after sunset");

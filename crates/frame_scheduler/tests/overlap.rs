@@ -15,6 +15,9 @@ use std::time::Duration;
 /// Only reached when overlap is broken: then the test fails instead of hanging.
 const BROKEN: Duration = Duration::from_secs(30);
 
+/// The simulated GPU queue: its thread returns whether every job released it, and the channel.
+type GpuQueue = Arc<Mutex<Option<JoinHandle<(bool, Receiver<()>)>>>>;
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(common::cases(6).min(12)))]
 
@@ -25,7 +28,7 @@ proptest! {
         let (release_tx, release_rx) = channel::<()>();
         let in_flight_rx = Arc::new(Mutex::new(in_flight_rx));
         let release_rx: Arc<Mutex<Option<Receiver<()>>>> = Arc::new(Mutex::new(Some(release_rx)));
-        let queue: Arc<Mutex<Option<JoinHandle<(bool, Receiver<()>)>>>> = Arc::default();
+        let queue: GpuQueue = Arc::default();
         let seen = Arc::new(Mutex::new(Vec::<bool>::new()));
 
         let mut g = FrameGraph::<()>::new();

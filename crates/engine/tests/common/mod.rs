@@ -5,22 +5,14 @@
 use engine::{EngineError, Preset, Renderer, Settings};
 use frame_scheduler::Outcome;
 
-/// Environment variable that lets a developer skip GPU tests on a machine with no adapter
-/// (the same switch as `gpu_harness::SKIP_ENV`; CI never honours it).
-pub const SKIP_ENV: &str = "SEREIN_SKIP_GPU";
+/// The one GPU-skip rule of the workspace: `SEREIN_SKIP_GPU=1`, never honoured under `CI`.
+pub use gpu_harness::{SKIP_ENV, skip_requested};
 
 /// The seed of every generated scene in these tests.
 pub const SEED: u64 = 1;
 
 /// Eye adaptation step per frame (fixed, so images are reproducible).
 pub const DT: f32 = 1.0 / 30.0;
-
-/// True when `SEREIN_SKIP_GPU=1` is set and this is not CI.
-pub fn skip_requested() -> bool {
-    let skip = std::env::var(SKIP_ENV).is_ok_and(|v| v == "1");
-    let ci = std::env::var("CI").is_ok_and(|v| !v.is_empty() && v != "false");
-    skip && !ci
-}
 
 /// A renderer for `scene` with a fixed frame time, or `None` when the developer skips GPU
 /// tests. Panics with the engine's message (which names `mesa-vulkan-drivers`) when no
