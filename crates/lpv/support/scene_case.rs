@@ -178,6 +178,29 @@ impl SceneCase {
             .collect()
     }
 
+    /// The receivers of a sweep view and the region its RSM must cover (centre, radius):
+    /// `rooms` = (min, max) of each room, receivers from each room's centre (group = room);
+    /// no rooms: about `rays` receivers seen by the scene camera within 20 m.
+    pub fn view_receivers(
+        &self,
+        rooms: &[(Vec3, Vec3)],
+        rays: usize,
+    ) -> (Vec3, f32, Vec<Receiver>) {
+        if rooms.is_empty() {
+            let eye = self.scene.camera.position;
+            let w = (rays as f32 * 16.0 / 9.0).sqrt().round() as u32;
+            return (eye, 30.0, self.camera_receivers(w, (w * 9 / 16).max(1), 20.0));
+        }
+        let lo = rooms.iter().fold(Vec3::INFINITY, |a, r| a.min(r.0));
+        let hi = rooms.iter().fold(Vec3::NEG_INFINITY, |a, r| a.max(r.1));
+        let receivers = rooms
+            .iter()
+            .enumerate()
+            .flat_map(|(i, &(a, b))| self.receivers_from(0.5 * (a + b), rays, (a, b), i))
+            .collect();
+        (0.5 * (lo + hi), 0.5 * (hi - lo).length() + 0.5, receivers)
+    }
+
     /// Receivers seen by the scene camera through a `w x h` pixel grid, within `max_dist`.
     pub fn camera_receivers(&self, w: u32, h: u32, max_dist: f32) -> Vec<Receiver> {
         let cam = reference::camera_from_scene(&self.scene);

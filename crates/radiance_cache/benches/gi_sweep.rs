@@ -44,20 +44,7 @@ struct Case {
 impl Case {
     fn new(which: Generated, rooms: &[(Vec3, Vec3)], rays: usize, samples: u32) -> Self {
         let case = SceneCase::new(which, 1);
-        let (center, radius, receivers) = if rooms.is_empty() {
-            let eye = case.scene.camera.position;
-            let w = (rays as f32 * 16.0 / 9.0).sqrt().round() as u32;
-            (eye, 30.0, case.camera_receivers(w, (w * 9 / 16).max(1), 20.0))
-        } else {
-            let lo = rooms.iter().fold(Vec3::INFINITY, |a, r| a.min(r.0));
-            let hi = rooms.iter().fold(Vec3::NEG_INFINITY, |a, r| a.max(r.1));
-            let receivers = rooms
-                .iter()
-                .enumerate()
-                .flat_map(|(i, &(a, b))| case.receivers_from(0.5 * (a + b), rays, (a, b), i))
-                .collect();
-            (0.5 * (lo + hi), 0.5 * (hi - lo).length() + 0.5, receivers)
-        };
+        let (center, radius, receivers) = case.view_receivers(rooms, rays);
         let truth = case.reference(&receivers, samples);
         let vpls = rsm_vpls(&case, center, radius);
         let mesh = Mesh::from_triangles(&case.triangles).expect("scene mesh");

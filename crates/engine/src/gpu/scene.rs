@@ -16,6 +16,10 @@ pub struct Vertex {
 }
 const _: () = assert!(std::mem::size_of::<Vertex>() == 36);
 
+/// The material bound when a scene has none.
+const ZERO_MATERIAL: GpuMaterial =
+    GpuMaterial { albedo: [0.0; 4], params: [0.0; 4], emission: [0.0; 4], flags: [0; 4] };
+
 /// A material as the shaders read it (`Material` in `shaders/engine/common.inc.wgsl`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
@@ -188,7 +192,17 @@ impl SceneBuffers {
                 wgpu::BufferUsages::INDEX,
             ),
             draws,
-            materials: storage(device, "materials", bytemuck::cast_slice(&material_table)),
+            // A shader's storage array binds at least one element: a scene without
+            // materials (an empty scene) binds one zeroed material nothing refers to.
+            materials: storage(
+                device,
+                "materials",
+                if material_table.is_empty() {
+                    bytemuck::bytes_of(&ZERO_MATERIAL)
+                } else {
+                    bytemuck::cast_slice(&material_table)
+                },
+            ),
             material_table,
             material_groups,
             material_layout,
