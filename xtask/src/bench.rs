@@ -1,6 +1,6 @@
 //! `cargo xtask bench`: runs each crate's `gi_sweep` bench target and merges the parts.
 
-use crate::{report, run_cmd};
+use crate::{reliability, report, run_cmd};
 use anyhow::Context;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -58,7 +58,12 @@ pub fn run(root: &Path, quick: bool, json: Option<PathBuf>, only: &[String]) -> 
         .with_context(|| format!("the sweep of `{name}` failed"))?;
         eprintln!("  {name}: {:.1} s", started.elapsed().as_secs_f64());
     }
-    let merged = report::merge(&parts_dir, &crates, quick)?;
+    let mut merged = report::merge(&parts_dir, &crates, quick)?;
+    if only.is_empty() {
+        // The loaders' fuzzer with a fresh seed: half a minute quick, three minutes full.
+        eprintln!("reliability: fuzzing the loaders");
+        merged.reliability = Some(reliability::collect(root, if quick { 0.5 } else { 3.0 })?);
+    }
     let text = serde_json::to_string_pretty(&merged)?;
     std::fs::write(out_dir.join("report.json"), &text)?;
     if let Some(path) = json {

@@ -19,7 +19,7 @@ pub fn run(
     std::fs::create_dir_all(&out)?;
     // The time is shared between the targets that run.
     let targets = if target.is_some() { 1.0 } else { 6.0 };
-    let summary = out.join("summary.json");
+    let summary = summary_path(root);
     let mut cmd = Command::new(cargo);
     cmd.current_dir(root)
         .env("SEREIN_FUZZ_SEED", seed.unwrap_or("random"))
@@ -42,4 +42,9 @@ pub fn run(
     run_cmd(&mut cmd)?;
     eprintln!("fuzz summary: {}", summary.display());
     Ok(())
+}
+
+/// Where `run` writes its summary.
+pub fn summary_path(root: &Path) -> std::path::PathBuf {
+    root.join("target/fuzz/summary.json")
 }

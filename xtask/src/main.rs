@@ -11,6 +11,7 @@
 
 mod bench;
 mod fuzz;
+mod reliability;
 mod report;
 mod shaders;
 mod test;

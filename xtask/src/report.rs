@@ -21,6 +21,9 @@ pub struct Report {
     pub quick: bool,
     pub entries: Vec<Entry>,
     pub comparisons: Vec<Comparison>,
+    /// Fuzzing and test counts (absent when the sweep ran with `--only`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reliability: Option<crate::reliability::Reliability>,
 }
 
 fn gpu_name() -> String {
@@ -43,6 +46,7 @@ pub fn merge(parts_dir: &Path, crates: &[String], quick: bool) -> anyhow::Result
         quick,
         entries: Vec::new(),
         comparisons: Vec::new(),
+        reliability: None,
     };
     for name in crates {
         let path = parts_dir.join(format!("{name}.json"));
@@ -124,6 +128,9 @@ fn markdown(report: &Report, charts: &[String]) -> String {
                 c.note.as_deref().unwrap_or("")
             );
         }
+    }
+    if let Some(r) = &report.reliability {
+        md += &crate::reliability::markdown(r);
     }
     md
 }

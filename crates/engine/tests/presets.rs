@@ -32,7 +32,7 @@ fn render(preset: Preset) -> Option<Rendered> {
         .filter(|p| p.outcome.executed())
         .map(|p| p.name.clone())
         .collect();
-    let mut mean = |r: &mut engine::Renderer, c: Option<Component>| {
+    let mean = |r: &mut engine::Renderer, c: Option<Component>| {
         r.set_component(c);
         let (m, finite) = common::hdr_stats(&r.render_frame().expect("frame"));
         assert!(finite, "{preset} {c:?}: a non-finite pixel");
