@@ -432,8 +432,9 @@ fn components(sweep: &mut Sweep, which: Generated, w: u32, h: u32, spp: u32) {
         let software = r.is_software();
         for (img, (reference, rname)) in images.iter().zip(&refs) {
             let c = img.component;
-            let f =
-                engine::ledger::figures("all", &img.image, reference, 0..img.image.pixels.len());
+            // The whole image: a black truth (a component the scene lacks) is absolute.
+            let all = 0..img.image.pixels.len();
+            let f = engine::ledger::figures("all", &img.image, reference, all, 1.0);
             sweep.entry(
                 Entry::new(format!("engine/{tag}_{}", c.name()), "engine", passes_ms(&frame.report, c))
                     .setting("scene", name)

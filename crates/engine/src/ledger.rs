@@ -8,7 +8,13 @@
 //!   luminance over that mean (pixels independent): ratios within a few of these of 1 are
 //!   noise, not disagreement;
 //! - `passes_ms`: milliseconds of the passes that produce the component
-//!   ([`crate::components::passes_ms`]) in the report's frame.
+//!   ([`crate::components::passes_ms`]) in the report's frame;
+//! - `abs_rms`: `sqrt(sum |e - r|² / n)`, always defined.
+//!
+//! Where a region's truth is black (a closed room), a ratio to it is undefined: the region is
+//! flagged `black_truth`, and its `luminance_ratio` is `1 + engine mean / lit mean` and its
+//! `rel_rms` is `abs_rms / lit mean`, with the lit mean the component's mean reference
+//! luminance over the whole image (`normaliser`; 1 when the whole component is black).
 
 use crate::compare::{ReferenceRender, reference_component};
 use crate::components::{ComponentImage, passes, passes_ms, render_components};
@@ -32,6 +38,10 @@ pub struct Figures {
     pub luminance_ratio: f64,
     pub rel_rms: f64,
     pub reference_rel_std_error: f64,
+    pub abs_rms: f64,
+    /// True when the region's reference is black: ratio and rel RMS are then over `normaliser`.
+    pub black_truth: bool,
+    pub normaliser: f64,
 }
 
 /// One component's row of the ledger.
@@ -54,12 +64,14 @@ pub struct Ledger {
     pub components: Vec<ComponentLedger>,
 }
 
-/// Figures of `engine` against `reference` over the pixels `idx`.
+/// Figures of `engine` against `reference` over the pixels `idx`; `normaliser` is the lit mean
+/// luminance that stands in for a black truth (see the module doc).
 pub fn figures(
     region: &str,
     engine: &Image,
     reference: &ReferenceRender,
     idx: impl Iterator<Item = usize>,
+    normaliser: f64,
 ) -> Figures {
     let (mut le, mut lr, mut d2, mut r2, mut se2, mut n) = (0.0, 0.0, 0.0, 0.0, 0.0, 0usize);
     for i in idx {
@@ -71,29 +83,25 @@ pub fn figures(
         se2 += (luminance(reference.std_error.pixels[i]) as f64).powi(2);
         n += 1;
     }
-    let ratio = |a: f64, b: f64| {
-        if b > 0.0 {
-            a / b
-        } else if a > 0.0 {
-            f64::INFINITY
-        } else {
-            1.0
-        }
+    let m = n.max(1) as f64;
+    let abs_rms = (d2 / m).sqrt();
+    let black_truth = lr <= 0.0 || r2 <= 0.0;
+    let (luminance_ratio, rel_rms) = if black_truth {
+        (1.0 + le / m / normaliser, abs_rms / normaliser)
+    } else {
+        (le / lr, (d2 / r2).sqrt())
     };
     Figures {
         region: region.to_string(),
         pixels: n,
-        engine_luminance: le / n.max(1) as f64,
-        reference_luminance: lr / n.max(1) as f64,
-        luminance_ratio: ratio(le, lr),
-        rel_rms: if r2 > 0.0 {
-            (d2 / r2).sqrt()
-        } else if d2 > 0.0 {
-            f64::INFINITY
-        } else {
-            0.0
-        },
+        engine_luminance: le / m,
+        reference_luminance: lr / m,
+        luminance_ratio,
+        rel_rms,
         reference_rel_std_error: if lr > 0.0 { se2.sqrt() / lr } else { 0.0 },
+        abs_rms,
+        black_truth,
+        normaliser,
     }
 }
 
@@ -105,9 +113,12 @@ pub fn component_ledger(
     report: &FrameReport,
 ) -> ComponentLedger {
     let c = engine.component;
-    let mut rows = vec![figures("all", &engine.image, reference, 0..engine.image.pixels.len())];
+    let all = 0..engine.image.pixels.len();
+    let lit = figures("all", &engine.image, reference, all.clone(), 1.0).reference_luminance;
+    let norm = if lit > 0.0 { lit } else { 1.0 };
+    let mut rows = vec![figures("all", &engine.image, reference, all, norm)];
     for (id, name) in regions.names.iter().enumerate() {
-        rows.push(figures(name, &engine.image, reference, regions.pixels(id as u32)));
+        rows.push(figures(name, &engine.image, reference, regions.pixels(id as u32), norm));
     }
     ComponentLedger {
         component: c.name().to_string(),
@@ -178,9 +189,10 @@ impl Ledger {
                 c.reference_ms
             );
             for r in &c.regions {
+                let flag = if r.black_truth { " (black truth: over lit mean)" } else { "" };
                 let _ = writeln!(
                     s,
-                    "| {} | {} | {:.4} | {:.4} | {:.3} | {:.3} | {:.3} |",
+                    "| {}{flag} | {} | {:.4} | {:.4} | {:.3} | {:.3} | {:.3} |",
                     r.region,
                     r.pixels,
                     r.engine_luminance,
@@ -192,5 +204,36 @@ impl Ledger {
             }
         }
         s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    fn images(engine: Vec3, truth: Vec3) -> (Image, ReferenceRender) {
+        let mut e = Image::new(2, 2);
+        let mut r = Image::new(2, 2);
+        e.pixels.fill(engine);
+        r.pixels.fill(truth);
+        let std_error = Image::new(2, 2);
+        let reference = ReferenceRender { mean: r, std_error, rel_std_error: 0.0, spp: 1, ms: 0.0 };
+        (e, reference)
+    }
+
+    #[test]
+    fn a_black_truth_is_measured_against_the_lit_mean_never_infinite() {
+        let (e, r) = images(Vec3::splat(0.5), Vec3::ZERO);
+        let f = figures("closed room", &e, &r, 0..4, 2.0);
+        assert!(f.black_truth);
+        assert!((f.luminance_ratio - 1.25).abs() < 1e-6, "{}", f.luminance_ratio);
+        assert!((f.abs_rms - 0.75f64.sqrt()).abs() < 1e-6, "{}", f.abs_rms);
+        assert!((f.rel_rms - f.abs_rms / 2.0).abs() < 1e-9);
+        // A lit truth keeps the plain ratios.
+        let (e, r) = images(Vec3::splat(0.5), Vec3::splat(0.25));
+        let f = figures("lit", &e, &r, 0..4, 2.0);
+        assert!(!f.black_truth);
+        assert!((f.luminance_ratio - 2.0).abs() < 1e-6 && (f.rel_rms - 1.0).abs() < 1e-6);
     }
 }
