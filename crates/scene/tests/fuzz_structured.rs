@@ -3,8 +3,8 @@
 //! `fuzz/mutate.rs`); every load must give a valid scene or a typed error naming a file, never a
 //! panic, a hang or a stack overflow, and peak memory must stay under `PEAK_BOUND_MIB`.
 //!
-//! The normal test run spends a short, fixed-seed budget; `cargo xtask fuzz [--minutes N]
-//! [--target NAME]` runs longer with a new seed. A failure prints `SEREIN_FUZZ_SEED=...`:
+//! The normal test run spends a short budget with a new seed each run; `cargo xtask fuzz
+//! [--minutes N] [--target NAME]` runs longer. A failure prints `SEREIN_FUZZ_SEED=...`:
 //! `SEREIN_FUZZ_SEED=<seed> SEREIN_FUZZ_TARGET=<name> cargo test -p scene --test
 //! fuzz_structured -- --nocapture` reproduces it. One `#[test]` runs the targets one after the
 //! other so that each target's peak memory is its own.

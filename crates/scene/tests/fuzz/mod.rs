@@ -61,9 +61,9 @@ pub struct Plan {
 impl Plan {
     pub fn from_env() -> Self {
         let var = |k: &str| std::env::var(k).ok().filter(|v| !v.is_empty());
+        // A new seed every run (printed, and in every failure's message); a number replays.
         let seed = match var("SEREIN_FUZZ_SEED").as_deref() {
-            None => 0x5E4E_1022,
-            Some("random") => {
+            None | Some("random") => {
                 let t = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH);
                 t.map_or(1, |d| d.as_nanos() as u64 ^ u64::from(std::process::id()))
             }
@@ -71,7 +71,7 @@ impl Plan {
         };
         Self {
             seed,
-            cases: var("SEREIN_FUZZ_CASES").and_then(|v| v.parse().ok()).unwrap_or(40),
+            cases: var("SEREIN_FUZZ_CASES").and_then(|v| v.parse().ok()).unwrap_or(500),
             seconds: var("SEREIN_FUZZ_SECONDS").and_then(|v| v.parse().ok()),
             only: var("SEREIN_FUZZ_TARGET"),
         }
