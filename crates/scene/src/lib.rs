@@ -11,9 +11,10 @@
 //!
 //! It loads glTF 2.0 ([`load_gltf`]; the metallic-roughness mapping is documented there), OBJ
 //! with MTL ([`load_obj`]) and a TOML scene file ([`load_scene_file`]); textures are decoded from
-//! sRGB to linear at load and mip-mapped (thesis 3.5 and 6.2.3). It generates five test scenes
+//! sRGB to linear at load and mip-mapped (thesis 3.5 and 6.2.3). It generates six test scenes
 //! from a seed ([`Generated`]: the reference `city`, `cornell_window`, `two_rooms`,
-//! `plane_box`, `furnace`), and answers the engine's per-frame question of which effects the
+//! `plane_box`, `furnace`, and `cornell_area`, a Cornell box lit only by a one-sided ceiling
+//! light), and answers the engine's per-frame question of which effects the
 //! scene calls for, and why ([`SceneNeeds`]), and what changed since the last frame
 //! ([`SceneChange`]).
 //!
