@@ -49,6 +49,9 @@
 //!   shadow rays instead of overlapped shadow maps, sky volume + LPV irradiance), instead of
 //!   uploading a traced G-buffer and lighting it on the GPU.
 //! - Tone mapping runs on the CPU on the read-back HDR frame (which `frame.exr` needs anyway).
+//! - The LPV is looked up 1.5 cells along the normal at the default and high presets (half a
+//!   cell in the thesis and the `lpv` crate): a surface sees less of its own injected bounce
+//!   ([`settings::ENGINE_LPV_LOOKUP_OFFSET`] has the ledger's figures).
 //! - The LPV is diffuse only (the glossy LPV lookup and sky-bounce VPLs are not wired), and on
 //!   a software adapter it is injected and propagated by the crate's CPU path.
 //! - Glass is handled by the combine pass (reflection + refraction rays weighted by Fresnel),
