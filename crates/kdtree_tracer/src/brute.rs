@@ -2,7 +2,7 @@
 
 use crate::error::Error;
 use crate::mesh::Mesh;
-use crate::ray::{Hit, Ray, RayQuery};
+use crate::ray::{Hit, Ray, RayQuery, Rescaled};
 use crate::triangle::{LeafTri, PreparedRay, is_degenerate};
 
 /// Brute force over all (non-degenerate) triangles: the ground truth the accelerators are
@@ -34,6 +34,20 @@ impl BruteForce {
         if !ray.is_valid() || !(t_min <= t_max) {
             return None;
         }
+        if let Some(s) = Rescaled::of(ray, t_min, t_max) {
+            return self.scan_prepared(&s.ray, s.t_min, s.t_max, tris, any).map(|h| s.unscale(h));
+        }
+        self.scan_prepared(ray, t_min, t_max, tris, any)
+    }
+
+    fn scan_prepared(
+        &self,
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        tris: &[LeafTri],
+        any: bool,
+    ) -> Option<Hit> {
         let r = PreparedRay::new(ray);
         let mut best: Option<Hit> = None;
         for tri in tris {

@@ -38,6 +38,42 @@ impl Ray {
     }
 }
 
+/// Directions whose largest component is below this are rescaled before tracing (2^-40).
+const TINY_DIR: f32 = 9.094947e-13;
+
+/// A ray whose direction is so short that `1 / d` overflows (every component subnormal, say),
+/// rescaled by a power of two: the same line, a direction of length about one, and its
+/// distances divided by the scale (exactly, in f64). Without it such a ray looks parallel to
+/// every plane and misses hits at finite (if huge) distances. Shared by every tracer of the
+/// crate so they agree.
+pub(crate) struct Rescaled {
+    pub ray: Ray,
+    pub t_min: f32,
+    pub t_max: f32,
+    scale: f64,
+}
+
+impl Rescaled {
+    /// `Some` only for a tiny direction (a cold path: ordinary rays are untouched).
+    #[inline]
+    pub fn of(ray: &Ray, t_min: f32, t_max: f32) -> Option<Self> {
+        let m = ray.dir.abs().max_element();
+        if m >= TINY_DIR {
+            return None;
+        }
+        let scale = 2f64.powi(-(f64::from(m).log2().floor() as i32));
+        let down = |t: f32| (f64::from(t) / scale) as f32;
+        let dir = (ray.dir.as_dvec3() * scale).as_vec3();
+        let ray = Ray { origin: ray.origin, dir, t_min: down(ray.t_min) };
+        Some(Self { ray, t_min: down(t_min), t_max: down(t_max), scale })
+    }
+
+    /// A hit of the rescaled ray in the original ray's units (infinite beyond f32's range).
+    pub fn unscale(&self, hit: Hit) -> Hit {
+        Hit { t: (f64::from(hit.t) * self.scale) as f32, ..hit }
+    }
+}
+
 /// The closest intersection of a ray.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {

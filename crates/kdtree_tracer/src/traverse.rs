@@ -16,7 +16,7 @@
 
 use crate::leaf4::Tri4;
 use crate::node::Node;
-use crate::ray::{Hit, Ray, RayQuery};
+use crate::ray::{Hit, Ray, RayQuery, Rescaled};
 use crate::settings::MAX_DEPTH_LIMIT;
 use crate::tree::KdTree;
 use crate::triangle::PreparedRay;
@@ -81,6 +81,14 @@ impl KdTree {
         if !ray.is_valid() || !(t_min <= t_max) || self.bounds.is_empty() {
             return None;
         }
+        if let Some(s) = Rescaled::of(ray, t_min, t_max) {
+            return self.traverse_prepared::<ANY>(&s.ray, s.t_min, s.t_max).map(|h| s.unscale(h));
+        }
+        self.traverse_prepared::<ANY>(ray, t_min, t_max)
+    }
+
+    #[inline(always)]
+    fn traverse_prepared<const ANY: bool>(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
         let r = PreparedRay::new(ray);
         match r.kz {
             0 => self.traverse_k::<ANY, 0>(ray, &r, t_min, t_max),
