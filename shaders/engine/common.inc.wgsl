@@ -16,11 +16,9 @@ struct Frame {
     size: vec4<u32>,
     // SSAO radius (m), SSAO samples, sky-map size, frame index
     params: vec4<f32>,
-    // cascades, shadow-map resolution, point-light cube-map size (0: no cube shadows),
+    // cascades, shadow-map resolution, point-light cube-map size (0: cubes not rendered),
     // component shown (COMPONENT_*)
     csm: vec4<u32>,
-    // world-to-light rotation rows (x right, y up, z towards the light)
-    light_rot: array<vec4<f32>, 3>,
 }
 
 struct Material {

@@ -1,5 +1,7 @@
 // include: engine/common.inc.wgsl
 // include: shadows/pcss.inc.wgsl
+// include: shadows/csm.inc.wgsl
+// include: shadows/cube.inc.wgsl
 // Deferred lighting of the main view (thesis 3.3, 4.2, 5.3.6-5.3.8): the sun with Phong (or
 // Blinn-Phong) and stabilised-CSM PCSS shadows, point lights, sky light from the sky volume
 // and one diffuse bounce from the LPV (both looked up per pixel by the crates' own kernels
@@ -8,20 +10,13 @@
 // w_b ((1 - g) albedo / pi + g (n + 2) / (2 pi) cos^n), w_b = 1 - reflectivity - transparency;
 // the mirror and glass parts come from the ray tracer in the combine pass.
 
-struct Cascade {
-    view_proj: mat4x4<f32>,
-    pcss: PcssParams,
-    // split far (view depth), texel size (m), depth range (m), unused
-    info: vec4<f32>,
-}
-
 struct PointLight {
     // xyz position, w radius of influence
     position: vec4<f32>,
-    // rgb intensity, w index of the cube shadow map (-1: none)
+    // rgb intensity, w index of the light's cube in `cubes` (-1: no shadows)
     color: vec4<f32>,
-    // world to clip of the cube faces +X, -X, +Y, -Y, +Z, -Z (shadows::cube_face_view_proj)
-    faces: array<mat4x4<f32>, 6>,
+    // cube near, cube far, cube face size, unused
+    shadow: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;
@@ -30,109 +25,49 @@ struct PointLight {
 @group(0) @binding(3) var geometry_t: texture_2d<f32>;
 @group(0) @binding(4) var depth_t: texture_2d<f32>;
 @group(0) @binding(5) var shadow_t: texture_depth_2d_array;
-@group(0) @binding(6) var<storage, read> cascades: array<Cascade>;
+@group(0) @binding(6) var<storage, read> cascades: array<CsmCascade>;
 @group(0) @binding(7) var<storage, read> taps: array<vec2<f32>>;
 @group(0) @binding(8) var<storage, read> sky: array<vec4<f32>>;
 @group(0) @binding(9) var<storage, read> lpv: array<vec4<f32>>;
 @group(0) @binding(10) var<storage, read> materials: array<Material>;
 @group(0) @binding(11) var<storage, read> skymap: array<vec4<f32>>;
 @group(0) @binding(12) var<storage, read> lights: array<PointLight>;
-// Cube shadow maps: per light 6 faces of size² depths (perspective, 0 at the near plane).
-@group(0) @binding(13) var<storage, read> cube_depths: array<f32>;
+@group(0) @binding(13) var cubes: texture_depth_cube_array;
+@group(0) @binding(14) var cube_cmp: sampler_comparison;
 
-var<private> g_cascade: i32;
+fn csm_count() -> i32 {
+    return i32(frame.csm.x);
+}
+
+fn csm_cascade(i: i32) -> CsmCascade {
+    return cascades[i];
+}
 
 fn pcss_depth(tx: i32, ty: i32) -> f32 {
-    return textureLoad(shadow_t, vec2<i32>(tx, ty), g_cascade, 0);
+    return textureLoad(shadow_t, vec2<i32>(tx, ty), csm_layer, 0);
 }
 
 fn pcss_tap(i: u32) -> vec2<f32> {
     return taps[i];
 }
 
-// Sun visibility at world point p with geometry normal gn: PCSS in the first cascade whose
-// split contains the point's view depth.
+// Sun visibility at world point p with geometry normal gn (shadows/csm.inc.wgsl).
 fn sun_visibility(p: vec3<f32>, gn: vec3<f32>, view_depth: f32) -> f32 {
     if (frame.size.w & FLAG_SHADOWS) == 0u {
         return 1.0;
     }
-    let count = i32(frame.csm.x);
-    for (var c = 0; c < count; c = c + 1) {
-        let cs = cascades[c];
-        if view_depth > cs.info.x && c < count - 1 {
-            continue;
-        }
-        // Normal offset of half a texel against acne on slopes.
-        let q = p + gn * cs.info.y * 0.75;
-        let clip = cs.view_proj * vec4<f32>(q, 1.0);
-        let res = f32(cs.pcss.width);
-        let x = (clip.x * 0.5 + 0.5) * res;
-        let y = (0.5 - clip.y * 0.5) * res;
-        if x < 0.0 || y < 0.0 || x >= res || y >= res || clip.z > 1.0 {
-            return 1.0;
-        }
-        let nl = vec3<f32>(
-            dot(frame.light_rot[0].xyz, gn),
-            dot(frame.light_rot[1].xyz, gn),
-            dot(frame.light_rot[2].xyz, gn),
-        );
-        var nz = nl.z;
-        if abs(nz) < 1e-4 {
-            nz = select(-1e-4, 1e-4, nz >= 0.0);
-        }
-        let s = cs.info.y / cs.info.z / nz;
-        var r: PcssReceiver;
-        r.x = x;
-        r.y = y;
-        r.depth = clip.z;
-        r.gx = nl.x * s;
-        r.gy = -nl.y * s;
-        g_cascade = c;
-        return pcss_soft(cs.pcss, r);
-    }
-    return 1.0;
+    return csm_visibility(p, gn, view_depth);
 }
 
-// The cube face a direction from the light falls on (shadows::cube_face_of).
-fn cube_face(d: vec3<f32>) -> u32 {
-    let a = abs(d);
-    if a.x >= a.y && a.x >= a.z {
-        return select(1u, 0u, d.x >= 0.0);
-    }
-    if a.y >= a.z {
-        return select(3u, 2u, d.y >= 0.0);
-    }
-    return select(5u, 4u, d.z >= 0.0);
-}
-
-// Visibility of point light `l` from p (normal-offset, 2x2 PCF in its cube map).
-fn point_visibility(l: PointLight, p: vec3<f32>, gn: vec3<f32>) -> f32 {
-    if l.color.w < 0.0 || frame.csm.z == 0u {
+// Visibility of point light i from p (shadows/cube.inc.wgsl); frame.csm.z is 0 until the
+// cubes have been rendered.
+fn point_visibility(i: u32, p: vec3<f32>, gn: vec3<f32>) -> f32 {
+    let c = lights[i].color.w;
+    if c < 0.0 || frame.csm.z == 0u {
         return 1.0;
     }
-    let size = i32(frame.csm.z);
-    let dist = length(p - l.position.xyz);
-    let q = p + gn * (0.01 + 2.0 * dist / f32(size));
-    let face = cube_face(q - l.position.xyz);
-    let clip = l.faces[face] * vec4<f32>(q, 1.0);
-    if clip.w <= 0.0 {
-        return 1.0;
-    }
-    let ndc = clip.xyz / clip.w;
-    let x = (ndc.x * 0.5 + 0.5) * f32(size) - 0.5;
-    let y = (0.5 - ndc.y * 0.5) * f32(size) - 0.5;
-    let base = (u32(l.color.w) * 6u + face) * u32(size * size);
-    let fx = floor(x);
-    let fy = floor(y);
-    var lit = 0.0;
-    for (var k = 0; k < 4; k = k + 1) {
-        let tx = clamp(i32(fx) + (k & 1), 0, size - 1);
-        let ty = clamp(i32(fy) + (k >> 1), 0, size - 1);
-        let z = cube_depths[base + u32(ty * size + tx)];
-        let w = select(1.0 - (x - fx), x - fx, (k & 1) == 1) * select(1.0 - (y - fy), y - fy, (k >> 1) == 1);
-        lit += select(0.0, w, z >= ndc.z);
-    }
-    return lit;
+    let s = lights[i].shadow;
+    return cube_visibility(cubes, cube_cmp, i32(c), lights[i].position.xyz, s.x, s.y, s.z, p, gn);
 }
 
 // Base BRDF times cos for light from `l` seen from `v`.
@@ -254,15 +189,15 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     }
     var points = vec3<f32>(0.0);
     for (var i = 0u; i < frame.size.z; i = i + 1u) {
-        let l = lights[i];
-        let d = l.position.xyz - p;
+        let l = lights[i].position;
+        let d = l.xyz - p;
         let dist2 = max(dot(d, d), 1e-4);
-        if dist2 > l.position.w * l.position.w {
+        if dist2 > l.w * l.w {
             continue;
         }
         let f = base_brdf_cos(a.rgb, g, power, n, d * inverseSqrt(dist2), v);
         if any(f > vec3<f32>(0.0)) {
-            points += f * l.color.rgb / dist2 * point_visibility(l, p, gn);
+            points += f * lights[i].color.rgb / dist2 * point_visibility(i, p, gn);
         }
     }
     let i = u32(px.y) * frame.size.x + u32(px.x);

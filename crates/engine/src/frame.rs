@@ -20,10 +20,11 @@ pub struct FrameUniform {
     pub sun_irradiance: [f32; 4],
     pub size: [u32; 4],
     pub params: [f32; 4],
+    /// Sun cascades in use, their resolution, point-light cube face size (0: cubes not
+    /// rendered yet), lighting component shown.
     pub csm: [u32; 4],
-    pub light_rot: [[f32; 4]; 3],
 }
-const _: () = assert!(std::mem::size_of::<FrameUniform>() == 288);
+const _: () = assert!(std::mem::size_of::<FrameUniform>() == 240);
 
 impl FrameUniform {
     /// The camera part; lights, flags and shadow data are filled by the renderer.

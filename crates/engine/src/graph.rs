@@ -12,6 +12,7 @@ use crate::state::{FrameCtx, poisoned};
 use crate::trace::{TraceLighting, TraceSettings, trace_rays};
 use frame_scheduler::{Budget, FrameGraph, PassId, PassResult, Res, quantise_dir};
 use glam::Vec3;
+use std::sync::atomic::Ordering;
 
 /// Traced radiance per ray of the batch.
 pub struct Traced(pub Vec<Vec3>);
@@ -73,14 +74,13 @@ fn write_frame_uniform(c: &FrameCtx) {
     if set.specular == Specular::BlinnPhong {
         flags |= FLAG_BLINN;
     }
-    let maps = s.shadow_maps.lock().ok();
-    let cube_size =
-        s.point_shadows.lock().ok().and_then(|c| c.as_ref().map(|c| c.size)).unwrap_or(0);
-    u.csm[2] = cube_size;
-    if let Some(m) = maps.as_ref().and_then(|m| m.as_ref()).filter(|_| c.needs.sun_shadows.needed) {
+    let maps = s.shadow_maps.lock().ok().and_then(|m| *m);
+    let cubes = s.point_shadows_ready.load(Ordering::Acquire);
+    u.csm[2] = if cubes { set.point_shadow_resolution } else { 0 };
+    if let Some(m) = maps.filter(|m| m.count > 0 && c.needs.sun_shadows.needed) {
         flags |= FLAG_SHADOWS;
-        u.csm = [m.count, m.resolution, cube_size, 0];
-        u.light_rot = m.light_rot;
+        u.csm[0] = m.count;
+        u.csm[1] = set.csm_resolution;
     }
     let sky_size = s.sky.as_ref().and_then(|k| k.read().ok()).map_or(0, |k| k.map_size());
     u.size = [set.width, set.height, s.scene_lights(), flags];
@@ -176,10 +176,8 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
         .run(move |io| -> PassResult {
             let c = io.ctx();
             let s = &c.state;
-            let size = s.settings.point_shadow_resolution;
-            let cube = s.point_shadow.render(&s.gpu, &s.scene, &s.point_lights, size)?;
-            s.gpu.queue.write_buffer(&s.lights, 0, bytemuck::cast_slice(&cube.lights));
-            *s.point_shadows.lock().map_err(poisoned)? = Some(cube);
+            s.point_shadow.render(&s.gpu, &s.scene)?;
+            s.point_shadows_ready.store(true, Ordering::Release);
             io.ctx().state.gpu.take_error()?;
             io.put(cubes, c.frame)?;
             Ok(())
@@ -208,7 +206,7 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
             let c = io.ctx();
             let sun = c.sun.ok_or_else(|| crate::EngineError::Settings("no sun".into()))?;
             let mut l = c.state.lpv.write().map_err(poisoned)?;
-            l.update(&c.state.gpu, c.camera.position, sun.dir, sun.irradiance)?;
+            l.update(&c.state.gpu, &c.state.scene, c.camera.position, sun.dir, sun.irradiance)?;
             io.ctx().state.gpu.take_error()?;
             io.put(lpv, c.frame)?;
             Ok(())
@@ -291,23 +289,21 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
             let c = io.ctx();
             let s = &c.state;
             write_frame_uniform(c);
-            let maps = s.shadow_maps.lock().map_err(poisoned)?;
+            let maps = *s.shadow_maps.lock().map_err(poisoned)?;
             let sky = match &s.sky {
                 Some(k) => Some(k.read().map_err(poisoned)?),
                 None => None,
             };
             let lpv_state = s.lpv.read().map_err(poisoned)?;
-            let cube = s.point_shadows.lock().map_err(poisoned)?;
             let inputs = LightingInputs {
                 frame: &s.frame,
-                shadows: maps.as_ref().filter(|_| c.needs.sun_shadows.needed),
-                shadow_fallback: &s.shadow_fallback,
+                shadows: s.shadow.bindings(maps.as_ref().filter(|_| c.needs.sun_shadows.needed)),
                 sky: sky.as_deref(),
                 sky_volume: c.needs.sky_lighting.needed && sky.is_some(),
                 lpv: Some(&*lpv_state).filter(|_| c.needs.indirect_lpv.needed),
                 materials: &s.scene.materials,
                 lights: &s.lights,
-                cube_depths: cube.as_ref().map_or(&s.no_cube_depths, |c| &c.depths),
+                cubes: s.point_shadow.bindings(),
             };
             let mut enc = s.gpu.device.create_command_encoder(&Default::default());
             s.lighting.record(&s.gpu.device, &mut enc, &s.targets, &inputs);

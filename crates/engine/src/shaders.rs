@@ -23,7 +23,8 @@ pub fn gbuffer() -> String {
 }
 
 pub fn lighting() -> String {
-    format!("{COMMON}\n{}\n{LIGHTING}", shadows::gpu::PCSS_INC_WGSL)
+    use shadows::gpu::{CSM_INC_WGSL, CUBE_INC_WGSL, PCSS_INC_WGSL};
+    format!("{COMMON}\n{PCSS_INC_WGSL}\n{CSM_INC_WGSL}\n{CUBE_INC_WGSL}\n{LIGHTING}")
 }
 
 pub fn queries() -> String {

@@ -7,7 +7,7 @@ use crate::passes::{
     gbuffer::GBufferPass,
     lighting::LightingPass,
     lpv::LpvState,
-    point_shadows::{PointShadowPass, PointShadows, gpu_lights},
+    point_shadows::{PointShadowPass, gpu_lights},
     raycast::RayCastPass,
     shadow::ShadowMaps,
     shadow::ShadowPass,
@@ -16,6 +16,7 @@ use crate::passes::{
 use crate::trace::TraceScene;
 use crate::{EngineError, Settings};
 use glam::Vec3;
+use std::sync::atomic::AtomicBool;
 use std::sync::{Mutex, RwLock};
 
 /// Everything the passes read and write, built once per scene and settings.
@@ -36,9 +37,8 @@ pub struct State {
     pub lights: wgpu::Buffer,
     pub shadow_maps: Mutex<Option<ShadowMaps>>,
     pub point_shadow: PointShadowPass,
-    pub point_shadows: Mutex<Option<PointShadows>>,
-    pub no_cube_depths: wgpu::Buffer,
-    pub shadow_fallback: wgpu::TextureView,
+    /// Whether the point lights' cubes have been rendered.
+    pub point_shadows_ready: AtomicBool,
     pub point_lights: Vec<scene::PointLight>,
 }
 
@@ -76,7 +76,8 @@ impl State {
         } else {
             None
         };
-        let mut lights = gpu_lights(&scene.point_lights);
+        let cube_size = settings.point_shadow_resolution;
+        let mut lights = gpu_lights(&scene.point_lights, cube_size);
         if lights.is_empty() {
             // Bindings need one element; the frame uniform's light count stays 0.
             lights.push(bytemuck::Zeroable::zeroed());
@@ -87,7 +88,7 @@ impl State {
             lighting: LightingPass::new(device, &targets)?,
             raycast: RayCastPass::new(device, &targets)?,
             combine: CombinePass::new(device, &targets)?,
-            lpv: RwLock::new(LpvState::new(&gpu, scene, &settings)?),
+            lpv: RwLock::new(LpvState::new(&gpu, &buffers, &settings)?),
             trace: TraceScene::new(scene)?,
             frame: uniform(
                 device,
@@ -96,24 +97,8 @@ impl State {
             ),
             lights: storage(device, "point lights", bytemuck::cast_slice(&lights)),
             shadow_maps: Mutex::new(None),
-            point_shadow: PointShadowPass::new(device)?,
-            point_shadows: Mutex::new(None),
-            no_cube_depths: storage(device, "no cube shadows", &[0u8; 16]),
-            shadow_fallback: device
-                .create_texture(&wgpu::TextureDescriptor {
-                    label: Some("no shadows"),
-                    size: wgpu::Extent3d { width: 1, height: 1, depth_or_array_layers: 1 },
-                    mip_level_count: 1,
-                    sample_count: 1,
-                    dimension: wgpu::TextureDimension::D2,
-                    format: wgpu::TextureFormat::Depth32Float,
-                    usage: wgpu::TextureUsages::TEXTURE_BINDING,
-                    view_formats: &[],
-                })
-                .create_view(&wgpu::TextureViewDescriptor {
-                    dimension: Some(wgpu::TextureViewDimension::D2Array),
-                    ..Default::default()
-                }),
+            point_shadow: PointShadowPass::new(device, &scene.point_lights, cube_size)?,
+            point_shadows_ready: AtomicBool::new(false),
             sky,
             point_lights: scene.point_lights.clone(),
             scene: buffers,

@@ -69,3 +69,13 @@ pub fn cube_face_of(dir: Vec3) -> usize {
         5
     }
 }
+
+/// The depth a cube map rendered with [`cube_face_view_proj`] stores for a point at offset
+/// `d` from the light (`[0, 1]`, 0 at `near`): the face's perspective depth of the major-axis
+/// distance, `far (m - near) / ((far - near) m)`. `cube_shadow_depth` in
+/// `shaders/shadows/cube.inc.wgsl` is its twin; a depth cube array sampled with a comparison
+/// against it gives the light's visibility.
+pub fn cube_shadow_depth(d: Vec3, near: f32, far: f32) -> f32 {
+    let m = d.abs().max_element();
+    far * (m - near) / ((far - near) * m)
+}

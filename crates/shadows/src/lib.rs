@@ -10,8 +10,10 @@
 //!   in `f64`, exact at 1e5 m from the origin.
 //! - **Overlapped shadow maps** ([`OverlappedShadowMaps`], thesis 6.3.1): three 512x512 maps
 //!   centred on the camera with growing extents, for points seen only in reflections.
-//! - **Cube shadow maps** for point lights ([`cube_face_view_proj`]; the six-face wgpu pass is
-//!   `gpu::DepthPass::render_cube`).
+//! - **Cube shadow maps** for point lights ([`cube_face_view_proj`], [`cube_shadow_depth`];
+//!   on the GPU one depth cube array for all lights, `gpu::CubeShadows`).
+//! - **The cascade lookup** ([`csm_visibility`]): cascade choice, normal offset, receiver
+//!   plane and PCSS, the CPU twin of the WGSL snippet a lighting shader includes.
 //! - **PCF and PCSS** ([`Pcss`]; Fernando, "Percentage-closer soft shadows", SIGGRAPH 2005
 //!   sketch): blocker search, penumbra `w = (d_r - d_b) * light_size / d_b`, PCF over `w`,
 //!   8..64 Poisson or spiral taps, slope-scaled and receiver-plane depth bias. The same
@@ -19,7 +21,8 @@
 //! - **Reflective shadow maps** ([`Rsm`]; Dachsbacher & Stamminger, "Reflective shadow
 //!   maps", I3D 2005) and [`Vpl`] extraction for light propagation volumes.
 //! - A CPU triangle rasteriser ([`rasterize`]) so all of the above runs without a GPU, and
-//!   wgpu depth/RSM passes behind feature `gpu`.
+//!   behind feature `gpu` resident wgpu passes that record into the caller's encoder over
+//!   the caller's buffers, with the WGSL snippets their consumers include (module `gpu`).
 //!
 //! ```
 //! use shadows::{PcssSettings, Pcss, plane_box::PlaneBox};
@@ -40,6 +43,7 @@
 //! ```
 
 mod csm;
+mod csm_lookup;
 mod cube;
 mod depth_map;
 mod error;
@@ -56,7 +60,8 @@ mod taps;
 pub mod gpu;
 
 pub use csm::{Camera, Cascade, CascadedShadowMap, CsmSettings, split_distances};
-pub use cube::{CUBE_FACES, cube_face_of, cube_face_view_proj};
+pub use csm_lookup::{CSM_NORMAL_OFFSET_TEXELS, CsmCascade, csm_visibility};
+pub use cube::{CUBE_FACES, cube_face_of, cube_face_view_proj, cube_shadow_depth};
 pub use depth_map::DepthMap;
 pub use error::ShadowError;
 pub use light_space::{LightBasis, ShadowView};

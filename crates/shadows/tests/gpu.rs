@@ -4,7 +4,10 @@
 
 use glam::{Mat4, Vec3};
 use gpu_harness::{Binding, gpu_test_context};
-use shadows::gpu::{DEPTH_WGSL, DepthPass, GpuMesh, PCSS_EVAL_WGSL, PcssEval, RSM_WGSL, RsmPass};
+use shadows::gpu::{
+    CSM_EVAL_WGSL, CUBE_INC_WGSL, DEPTH_WGSL, DepthPass, GpuMesh, PCSS_EVAL_WGSL, PcssEval,
+    RSM_WGSL, RsmPass,
+};
 use shadows::plane_box::PlaneBox;
 use shadows::*;
 
@@ -24,6 +27,8 @@ fn shaders_validate_with_naga() {
     validate_wgsl(PCSS_EVAL_WGSL);
     validate_wgsl(DEPTH_WGSL);
     validate_wgsl(RSM_WGSL);
+    validate_wgsl(CSM_EVAL_WGSL);
+    validate_wgsl(&format!("{CUBE_INC_WGSL}\n@compute @workgroup_size(1) fn main() {{}}"));
 }
 
 /// The scene as one mesh (plane + box triangles, flat normals per triangle).

@@ -66,10 +66,10 @@ pub struct SceneBuffers {
     pub material_groups: Vec<wgpu::BindGroup>,
     pub material_layout: wgpu::BindGroupLayout,
     pub triangle_count: usize,
-    /// World-space triangles for CPU-side techniques (RSM culling, LPV surfels).
-    pub world_positions: Vec<Vec3>,
-    pub world_normals: Vec<Vec3>,
-    pub index_list: Vec<u32>,
+    /// Every triangle as one draw, and each material's draw, as the `shadows` passes take
+    /// them.
+    pub all_triangles: Vec<shadows::gpu::DrawRange>,
+    pub material_ranges: Vec<shadows::gpu::DrawRange>,
 }
 
 impl SceneBuffers {
@@ -176,8 +176,11 @@ impl SceneBuffers {
                 })
             })
             .collect();
-        let world_positions: Vec<Vec3> = vertices.iter().map(|v| Vec3::from(v.position)).collect();
-        let world_normals: Vec<Vec3> = vertices.iter().map(|v| Vec3::from(v.normal)).collect();
+        let range = |first: u32, count: u32| shadows::gpu::DrawRange {
+            indices: first..first + count,
+            base_vertex: 0,
+        };
+        let material_ranges = draws.iter().map(|d| range(d.first_index, d.index_count)).collect();
         Self {
             vertices: buffer_init(
                 device,
@@ -207,9 +210,23 @@ impl SceneBuffers {
             material_groups,
             material_layout,
             triangle_count: indices.len() / 3,
-            world_positions,
-            world_normals,
-            index_list: indices,
+            all_triangles: vec![range(0, indices.len() as u32)],
+            material_ranges,
+        }
+    }
+
+    /// Where positions and normals sit in a [`Vertex`], for the `shadows` passes.
+    pub const SHADOW_LAYOUT: shadows::gpu::VertexLayout =
+        shadows::gpu::VertexLayout { stride: 36, position_offset: 0, normal_offset: 12 };
+
+    /// The scene as the `shadows` passes draw it: all triangles in one draw (`by_material`
+    /// false) or one draw per material, in [`Self::draws`] order.
+    pub fn shadow_geometry(&self, by_material: bool) -> shadows::gpu::Geometry<'_> {
+        shadows::gpu::Geometry {
+            vertices: &self.vertices,
+            indices: &self.indices,
+            index_format: wgpu::IndexFormat::Uint32,
+            draws: if by_material { &self.material_ranges } else { &self.all_triangles },
         }
     }
 

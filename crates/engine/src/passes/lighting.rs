@@ -2,26 +2,12 @@
 //! from the G-buffer, the sky-volume and LPV lookups by their crates' kernels, then one
 //! full-screen pass (`shaders/engine/lighting.wgsl`) into the HDR target.
 
-use super::{lpv::LpvState, shadow::ShadowMaps, sky::SkyState};
+use super::{lpv::LpvState, sky::SkyState};
 use crate::EngineError;
 use crate::gpu::{
     GBufferTargets, bind_group, compute_pipeline, dispatch, draw_fullscreen, fullscreen_pipeline,
-    storage, storage_empty,
+    storage_empty,
 };
-use bytemuck::{Pod, Zeroable};
-
-/// A point light as the shader reads it.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
-pub struct GpuPointLight {
-    /// Position, radius of influence.
-    pub position: [f32; 4],
-    /// Colour (intensity), index of its cube shadow map (-1: none).
-    pub color: [f32; 4],
-    /// World to clip of the six cube faces.
-    pub faces: [[[f32; 4]; 4]; 6],
-}
-const _: () = assert!(std::mem::size_of::<GpuPointLight>() == 416);
 
 pub struct LightingPass {
     queries: wgpu::ComputePipeline,
@@ -36,15 +22,16 @@ pub struct LightingPass {
 /// What the lighting pass reads besides the G-buffer.
 pub struct LightingInputs<'a> {
     pub frame: &'a wgpu::Buffer,
-    pub shadows: Option<&'a ShadowMaps>,
-    pub shadow_fallback: &'a wgpu::TextureView,
+    /// The sun's cascades (`count` 0: no sun shadows this frame).
+    pub shadows: shadows::gpu::CascadeMaps<'a>,
     pub sky: Option<&'a SkyState>,
     /// Run the sky-volume lookup this frame.
     pub sky_volume: bool,
     pub lpv: Option<&'a LpvState>,
     pub materials: &'a wgpu::Buffer,
     pub lights: &'a wgpu::Buffer,
-    pub cube_depths: &'a wgpu::Buffer,
+    /// The point lights' depth cube array and its comparison sampler.
+    pub cubes: (&'a wgpu::TextureView, &'a wgpu::Sampler),
 }
 
 impl LightingPass {
@@ -102,14 +89,6 @@ impl LightingPass {
         if let Some(lpv) = inputs.lpv {
             lpv.record_lookup(device, enc, &self.lpv_q, &self.lpv_out, self.pixels);
         }
-        let empty;
-        let (shadow_view, cascades, taps) = match inputs.shadows {
-            Some(s) => (&s.array, &s.cascades, &s.taps),
-            None => {
-                empty = storage(device, "no cascades", &[0u8; 128]);
-                (inputs.shadow_fallback, &empty, &empty)
-            }
-        };
         let skymap = inputs.sky.map(|s| &s.map_buffer).unwrap_or(inputs.lights);
         let bg = bind_group(
             device,
@@ -120,15 +99,16 @@ impl LightingPass {
                 tv(&targets.normal),
                 tv(&targets.geometry),
                 tv(&targets.depth),
-                tv(shadow_view),
-                cascades.as_entire_binding(),
-                taps.as_entire_binding(),
+                tv(inputs.shadows.depth),
+                inputs.shadows.cascades.as_entire_binding(),
+                inputs.shadows.taps.as_entire_binding(),
                 self.sky_out.as_entire_binding(),
                 self.lpv_out.as_entire_binding(),
                 inputs.materials.as_entire_binding(),
                 skymap.as_entire_binding(),
                 inputs.lights.as_entire_binding(),
-                inputs.cube_depths.as_entire_binding(),
+                tv(inputs.cubes.0),
+                wgpu::BindingResource::Sampler(inputs.cubes.1),
             ],
         );
         draw_fullscreen(enc, "lighting", &self.pipeline, &bg, &targets.lit);

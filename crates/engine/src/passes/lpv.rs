@@ -1,29 +1,22 @@
 //! Indirect sunlight through light propagation volumes (thesis 5.2, 5.3.7): a reflective
-//! shadow map of the sun over the cascades (`shadows::gpu::RsmPass`), its texels as VPLs,
-//! injection and propagation on the GPU (`lpv::gpu::GpuLpv`), and a per-pixel lookup by the
-//! crate's own kernel.
+//! shadow map of the sun over the cascades (`shadows`' resident RSM over the scene's
+//! buffers), its texels as VPLs, injection and propagation on the GPU (`lpv::gpu::GpuLpv`),
+//! and a per-pixel lookup by the crate's own kernel. The RSM is still read back: `lpv`
+//! injects from a VPL list until it takes the RSM textures itself.
 
-use crate::gpu::{Gpu, compute_pipeline, dispatch_lookup, storage, uniform};
+use crate::gpu::{Gpu, SceneBuffers, compute_pipeline, dispatch_lookup, storage, uniform};
 use crate::{EngineError, Settings};
-use glam::{Mat4, Vec3};
+use glam::Vec3;
 use lpv::gpu::{GpuGrid, GpuLookupParams};
 use lpv::{Lpv, Surfel, Vpl};
 use shadows::{LightBasis, ShadowView};
 
-/// Per-mesh world-space data for the RSM pass.
-struct RsmMesh {
-    positions: Vec<Vec3>,
-    normals: Vec<Vec3>,
-    indices: Vec<u32>,
-    albedo: Vec3,
-}
-
 pub struct LpvState {
     pub lpv: Lpv,
     gpu_lpv: lpv::gpu::GpuLpv,
-    rsm: shadows::gpu::RsmPass,
-    meshes: Vec<RsmMesh>,
-    rsm_resolution: u32,
+    rsm: shadows::gpu::ReflectiveShadowMap,
+    /// Diffuse albedo of each material draw (the RSM's flux).
+    albedo: Vec<Vec3>,
     pub volumes: wgpu::Buffer,
     lookup: wgpu::ComputePipeline,
     pub vpl_count: usize,
@@ -32,41 +25,34 @@ pub struct LpvState {
 }
 
 impl LpvState {
-    pub fn new(gpu: &Gpu, scene: &scene::Scene, settings: &Settings) -> Result<Self, EngineError> {
+    pub fn new(
+        gpu: &Gpu,
+        buffers: &SceneBuffers,
+        settings: &Settings,
+    ) -> Result<Self, EngineError> {
         let lpv = Lpv::new(settings.lpv).map_err(|e| EngineError::technique("lpv", e))?;
-        let rsm = shadows::gpu::RsmPass::new(&gpu.device)
-            .map_err(|e| EngineError::technique("shadows", e))?;
-        let meshes = scene
-            .meshes
+        let rsm = shadows::gpu::ReflectiveShadowMap::new(
+            &gpu.device,
+            SceneBuffers::SHADOW_LAYOUT,
+            settings.rsm_resolution,
+            buffers.draws.len() as u32,
+        )
+        .map_err(|e| EngineError::technique("shadows", e))?;
+        let albedo = buffers
+            .draws
             .iter()
-            .filter(|m| !m.indices.is_empty())
-            .map(|m| {
-                let nm = m.normal_matrix();
-                let mat = scene.material(m.material);
-                RsmMesh {
-                    positions: m
-                        .positions
-                        .iter()
-                        .map(|&p| m.transform.transform_point3(p))
-                        .collect(),
-                    normals: (0..m.positions.len())
-                        .map(|k| {
-                            m.normals.get(k).map_or(Vec3::Y, |&n| (nm * n).normalize_or(Vec3::Y))
-                        })
-                        .collect(),
-                    indices: m.indices.iter().flatten().copied().collect(),
-                    albedo: mat.map_or(Vec3::ZERO, |mat| {
-                        mat.albedo * (1.0 - mat.reflectivity - mat.transparency).max(0.0)
-                    }),
-                }
+            .map(|d| {
+                buffers.material_table.get(d.material as usize).map_or(Vec3::ZERO, |m| {
+                    let [r, g, b, _] = m.albedo;
+                    Vec3::new(r, g, b) * (1.0 - m.params[1] - m.params[2]).max(0.0)
+                })
             })
             .collect();
         Ok(Self {
             lpv,
             gpu_lpv: lpv::gpu::GpuLpv::new(&gpu.device),
             rsm,
-            meshes,
-            rsm_resolution: settings.rsm_resolution,
+            albedo,
             volumes: storage(&gpu.device, "lpv volumes", &[0u8; 16]),
             lookup: compute_pipeline(&gpu.device, "lpv lookup", lpv::gpu::LOOKUP_WGSL, "lookup")?,
             vpl_count: 0,
@@ -79,6 +65,7 @@ impl LpvState {
     pub fn update(
         &mut self,
         gpu: &Gpu,
+        scene: &SceneBuffers,
         eye: Vec3,
         sun_dir: Vec3,
         sun_irradiance: Vec3,
@@ -94,25 +81,17 @@ impl LpvState {
             basis,
             center,
             half * 3f64.sqrt(),
-            self.rsm_resolution,
+            self.rsm.resolution(),
             200.0,
             true,
         );
-        let gpu_meshes: Vec<shadows::gpu::GpuMesh<'_>> = self
-            .meshes
-            .iter()
-            .map(|m| shadows::gpu::GpuMesh {
-                positions: &m.positions,
-                normals: &m.normals,
-                indices: &m.indices,
-                model: Mat4::IDENTITY,
-                albedo: m.albedo,
-            })
-            .collect();
-        let (rsm, _depth) = self
-            .rsm
-            .render(&gpu.device, &gpu.queue, &gpu_meshes, &view, sun_irradiance)
+        let mut enc = gpu.device.create_command_encoder(&Default::default());
+        let geometry = scene.shadow_geometry(true);
+        self.rsm
+            .record(&gpu.queue, &mut enc, &geometry, &self.albedo, &view, sun_irradiance)
             .map_err(tech)?;
+        gpu.queue.submit([enc.finish()]);
+        let (rsm, _depth) = self.rsm.read_back(&gpu.device, &gpu.queue).map_err(tech)?;
         let vpls: Vec<Vpl> = rsm
             .extract_vpls(1)
             .map_err(tech)?

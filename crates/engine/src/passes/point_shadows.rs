@@ -1,99 +1,90 @@
-//! Cube shadow maps for point lights (thesis 4.2): the six faces of every shadow-casting
-//! light rendered by `shadows::gpu::DepthPass::render_cube`, stored in one buffer that the
-//! lighting pass samples with the face matrices (`shadows::cube_face_view_proj`).
+//! Cube shadow maps for point lights (thesis 4.2): every shadow-casting light's cube rendered
+//! by `shadows`' resident pass into one depth cube array over the scene's buffers; the
+//! lighting pass samples it with hardware comparison (`shaders/shadows/cube.inc.wgsl`).
 
-use super::lighting::GpuPointLight;
 use crate::EngineError;
-use crate::gpu::{Gpu, SceneBuffers, storage};
-use glam::Mat4;
+use crate::gpu::{Gpu, SceneBuffers};
+use bytemuck::{Pod, Zeroable};
+use shadows::gpu::{CubeLight, CubeShadows};
 
 /// Near plane of the cube maps (metres).
 pub const CUBE_NEAR: f32 = 0.05;
 
-pub struct PointShadowPass {
-    depth: shadows::gpu::DepthPass,
+/// A point light as `lighting.wgsl` reads it.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuPointLight {
+    /// Position, radius of influence.
+    pub position: [f32; 4],
+    /// Colour (intensity), index of its cube in the cube array (-1: no shadows).
+    pub color: [f32; 4],
+    /// Cube near and far planes, cube face size, unused.
+    pub shadow: [f32; 4],
+}
+const _: () = assert!(std::mem::size_of::<GpuPointLight>() == 48);
+
+/// Whether a light gets a cube: it casts shadows and its range is longer than the near plane.
+fn casts(l: &scene::PointLight) -> bool {
+    l.casts_shadows && l.radius.is_finite() && l.radius > CUBE_NEAR * 2.0
 }
 
-/// The cube maps of all shadow-casting lights, and the lights with their face matrices and
-/// map indices.
-pub struct PointShadows {
-    pub depths: wgpu::Buffer,
-    pub lights: Vec<GpuPointLight>,
-    pub size: u32,
-}
-
-/// The lights as the lighting pass reads them, without shadows.
-pub fn gpu_lights(lights: &[scene::PointLight]) -> Vec<GpuPointLight> {
+/// The lights as the lighting pass reads them: light `i`'s cube index is its rank among the
+/// lights that cast, in order.
+pub fn gpu_lights(lights: &[scene::PointLight], size: u32) -> Vec<GpuPointLight> {
+    let mut cube = 0.0f32;
     lights
         .iter()
-        .map(|l| GpuPointLight {
-            position: l.position.extend(l.radius).to_array(),
-            color: l.color.extend(-1.0).to_array(),
-            faces: [[[0.0; 4]; 4]; 6],
+        .map(|l| {
+            let index = if casts(l) {
+                cube += 1.0;
+                cube - 1.0
+            } else {
+                -1.0
+            };
+            GpuPointLight {
+                position: l.position.extend(l.radius).to_array(),
+                color: l.color.extend(index).to_array(),
+                shadow: [CUBE_NEAR, l.radius, size as f32, 0.0],
+            }
         })
         .collect()
 }
 
-impl PointShadowPass {
-    pub fn new(device: &wgpu::Device) -> Result<Self, EngineError> {
-        Ok(Self {
-            depth: shadows::gpu::DepthPass::new(device)
-                .map_err(|e| EngineError::technique("shadows", e))?,
-        })
-    }
+pub struct PointShadowPass {
+    cubes: CubeShadows,
+    lights: Vec<CubeLight>,
+}
 
-    /// Renders a `size`² cube for every light that casts shadows.
-    pub fn render(
-        &self,
-        gpu: &Gpu,
-        scene: &SceneBuffers,
+impl PointShadowPass {
+    /// Room for a `size`² cube per shadow-casting light of `lights`.
+    pub fn new(
+        device: &wgpu::Device,
         lights: &[scene::PointLight],
         size: u32,
-    ) -> Result<PointShadows, EngineError> {
-        let tech = |e| EngineError::technique("shadows", e);
-        let mesh = shadows::gpu::GpuMesh {
-            positions: &scene.world_positions,
-            normals: &[],
-            indices: &scene.index_list,
-            model: Mat4::IDENTITY,
-            albedo: glam::Vec3::ONE,
-        };
-        let mut out = gpu_lights(lights);
-        let mut depths: Vec<f32> = Vec::new();
-        let mut index = 0.0f32;
-        for (l, g) in lights.iter().zip(&mut out) {
-            if !l.casts_shadows
-                || l.radius.is_nan()
-                || l.radius <= CUBE_NEAR * 2.0
-                || scene.index_list.is_empty()
-            {
-                continue;
-            }
-            let faces = self
-                .depth
-                .render_cube(
-                    &gpu.device,
-                    &gpu.queue,
-                    &[mesh],
-                    l.position,
-                    CUBE_NEAR,
-                    l.radius,
-                    size,
-                )
-                .map_err(tech)?;
-            let mats =
-                shadows::cube_face_view_proj(l.position, CUBE_NEAR, l.radius).map_err(tech)?;
-            for f in &faces {
-                depths.extend_from_slice(f.as_slice());
-            }
-            g.faces = mats.map(|m| m.to_cols_array_2d());
-            g.color[3] = index;
-            index += 1.0;
-        }
-        Ok(PointShadows {
-            depths: storage(&gpu.device, "cube shadows", bytemuck::cast_slice(&depths)),
-            lights: out,
-            size,
-        })
+    ) -> Result<Self, EngineError> {
+        let lights: Vec<CubeLight> = lights
+            .iter()
+            .filter(|l| casts(l))
+            .map(|l| CubeLight { position: l.position, near: CUBE_NEAR, far: l.radius })
+            .collect();
+        let cubes =
+            CubeShadows::new(device, SceneBuffers::SHADOW_LAYOUT, size, lights.len() as u32)
+                .map_err(|e| EngineError::technique("shadows", e))?;
+        Ok(Self { cubes, lights })
+    }
+
+    /// The cube array and its comparison sampler, for the lighting pass.
+    pub fn bindings(&self) -> (&wgpu::TextureView, &wgpu::Sampler) {
+        (self.cubes.view(), self.cubes.sampler())
+    }
+
+    /// Renders every shadow-casting light's cube.
+    pub fn render(&self, gpu: &Gpu, scene: &SceneBuffers) -> Result<(), EngineError> {
+        let mut enc = gpu.device.create_command_encoder(&Default::default());
+        self.cubes
+            .record(&gpu.queue, &mut enc, &scene.shadow_geometry(false), &self.lights)
+            .map_err(|e| EngineError::technique("shadows", e))?;
+        gpu.queue.submit([enc.finish()]);
+        Ok(())
     }
 }

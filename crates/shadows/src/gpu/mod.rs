@@ -1,18 +1,46 @@
-//! The GPU path (feature `gpu`): the WGSL sources exactly as Rust builds them, the structs
-//! shared with them, and wgpu passes that render shadow depth (one map, or the six faces of a
-//! point light's cube map: [`DepthPass::render_cube`]) and RSM targets for a list of meshes
-//! with given matrices.
+//! The GPU path (feature `gpu`).
 //!
-//! `PCSS_INC_WGSL` is the filter snippet an engine includes in its lighting shader (it calls
-//! `pcss_depth(tx, ty)` and `pcss_tap(i)`, which the including shader defines);
-//! [`PCSS_EVAL_WGSL`] is a small compute shader that evaluates it for a list of receivers.
+//! **Resident passes**, created once from a `wgpu::Device` and the caller's vertex layout,
+//! owning their pipelines and textures, recording into the caller's command encoder over the
+//! caller's vertex and index buffers ([`Geometry`]):
+//! - [`CascadeShadows`]: the sun's cascades in one depth array, with the [`CsmCascade`]
+//!   blocks and PCSS taps that `csm.inc.wgsl` reads;
+//! - [`CubeShadows`]: every point light's cube in one depth cube array, sampled by
+//!   `cube.inc.wgsl` with hardware comparison;
+//! - [`ReflectiveShadowMap`]: depth, flux, normal and position targets.
+//!
+//! Reading back is a separate call (`read_back`) for tests and tools. [`DepthPass`] and
+//! [`RsmPass`] are one-call wrappers over CPU meshes (upload, record, read back).
+//!
+//! **Snippets** for the caller's shaders: [`PCSS_INC_WGSL`] (PCF/PCSS over a depth lookup the
+//! includer defines), [`CSM_INC_WGSL`] (cascade choice, normal offset, receiver plane, PCSS;
+//! twin of [`csm_visibility`](crate::csm_visibility)) and [`CUBE_INC_WGSL`] (point-light
+//! visibility; twin of [`cube_shadow_depth`](crate::cube_shadow_depth)).
 
-mod passes;
+mod cascades;
+mod cubes;
+mod depth_layers;
+mod geometry;
+mod oneshot;
+pub mod readback;
+mod rsm_pass;
+mod slots;
 
-pub use passes::{DepthPass, GpuMesh, RsmPass};
+pub use crate::csm_lookup::CsmCascade;
+pub use cascades::{CascadeMaps, CascadeShadows, MAX_TAPS};
+pub use cubes::{CubeLight, CubeShadows};
+pub use geometry::{DrawRange, Geometry, VertexLayout};
+pub use oneshot::{DepthPass, GpuMesh, RsmPass};
+pub use rsm_pass::ReflectiveShadowMap;
 
 /// The PCF/PCSS snippet (`shaders/shadows/pcss.inc.wgsl`).
 pub const PCSS_INC_WGSL: &str = include_str!("../../../../shaders/shadows/pcss.inc.wgsl");
+
+/// The cascade lookup snippet (`shaders/shadows/csm.inc.wgsl`; include after the PCSS one).
+pub const CSM_INC_WGSL: &str = include_str!("../../../../shaders/shadows/csm.inc.wgsl");
+
+/// The point-light cube snippet (`shaders/shadows/cube.inc.wgsl`).
+pub const CUBE_INC_WGSL: &str = include_str!("../../../../shaders/shadows/cube.inc.wgsl");
 
 /// The snippet followed by `shaders/shadows/pcss_eval.wgsl` (bindings: 0 `PcssParams`
 /// uniform, 1 [`PcssEval`] uniform, 2 depths `array<f32>`, 3 taps `array<vec2<f32>>`,
@@ -21,6 +49,18 @@ pub const PCSS_EVAL_WGSL: &str = concat!(
     include_str!("../../../../shaders/shadows/pcss.inc.wgsl"),
     "\n",
     include_str!("../../../../shaders/shadows/pcss_eval.wgsl")
+);
+
+/// The PCSS and cascade snippets followed by `shaders/shadows/csm_eval.wgsl` (bindings:
+/// 0 `array<CsmCascade>`, 1 depths of every cascade one after another `array<f32>`, 2 taps,
+/// 3 queries `array<vec4<f32>, 2>` = position + view depth, geometry normal, 4 output
+/// `array<f32>` visibility).
+pub const CSM_EVAL_WGSL: &str = concat!(
+    include_str!("../../../../shaders/shadows/pcss.inc.wgsl"),
+    "\n",
+    include_str!("../../../../shaders/shadows/csm.inc.wgsl"),
+    "\n",
+    include_str!("../../../../shaders/shadows/csm_eval.wgsl")
 );
 
 /// The depth-only shadow pass (`shaders/shadows/depth.wgsl`).
@@ -39,3 +79,17 @@ pub struct PcssEval {
 }
 
 const _: () = assert!(std::mem::size_of::<PcssEval>() == 16);
+
+fn gpu_err(e: impl std::fmt::Display) -> crate::error::ShadowError {
+    crate::error::ShadowError::Gpu(e.to_string())
+}
+
+/// Runs `create` inside a validation error scope: the device's complaint becomes an error.
+fn device_call<T>(
+    device: &wgpu::Device,
+    create: impl FnOnce() -> T,
+) -> Result<T, crate::error::ShadowError> {
+    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let value = create();
+    pollster::block_on(scope.pop()).map_or(Ok(value), |e| Err(gpu_err(e)))
+}
