@@ -130,11 +130,12 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
     let mut renderer = Renderer::new(scene, settings)?;
     std::fs::create_dir_all(&job.out).map_err(|e| crate::renderer::io_err(&job.out, e))?;
     let bar = progress_bar(job.progress, job.frames as u64, "frames");
-    let mut frame_ms = Vec::new();
+    let (mut frame_ms, mut transfers) = (Vec::new(), Vec::new());
     let mut traced = 0;
     for _ in 0..job.frames.max(1) {
         let f = renderer.render_frame()?;
         frame_ms.push(f.wall_ms);
+        transfers.push(f.transfers);
         traced += usize::from(f.ray_traced);
         bar.inc(1);
     }
@@ -147,6 +148,7 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
     let frame = renderer.render_frame()?;
     traced += usize::from(frame.ray_traced);
     frame_ms.push(frame.wall_ms);
+    transfers.push(frame.transfers);
     frame.write_exr(job.out.join("frame.exr"))?;
     frame.write_png(job.out.join("frame.png"))?;
     let errors = match job.reference_spp {
@@ -190,6 +192,7 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
         frames: frame_ms.len(),
         threads: rayon::current_num_threads(),
         frame_ms,
+        transfers,
         ray_traced_frames: traced,
         errors: errors.map(|e| serde_json::to_value(e).unwrap_or_default()),
         ledger,

@@ -4,7 +4,6 @@
 //! ray tracing on a worker thread while the GPU lights the view) and reports.
 
 use crate::frame::{FLAG_BLINN, FLAG_LPV, FLAG_SHADOWS, FLAG_SKY, FLAG_SKY_VOLUME, FrameUniform};
-use crate::gpu::read_texture;
 use crate::passes::lighting::LightingInputs;
 use crate::passes::raycast::RayBatch;
 use crate::settings::Specular;
@@ -86,7 +85,7 @@ fn write_frame_uniform(c: &FrameCtx) {
     u.size = [set.width, set.height, s.scene_lights(), flags];
     u.params = [set.ssao_radius, set.ssao_samples as f32, sky_size as f32, c.frame as f32];
     u.csm[3] = c.component;
-    s.gpu.queue.write_buffer(&s.frame, 0, bytemuck::bytes_of(&u));
+    s.gpu.write(&s.frame, 0, bytemuck::bytes_of(&u));
 }
 
 /// Declares the pipeline.
@@ -223,13 +222,7 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
             let c = io.ctx();
             let s = &c.state;
             write_frame_uniform(c);
-            let b = s.raycast.run(
-                &s.gpu.device,
-                &s.gpu.queue,
-                &s.targets,
-                &s.frame,
-                &s.scene.materials,
-            )?;
+            let b = s.raycast.run(&s.gpu, &s.targets, &s.frame, &s.scene.materials)?;
             io.ctx().state.gpu.take_error()?;
             io.put(batch, b)?;
             Ok(())
@@ -306,7 +299,7 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
                 cubes: s.point_shadow.bindings(),
             };
             let mut enc = s.gpu.device.create_command_encoder(&Default::default());
-            s.lighting.record(&s.gpu.device, &mut enc, &s.targets, &inputs);
+            s.lighting.record(&s.gpu, &mut enc, &s.targets, &inputs);
             s.gpu.queue.submit([enc.finish()]);
             io.ctx().state.gpu.take_error()?;
             io.put(lit, c.frame)?;
@@ -325,7 +318,7 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
             let c = io.ctx();
             let s = &c.state;
             let (b, t) = (io.read(batch)?, io.read(traced)?);
-            s.combine.upload(&s.gpu.queue, b, &t.0);
+            s.combine.upload(&s.gpu, b, &t.0);
             let mut enc = s.gpu.device.create_command_encoder(&Default::default());
             s.combine.record(
                 &s.gpu.device,
@@ -351,7 +344,7 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
             } else {
                 &t.lit_texture
             };
-            let bytes = read_texture(&s.gpu.device, &s.gpu.queue, texture, 8)?;
+            let bytes = s.gpu.read_texture(texture, 8)?;
             let halves: Vec<half::f16> = bytemuck::pod_collect_to_vec(&bytes);
             let pixels =
                 halves.chunks_exact(4).map(|h| [h[0], h[1], h[2], h[3]].map(f32::from)).collect();

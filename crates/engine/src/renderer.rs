@@ -27,6 +27,8 @@ pub struct Frame {
     pub wall_ms: f64,
     /// Whether the ray-tracing pass ran in this frame.
     pub ray_traced: bool,
+    /// Bytes uploaded and read back and CPU waits on the GPU during the frame.
+    pub transfers: crate::gpu::TransferCounts,
     pub needs: scene::SceneNeeds,
 }
 
@@ -173,6 +175,8 @@ impl Renderer {
     /// Renders one frame.
     pub fn render_frame(&mut self) -> Result<Frame, EngineError> {
         let t0 = Instant::now();
+        // What moved between frames (uploads at creation, a sun change) is not this frame's.
+        self.state.gpu.transfers.take();
         let needs = scene::SceneNeeds::of(&self.scene, &self.camera);
         let ctx = FrameCtx {
             state: Arc::clone(&self.state),
@@ -209,6 +213,7 @@ impl Renderer {
             report,
             wall_ms: t0.elapsed().as_secs_f64() * 1e3,
             ray_traced,
+            transfers: self.state.gpu.transfers.take(),
             needs,
         })
     }

@@ -41,6 +41,8 @@ pub struct RunInfo {
     pub threads: usize,
     /// Wall-clock milliseconds of every frame.
     pub frame_ms: Vec<f64>,
+    /// Bytes uploaded and read back and CPU waits of every frame.
+    pub transfers: Vec<crate::gpu::TransferCounts>,
     /// Frames in which the ray-tracing pass ran.
     pub ray_traced_frames: usize,
     /// Image errors against the reference, when computed.
@@ -133,6 +135,9 @@ pub fn markdown(info: &RunInfo, last: &FrameReport) -> String {
         "| last frame | {:.3} ms; CPU jobs {cpu_sum:.3} ms, GPU {gpu_sum:.3} ms |",
         last.total_ms
     );
+    if let Some(line) = transfers_line(&info.transfers) {
+        let _ = writeln!(s, "| transfers | {line} |");
+    }
     if info.software_adapter {
         let _ = write!(
             s,
@@ -161,6 +166,36 @@ pub fn markdown(info: &RunInfo, last: &FrameReport) -> String {
 
 fn is_city(info: &RunInfo) -> bool {
     Path::new(&info.scene).file_stem().is_some_and(|s| s.eq_ignore_ascii_case("city"))
+}
+
+fn mib(bytes: u64) -> String {
+    format!("{:.2} MiB", bytes as f64 / (1024.0 * 1024.0))
+}
+
+/// The last frame's transfers (moving camera) and the mean of the still frames after the
+/// first (which fills what every later frame reuses).
+fn transfers_line(t: &[crate::gpu::TransferCounts]) -> Option<String> {
+    let last = t.last()?;
+    let mut s = format!(
+        "last frame: uploaded {}, read back {}, {} CPU waits on the GPU",
+        mib(last.uploaded_bytes),
+        mib(last.read_back_bytes),
+        last.cpu_waits
+    );
+    let still = t.get(1..t.len() - 1).filter(|s| !s.is_empty());
+    if let Some(still) = still {
+        let n = still.len() as u64;
+        let sum = |f: fn(&crate::gpu::TransferCounts) -> u64| still.iter().map(f).sum::<u64>();
+        let _ = write!(
+            s,
+            "; still frames 2-{} (mean): uploaded {}, read back {}, {:.1} CPU waits",
+            t.len() - 1,
+            mib(sum(|c| c.uploaded_bytes) / n),
+            mib(sum(|c| c.read_back_bytes) / n),
+            sum(|c| c.cpu_waits) as f64 / n as f64
+        );
+    }
+    Some(s)
 }
 
 fn stats_line(ms: &[f64]) -> String {
@@ -294,6 +329,7 @@ mod tests {
             frames: 4,
             threads: 2,
             frame_ms: vec![10.0, 12.0, 14.0, 16.0],
+            transfers: vec![Default::default(); 4],
             ray_traced_frames: 3,
             errors: Some(json!({ "rel_rms": 0.05, "psnr_db": 31.2 })),
             ledger: None,

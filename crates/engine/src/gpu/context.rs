@@ -11,6 +11,8 @@ pub struct Gpu {
     pub adapter: String,
     pub software: bool,
     pub timestamps: bool,
+    /// Bytes uploaded and read back and CPU waits, counted by the calls below.
+    pub transfers: super::Transfers,
     errors: Arc<Mutex<Vec<String>>>,
 }
 
@@ -32,7 +34,15 @@ impl Gpu {
             }
         }));
         let timestamps = ctx.device.features().contains(wgpu::Features::TIMESTAMP_QUERY);
-        Ok(Self { device: ctx.device, queue: ctx.queue, adapter, software, timestamps, errors })
+        Ok(Self {
+            device: ctx.device,
+            queue: ctx.queue,
+            adapter,
+            software,
+            timestamps,
+            transfers: Default::default(),
+            errors,
+        })
     }
 
     /// The first wgpu error reported since the last call, if any.
@@ -45,8 +55,38 @@ impl Gpu {
         }
     }
 
-    /// Waits until the queue is idle.
+    /// Writes `bytes` into `buffer` at `offset` (counted as uploaded).
+    pub fn write(&self, buffer: &wgpu::Buffer, offset: u64, bytes: &[u8]) {
+        self.transfers.uploaded(bytes.len() as u64);
+        self.queue.write_buffer(buffer, offset, bytes);
+    }
+
+    /// Submits `encoder` after a copy of `size` bytes of `src`, waits, and returns them
+    /// (counted as read back).
+    pub fn read_back(
+        &self,
+        encoder: wgpu::CommandEncoder,
+        src: &wgpu::Buffer,
+        size: u64,
+    ) -> Result<Vec<u8>, EngineError> {
+        self.transfers.read_back(size);
+        super::util::read_back(&self.device, &self.queue, encoder, src, size)
+    }
+
+    /// Reads a whole 2D texture back, rows unpadded (counted as read back).
+    pub fn read_texture(
+        &self,
+        texture: &wgpu::Texture,
+        bytes_per_texel: u32,
+    ) -> Result<Vec<u8>, EngineError> {
+        let bytes = super::util::read_texture(&self.device, &self.queue, texture, bytes_per_texel)?;
+        self.transfers.read_back(bytes.len() as u64);
+        Ok(bytes)
+    }
+
+    /// Waits until the queue is idle (counted as a wait).
     pub fn wait(&self) -> Result<(), EngineError> {
+        self.transfers.waited();
         self.device
             .poll(wgpu::PollType::wait_indefinitely())
             .map(|_| ())

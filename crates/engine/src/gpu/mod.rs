@@ -5,10 +5,12 @@ mod context;
 mod scene;
 mod targets;
 mod timer;
+mod transfers;
 mod util;
 
 pub use context::Gpu;
 pub use scene::SceneBuffers;
 pub use targets::{GBUFFER_FORMATS, GBufferTargets, HDR_FORMAT};
 pub use timer::TimestampTimer;
+pub use transfers::{TransferCounts, Transfers};
 pub(crate) use util::*;

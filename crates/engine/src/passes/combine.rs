@@ -4,7 +4,9 @@
 
 use super::raycast::{RayBatch, RayCastPass};
 use crate::EngineError;
-use crate::gpu::{GBufferTargets, bind_group, draw_fullscreen, fullscreen_pipeline, storage_empty};
+use crate::gpu::{
+    GBufferTargets, Gpu, bind_group, draw_fullscreen, fullscreen_pipeline, storage_empty,
+};
 use glam::Vec3;
 
 pub struct CombinePass {
@@ -27,14 +29,14 @@ impl CombinePass {
     }
 
     /// Uploads the radiance traced for `batch` (`radiance[i]` for `batch.rays[i]`).
-    pub fn upload(&self, queue: &wgpu::Queue, batch: &RayBatch, radiance: &[Vec3]) {
+    pub fn upload(&self, gpu: &Gpu, batch: &RayBatch, radiance: &[Vec3]) {
         let mut data = vec![[0.0f32; 4]; self.texels * 2];
         for (&(texel, refract), r) in batch.slots.iter().zip(radiance) {
             if let Some(slot) = data.get_mut(texel as usize * 2 + usize::from(refract)) {
                 *slot = r.extend(1.0).to_array();
             }
         }
-        queue.write_buffer(&self.traced, 0, bytemuck::cast_slice(&data));
+        gpu.write(&self.traced, 0, bytemuck::cast_slice(&data));
     }
 
     /// Records the combination of `targets.lit` and the traced radiance into

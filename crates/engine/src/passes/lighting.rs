@@ -5,8 +5,8 @@
 use super::{lpv::LpvState, sky::SkyState};
 use crate::EngineError;
 use crate::gpu::{
-    GBufferTargets, bind_group, compute_pipeline, dispatch, draw_fullscreen, fullscreen_pipeline,
-    storage_empty,
+    GBufferTargets, Gpu, bind_group, compute_pipeline, dispatch, draw_fullscreen,
+    fullscreen_pipeline, storage_empty,
 };
 
 pub struct LightingPass {
@@ -58,12 +58,12 @@ impl LightingPass {
     /// Records the queries, the lookups that are needed, and the lighting.
     pub fn record(
         &self,
-        device: &wgpu::Device,
+        gpu: &Gpu,
         enc: &mut wgpu::CommandEncoder,
         targets: &GBufferTargets,
         inputs: &LightingInputs<'_>,
     ) {
-        let tv = wgpu::BindingResource::TextureView;
+        let (device, tv) = (&gpu.device, wgpu::BindingResource::TextureView);
         if inputs.sky_volume || inputs.lpv.is_some() {
             let bg = bind_group(
                 device,
@@ -84,10 +84,10 @@ impl LightingPass {
             );
         }
         if let (true, Some(sky)) = (inputs.sky_volume, inputs.sky) {
-            sky.record_lookup(device, enc, &self.sky_q, &self.sky_out, self.pixels);
+            sky.record_lookup(gpu, enc, &self.sky_q, &self.sky_out, self.pixels);
         }
         if let Some(lpv) = inputs.lpv {
-            lpv.record_lookup(device, enc, &self.lpv_q, &self.lpv_out, self.pixels);
+            lpv.record_lookup(gpu, enc, &self.lpv_q, &self.lpv_out, self.pixels);
         }
         let skymap = inputs.sky.map(|s| &s.map_buffer).unwrap_or(inputs.lights);
         let bg = bind_group(

@@ -4,7 +4,7 @@
 //! and a per-pixel lookup by the crate's own kernel. The RSM is still read back: `lpv`
 //! injects from a VPL list until it takes the RSM textures itself.
 
-use crate::gpu::{Gpu, SceneBuffers, compute_pipeline, dispatch_lookup, storage, uniform};
+use crate::gpu::{Gpu, SceneBuffers, compute_pipeline, dispatch_lookup, storage_empty, uniform};
 use crate::{EngineError, Settings};
 use glam::Vec3;
 use lpv::gpu::{GpuGrid, GpuLookupParams};
@@ -19,9 +19,15 @@ pub struct LpvState {
     albedo: Vec<Vec3>,
     pub volumes: wgpu::Buffer,
     lookup: wgpu::ComputePipeline,
+    lookup_params: wgpu::Buffer,
     pub vpl_count: usize,
     /// Inject and propagate with the GPU kernels (else the crate's CPU path).
     pub on_gpu: bool,
+}
+
+/// Bytes of all cascades' volumes (their size is fixed by the settings).
+fn volume_bytes(lpv: &Lpv) -> u64 {
+    lpv.cascades().iter().map(|c| c.volume.data.len() as u64 * 4).sum()
 }
 
 impl LpvState {
@@ -48,13 +54,19 @@ impl LpvState {
                 })
             })
             .collect();
+        let volumes = storage_empty(&gpu.device, "lpv volumes", volume_bytes(&lpv));
         Ok(Self {
             lpv,
             gpu_lpv: lpv::gpu::GpuLpv::new(&gpu.device),
             rsm,
             albedo,
-            volumes: storage(&gpu.device, "lpv volumes", &[0u8; 16]),
+            volumes,
             lookup: compute_pipeline(&gpu.device, "lpv lookup", lpv::gpu::LOOKUP_WGSL, "lookup")?,
+            lookup_params: uniform(
+                &gpu.device,
+                "lpv lookup",
+                bytemuck::bytes_of(&GpuLookupParams::default()),
+            ),
             vpl_count: 0,
             on_gpu: settings.lpv_on_gpu.unwrap_or(!gpu.software),
         })
@@ -92,6 +104,11 @@ impl LpvState {
             .map_err(tech)?;
         gpu.queue.submit([enc.finish()]);
         let (rsm, _depth) = self.rsm.read_back(&gpu.device, &gpu.queue).map_err(tech)?;
+        // Depth, flux, normal, position: four copies and waits.
+        let texels = (rsm.width * rsm.height) as u64;
+        for bytes_per_texel in [4, 8, 8, 16] {
+            gpu.transfers.read_back(texels * bytes_per_texel);
+        }
         let vpls: Vec<Vpl> = rsm
             .extract_vpls(1)
             .map_err(tech)?
@@ -119,14 +136,14 @@ impl LpvState {
         }
         let data: Vec<f32> =
             self.lpv.cascades().iter().flat_map(|c| c.volume.data.iter().copied()).collect();
-        self.volumes = storage(&gpu.device, "lpv volumes", bytemuck::cast_slice(&data));
+        gpu.write(&self.volumes, 0, bytemuck::cast_slice(&data));
         Ok(())
     }
 
     /// Records the per-pixel irradiance lookup from `queries` (position, normal) to `out`.
     pub fn record_lookup(
         &self,
-        device: &wgpu::Device,
+        gpu: &Gpu,
         enc: &mut wgpu::CommandEncoder,
         queries: &wgpu::Buffer,
         out: &wgpu::Buffer,
@@ -143,7 +160,8 @@ impl LpvState {
         for (i, c) in self.lpv.cascades().iter().enumerate().take(4) {
             params.grids[i] = GpuGrid::new(&c.grid, 0, 1.0, 0);
         }
-        let params = uniform(device, "lpv lookup", bytemuck::bytes_of(&params));
-        dispatch_lookup(device, enc, &self.lookup, [&params, &self.volumes, queries, out], count);
+        gpu.write(&self.lookup_params, 0, bytemuck::bytes_of(&params));
+        let buffers = [&self.lookup_params, &self.volumes, queries, out];
+        dispatch_lookup(&gpu.device, enc, &self.lookup, buffers, count);
     }
 }

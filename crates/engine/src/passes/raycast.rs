@@ -2,9 +2,7 @@
 //! resolution, read back for the CPU ray tracer.
 
 use crate::EngineError;
-use crate::gpu::{
-    GBufferTargets, bind_group, compute_pipeline, dispatch, read_back, storage_empty,
-};
+use crate::gpu::{GBufferTargets, Gpu, bind_group, compute_pipeline, dispatch, storage_empty};
 use crate::trace::TraceRay;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
@@ -55,13 +53,12 @@ impl RayCastPass {
     /// Writes the buffer on the GPU and reads it back as the rays to trace.
     pub fn run(
         &self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
+        gpu: &Gpu,
         targets: &GBufferTargets,
         frame: &wgpu::Buffer,
         materials: &wgpu::Buffer,
     ) -> Result<RayBatch, EngineError> {
-        let tv = wgpu::BindingResource::TextureView;
+        let (device, tv) = (&gpu.device, wgpu::BindingResource::TextureView);
         let bg = bind_group(
             device,
             &self.pipeline.get_bind_group_layout(0),
@@ -77,7 +74,7 @@ impl RayCastPass {
         let (qw, qh) = targets.quarter();
         let mut enc = device.create_command_encoder(&Default::default());
         dispatch(&mut enc, &self.pipeline, &bg, [qw.div_ceil(8), qh.div_ceil(8), 1]);
-        let bytes = read_back(device, queue, enc, &self.rays, self.texels as u64 * 48)?;
+        let bytes = gpu.read_back(enc, &self.rays, self.texels as u64 * 48)?;
         let texels: Vec<RayCast> = bytemuck::pod_collect_to_vec(&bytes);
         Ok(batch(&texels))
     }

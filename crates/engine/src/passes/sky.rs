@@ -2,7 +2,7 @@
 //! the sun moved, and the sky-light irradiance volume from `sky_volume`, filled layer by
 //! layer over frames and looked up per pixel by its own WGSL kernel.
 
-use crate::gpu::{Gpu, compute_pipeline, dispatch_lookup, storage, uniform};
+use crate::gpu::{Gpu, compute_pipeline, dispatch_lookup, storage, storage_empty, uniform};
 use crate::{EngineError, Settings};
 use atmosphere::{Sky, SkyMap, SkyMapSettings, SkyRadiance as _};
 use glam::Vec3;
@@ -62,7 +62,11 @@ impl SkyState {
             sky,
             map: None,
             map_size: settings.sky_map_size,
-            map_buffer: storage(&gpu.device, "sky map", &[0u8; 16]),
+            map_buffer: storage_empty(
+                &gpu.device,
+                "sky map",
+                settings.sky_map_size as u64 * settings.sky_map_size as u64 * 16,
+            ),
             volume,
             probes,
             lookup,
@@ -87,7 +91,7 @@ impl SkyState {
         let settings = SkyMapSettings { size: self.map_size, ..SkyMapSettings::DEFAULT };
         let map = SkyMap::new(&self.sky, settings, sun_dir).map_err(tech)?;
         let texels: Vec<[f32; 4]> = map.texels().iter().map(|t| t.extend(0.0).to_array()).collect();
-        self.map_buffer = storage(&gpu.device, "sky map", bytemuck::cast_slice(&texels));
+        gpu.write(&self.map_buffer, 0, bytemuck::cast_slice(&texels));
         self.map = Some(map);
         self.volume.sky_changed();
         Ok(())
@@ -107,7 +111,7 @@ impl SkyState {
         self.volume
             .fill_layers(layers, &MapSky(map))
             .map_err(|e| EngineError::technique("sky_volume", e))?;
-        gpu.queue.write_buffer(&self.probes, 0, self.volume.gpu_probe_bytes());
+        gpu.write(&self.probes, 0, self.volume.gpu_probe_bytes());
         Ok(())
     }
 
@@ -115,14 +119,14 @@ impl SkyState {
     /// (`albedo / pi * E`).
     pub fn record_lookup(
         &self,
-        device: &wgpu::Device,
+        gpu: &Gpu,
         enc: &mut wgpu::CommandEncoder,
         queries: &wgpu::Buffer,
         out: &wgpu::Buffer,
         count: u32,
     ) {
         dispatch_lookup(
-            device,
+            &gpu.device,
             enc,
             &self.lookup,
             [&self.lookup_params, &self.probes, queries, out],
