@@ -133,7 +133,7 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
     let (mut frame_ms, mut transfers) = (Vec::new(), Vec::new());
     let mut traced = 0;
     for _ in 0..job.frames.max(1) {
-        let f = renderer.render_frame()?;
+        let f = renderer.advance_frame()?;
         frame_ms.push(f.wall_ms);
         transfers.push(f.transfers);
         traced += usize::from(f.ray_traced);

@@ -4,6 +4,7 @@
 //! ray tracing on a worker thread while the GPU lights the view) and reports.
 
 use crate::frame::{FLAG_BLINN, FLAG_LPV, FLAG_SHADOWS, FLAG_SKY, FLAG_SKY_VOLUME, FrameUniform};
+use crate::passes::display::{Exposure, Shown};
 use crate::passes::lighting::LightingInputs;
 use crate::passes::raycast::RayBatch;
 use crate::settings::Specular;
@@ -16,16 +17,10 @@ use std::sync::atomic::Ordering;
 /// Traced radiance per ray of the batch.
 pub struct Traced(pub Vec<Vec3>);
 
-/// The frame as read back: linear HDR RGBA.
-pub struct HdrFrame {
-    pub width: u32,
-    pub height: u32,
-    pub pixels: Vec<[f32; 4]>,
-}
-
 /// Handles to the graph's resources the renderer reads.
 pub struct Outputs {
-    pub hdr: Res<HdrFrame>,
+    /// Which HDR target the display image of the frame was made from.
+    pub shown: Res<Shown>,
     pub sky_volume: PassId,
 }
 
@@ -41,7 +36,7 @@ pub mod pass {
     pub const RAY_TRACING: &str = "ray tracing";
     pub const LIGHTING: &str = "lighting";
     pub const COMBINE: &str = "traced upload + combine";
-    pub const READBACK: &str = "readback";
+    pub const TONE_MAPPING: &str = "tone mapping";
 }
 
 fn camera_key(c: &FrameCtx) -> [i64; 6] {
@@ -101,8 +96,8 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
     let traced = g.resource::<Traced>("traced radiance");
     let lit = g.resource::<u64>("lit view");
     let combined = g.resource::<u64>("combined view");
-    let hdr = g.resource::<HdrFrame>("hdr frame");
-    g.output(hdr);
+    let shown = g.resource::<Shown>("display image");
+    g.output(shown);
 
     g.sync_point(pass::SKY_MAP)
         .writes(sky_map)
@@ -334,24 +329,27 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
             Ok(())
         });
 
-    g.sync_point(pass::READBACK).reads(lit).reads(combined).writes(hdr).cached().run(
+    // Every frame: eye adaptation moves on even when the view is unchanged.
+    g.gpu_pass(pass::TONE_MAPPING).reads(lit).reads(combined).writes(shown).run(
         move |io| -> PassResult {
             let c = io.ctx();
             let s = &c.state;
-            let t = &s.targets;
-            let texture = if io.try_read(combined).is_some() && c.needs.ray_tracing() {
-                &t.combined_texture
-            } else {
-                &t.lit_texture
+            let combined = io.try_read(combined).is_some() && c.needs.ray_tracing();
+            let which = if combined { Shown::Combined } else { Shown::Lit };
+            let set = &s.settings;
+            let mut enc = s.gpu.device.create_command_encoder(&Default::default());
+            let exposure = Exposure {
+                dt: c.dt,
+                rate: set.adaptation_per_s,
+                key: set.key,
+                reset: c.reset_exposure,
             };
-            let bytes = s.gpu.read_texture(texture, 8)?;
-            let halves: Vec<half::f16> = bytemuck::pod_collect_to_vec(&bytes);
-            let pixels =
-                halves.chunks_exact(4).map(|h| [h[0], h[1], h[2], h[3]].map(f32::from)).collect();
+            s.display.record(&s.gpu, &mut enc, which, exposure);
+            s.gpu.queue.submit([enc.finish()]);
             s.gpu.take_error()?;
-            io.put(hdr, HdrFrame { width: t.width, height: t.height, pixels })?;
+            io.put(shown, which)?;
             Ok(())
         },
     );
-    (g, Outputs { hdr, sky_volume })
+    (g, Outputs { shown, sky_volume })
 }

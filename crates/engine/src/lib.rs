@@ -78,5 +78,5 @@ pub mod trace;
 
 pub use error::EngineError;
 pub use graph::pass;
-pub use renderer::{Frame, Renderer};
+pub use renderer::{Frame, FrameStats, HdrFrame, Renderer};
 pub use settings::{Preset, Settings, Specular};

@@ -2,9 +2,9 @@
 //! and a sun to move, and [`Renderer::render_frame`], which returns the image and the report
 //! of every pass.
 
-use crate::gpu::TimestampTimer;
-use crate::graph::{self, HdrFrame, pass};
-use crate::passes::tonemap::{ToneMapper, log_average};
+use crate::gpu::{TimestampTimer, TransferCounts};
+use crate::graph::{self, pass};
+use crate::passes::display::Shown;
 use crate::state::{FrameCtx, State, SunLight};
 use crate::{EngineError, Settings};
 use frame_scheduler::{FrameReport, PassId, Res, Scheduler};
@@ -13,22 +13,44 @@ use std::path::Path;
 use std::sync::Arc;
 use std::time::Instant;
 
-/// One rendered frame.
+/// A frame's image as read back: linear HDR RGBA, row-major, top row first.
+pub struct HdrFrame {
+    pub width: u32,
+    pub height: u32,
+    pub pixels: Vec<[f32; 4]>,
+}
+
+/// What rendering a frame did, without its image ([`Renderer::advance_frame`]).
+pub struct FrameStats {
+    /// Every pass: ran, skipped or reused, why, and its cost.
+    pub report: FrameReport,
+    /// Wall-clock time of the frame (scheduling, GPU waits, CPU work).
+    pub wall_ms: f64,
+    /// Whether the ray-tracing pass ran in this frame.
+    pub ray_traced: bool,
+    /// Bytes uploaded and read back and CPU waits on the GPU during the frame.
+    pub transfers: TransferCounts,
+    pub needs: scene::SceneNeeds,
+}
+
+/// One rendered frame with its images ([`Renderer::render_frame`]).
 pub struct Frame {
     pub width: u32,
     pub height: u32,
     /// Linear HDR radiance, row-major, top row first.
     pub hdr: Arc<HdrFrame>,
-    /// Tone-mapped sRGB, RGBA8.
+    /// Tone-mapped sRGB, RGBA8 (the GPU's display image).
     pub ldr: Vec<u8>,
     /// Every pass: ran, skipped or reused, why, and its cost.
     pub report: FrameReport,
-    /// Wall-clock time of the frame (scheduling, GPU waits, CPU work, read-back).
+    /// Wall-clock time of the frame (scheduling, GPU waits, CPU work), not counting the
+    /// read-back of its images.
     pub wall_ms: f64,
     /// Whether the ray-tracing pass ran in this frame.
     pub ray_traced: bool,
-    /// Bytes uploaded and read back and CPU waits on the GPU during the frame.
-    pub transfers: crate::gpu::TransferCounts,
+    /// Bytes uploaded and read back and CPU waits on the GPU during the frame, not counting
+    /// the read-back of its images.
+    pub transfers: TransferCounts,
     pub needs: scene::SceneNeeds,
 }
 
@@ -62,11 +84,10 @@ pub(crate) fn io_err(path: &Path, e: impl std::fmt::Display) -> EngineError {
 pub struct Renderer {
     state: Arc<State>,
     scheduler: Scheduler<FrameCtx>,
-    hdr: Res<HdrFrame>,
+    shown: Res<Shown>,
     sky_volume: PassId,
     scene: scene::Scene,
     camera: scene::Camera,
-    tonemapper: ToneMapper,
     last_frame: Option<Instant>,
     /// Seconds per frame for eye adaptation (None: wall clock).
     fixed_dt: Option<f32>,
@@ -86,11 +107,10 @@ impl Renderer {
         Ok(Self {
             state,
             scheduler,
-            hdr: out.hdr,
+            shown: out.shown,
             sky_volume: out.sky_volume,
             scene,
             camera,
-            tonemapper: ToneMapper::default(),
             last_frame: None,
             fixed_dt: None,
             component: None,
@@ -172,12 +192,33 @@ impl Renderer {
         Ok(Some(SunLight { dir, irradiance, angular_radius: sun.angular_radius }))
     }
 
-    /// Renders one frame.
+    /// Renders one frame and reads its images back (HDR and display).
     pub fn render_frame(&mut self) -> Result<Frame, EngineError> {
+        let stats = self.advance_frame()?;
+        let (hdr, ldr) = self.read_frame()?;
+        Ok(Frame {
+            width: hdr.width,
+            height: hdr.height,
+            hdr: Arc::new(hdr),
+            ldr,
+            report: stats.report,
+            wall_ms: stats.wall_ms,
+            ray_traced: stats.ray_traced,
+            transfers: stats.transfers,
+            needs: stats.needs,
+        })
+    }
+
+    /// Renders one frame on the GPU and reads nothing back but what the passes need (a
+    /// window presents [`Self::display_texture`]).
+    pub fn advance_frame(&mut self) -> Result<FrameStats, EngineError> {
         let t0 = Instant::now();
         // What moved between frames (uploads at creation, a sun change) is not this frame's.
         self.state.gpu.transfers.take();
         let needs = scene::SceneNeeds::of(&self.scene, &self.camera);
+        let dt = self
+            .fixed_dt
+            .unwrap_or_else(|| self.last_frame.map_or(0.0, |l| t0.duration_since(l).as_secs_f32()));
         let ctx = FrameCtx {
             state: Arc::clone(&self.state),
             camera: self.camera,
@@ -185,6 +226,8 @@ impl Renderer {
             sun: self.sun_light()?,
             frame: self.scheduler.frames(),
             component: crate::components::code(self.component),
+            dt,
+            reset_exposure: self.last_frame.is_none(),
         };
         let mut timer = TimestampTimer::new(&self.state.gpu.device, &self.state.gpu.queue);
         let report = self.scheduler.run_frame_timed(&ctx, &mut timer).map_err(|e| match e {
@@ -192,29 +235,39 @@ impl Renderer {
                 EngineError::Pass { pass, message: source.to_string() }
             }
         })?;
-        let hdr = self
-            .scheduler
-            .get(self.hdr)
-            .ok_or_else(|| EngineError::Gpu("the frame was not read back".into()))?;
-        let now = Instant::now();
-        let dt = self.fixed_dt.unwrap_or_else(|| {
-            self.last_frame.map_or(0.0, |l| now.duration_since(l).as_secs_f32())
-        });
-        self.last_frame = Some(now);
-        let s = &self.state.settings;
-        self.tonemapper.adapt(log_average(&hdr.pixels), dt, s.adaptation_per_s);
-        let ldr = self.tonemapper.map(&hdr.pixels, s.key);
+        self.last_frame = Some(Instant::now());
         let ray_traced = report.pass(pass::RAY_TRACING).is_some_and(|p| p.outcome.executed());
-        Ok(Frame {
-            width: hdr.width,
-            height: hdr.height,
-            hdr,
-            ldr,
+        Ok(FrameStats {
             report,
             wall_ms: t0.elapsed().as_secs_f64() * 1e3,
             ray_traced,
             transfers: self.state.gpu.transfers.take(),
             needs,
         })
+    }
+
+    /// The display image of the last frame (RGBA8, sRGB-encoded values in a linear format).
+    pub fn display_texture(&self) -> &wgpu::Texture {
+        &self.state.display.ldr_texture
+    }
+
+    /// Reads the last frame's HDR image and display image back.
+    pub fn read_frame(&self) -> Result<(HdrFrame, Vec<u8>), EngineError> {
+        let s = &self.state;
+        let shown = self
+            .scheduler
+            .get(self.shown)
+            .ok_or_else(|| EngineError::Gpu("no frame has been rendered".into()))?;
+        let t = &s.targets;
+        let texture = match *shown {
+            Shown::Combined => &t.combined_texture,
+            Shown::Lit => &t.lit_texture,
+        };
+        let halves: Vec<half::f16> = bytemuck::pod_collect_to_vec(&s.gpu.read_texture(texture, 8)?);
+        let pixels =
+            halves.chunks_exact(4).map(|h| [h[0], h[1], h[2], h[3]].map(f32::from)).collect();
+        let ldr = s.gpu.read_texture(&s.display.ldr_texture, 4)?;
+        s.gpu.take_error()?;
+        Ok((HdrFrame { width: t.width, height: t.height, pixels }, ldr))
     }
 }

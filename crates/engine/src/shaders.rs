@@ -6,6 +6,7 @@ const LIGHTING: &str = include_str!("../../../shaders/engine/lighting.wgsl");
 const QUERIES: &str = include_str!("../../../shaders/engine/queries.wgsl");
 const RAYCAST: &str = include_str!("../../../shaders/engine/raycast.wgsl");
 const COMBINE: &str = include_str!("../../../shaders/engine/combine.wgsl");
+const TONEMAP: &str = include_str!("../../../shaders/engine/tonemap.wgsl");
 
 /// Every complete shader as `(name, source)`, for the pipelines and the naga test.
 pub fn all() -> Vec<(&'static str, String)> {
@@ -15,6 +16,7 @@ pub fn all() -> Vec<(&'static str, String)> {
         ("queries", queries()),
         ("raycast", raycast()),
         ("combine", combine()),
+        ("tonemap", tonemap()),
     ]
 }
 
@@ -37,4 +39,8 @@ pub fn raycast() -> String {
 
 pub fn combine() -> String {
     format!("{COMMON}\n{COMBINE}")
+}
+
+pub fn tonemap() -> String {
+    TONEMAP.to_owned()
 }

@@ -4,6 +4,7 @@
 use crate::gpu::{GBufferTargets, Gpu, SceneBuffers, storage, uniform};
 use crate::passes::{
     combine::CombinePass,
+    display::DisplayPass,
     gbuffer::GBufferPass,
     lighting::LightingPass,
     lpv::LpvState,
@@ -30,6 +31,7 @@ pub struct State {
     pub lighting: LightingPass,
     pub raycast: RayCastPass,
     pub combine: CombinePass,
+    pub display: DisplayPass,
     pub sky: Option<RwLock<SkyState>>,
     pub lpv: RwLock<LpvState>,
     pub trace: TraceScene,
@@ -61,6 +63,9 @@ pub struct FrameCtx {
     pub frame: u64,
     /// Which lighting component the frame shows (`crate::components::code`; 0 the full frame).
     pub component: u32,
+    /// Seconds of eye adaptation this frame, and whether exposure adapts at once instead.
+    pub dt: f32,
+    pub reset_exposure: bool,
 }
 
 impl State {
@@ -88,6 +93,7 @@ impl State {
             lighting: LightingPass::new(device, &targets)?,
             raycast: RayCastPass::new(device, &targets)?,
             combine: CombinePass::new(device, &targets)?,
+            display: DisplayPass::new(device, &targets)?,
             lpv: RwLock::new(LpvState::new(&gpu, &buffers, &settings)?),
             trace: TraceScene::new(scene)?,
             frame: uniform(

@@ -195,7 +195,7 @@ mod tests {
         use crate::pass::*;
         let mapped = [SKY_VOLUME, LPV, RAY_TRACING, LIGHTING];
         let unmapped =
-            [SKY_MAP, SHADOW_MAPS, POINT_SHADOWS, GBUFFER, RAY_CASTING, COMBINE, READBACK];
+            [SKY_MAP, SHADOW_MAPS, POINT_SHADOWS, GBUFFER, RAY_CASTING, COMBINE, TONE_MAPPING];
         assert!(mapped.iter().all(|p| thesis_pass_for(p).is_some()));
         assert!(unmapped.iter().all(|p| thesis_pass_for(p).is_none()));
         assert_eq!(thesis_pass_for("ray tracing").unwrap().ms, 36.0);

@@ -2,6 +2,7 @@
 //! records or runs it.
 
 pub mod combine;
+pub mod display;
 pub mod gbuffer;
 pub mod lighting;
 pub mod lpv;

@@ -1,6 +1,8 @@
 //! HDR to display (thesis 3.7): Reinhard's global operator with the log-average luminance
 //! (with the small bias that keeps black pixels from sending it to zero), eye adaptation over
-//! frames, and the sRGB transfer function. Runs on the CPU on the read-back HDR frame.
+//! frames, and the sRGB transfer function, on the CPU: the twin of the GPU pass the renderer
+//! runs ([`super::display`], `shaders/engine/tonemap.wgsl`), for tests and tools that hold an
+//! HDR image (`tests/display.rs` keeps the two equal).
 
 use rayon::prelude::*;
 

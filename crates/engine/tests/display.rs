@@ -1,0 +1,49 @@
+//! The GPU tone mapper (`shaders/engine/tonemap.wgsl`) against its CPU twin
+//! (`engine::passes::tonemap::ToneMapper`): the same display image from the same HDR frame,
+//! on the first frame (exposure adapts at once) and after a frame of adaptation; and a frame
+//! rendered without its images reads back nothing but what its passes need.
+
+mod common;
+
+use engine::passes::tonemap::{ToneMapper, log_average};
+
+/// Channels differing by more than one step of 8 bits, and the largest difference.
+fn compare(gpu: &[u8], cpu: &[u8]) -> (usize, u8) {
+    let off = gpu.iter().zip(cpu).filter(|(a, b)| a.abs_diff(**b) > 1).count();
+    let max = gpu.iter().zip(cpu).map(|(a, b)| a.abs_diff(*b)).max().unwrap_or(0);
+    (off, max)
+}
+
+#[test]
+fn gpu_tone_mapping_matches_the_cpu_twin() {
+    let Some(mut r) = common::generated(scene::Generated::CornellWindow, 96, 64) else { return };
+    r.set_fixed_frame_time(Some(0.25));
+    let s = r.settings().clone();
+    let f1 = r.render_frame().expect("frame 1");
+    let mut cpu = ToneMapper::default();
+    cpu.adapt(log_average(&f1.hdr.pixels), 0.0, s.adaptation_per_s);
+    let (off, max) = compare(&f1.ldr, &cpu.map(&f1.hdr.pixels, s.key));
+    assert!(off == 0 && max <= 1, "frame 1: {off} channels off by more than 1 (max {max})");
+    // A different view: the exposure moves a quarter second towards its new average.
+    let mut cam = *r.camera();
+    cam.forward = (cam.forward + glam::Vec3::new(0.4, -0.3, 0.0)).normalize();
+    r.set_camera(cam).expect("camera");
+    let f2 = r.render_frame().expect("frame 2");
+    let a = cpu.adapt(log_average(&f2.hdr.pixels), 0.25, s.adaptation_per_s);
+    let (off, max) = compare(&f2.ldr, &cpu.map(&f2.hdr.pixels, s.key));
+    assert!(off == 0 && max <= 1, "frame 2 (adapted {a}): {off} channels off (max {max})");
+    // The display image is not the HDR image clamped: exposure was applied.
+    assert!(f2.ldr.iter().any(|&v| v > 30 && v < 250), "a mid-grey somewhere");
+}
+
+#[test]
+fn a_frame_without_images_reads_back_only_what_its_passes_need() {
+    let Some(mut r) = common::generated(scene::Generated::PlaneBox, 96, 64) else { return };
+    r.advance_frame().expect("frame 1");
+    let still = r.advance_frame().expect("frame 2");
+    assert_eq!(still.transfers.read_back_bytes, 0, "a still frame reads nothing back");
+    assert_eq!(still.transfers.cpu_waits, 0, "a still frame never waits for the GPU");
+    // The images are read on demand: HDR (8 bytes a pixel) and display (4).
+    let (hdr, ldr) = r.read_frame().expect("read");
+    assert_eq!((hdr.pixels.len(), ldr.len()), (96 * 64, 96 * 64 * 4));
+}
