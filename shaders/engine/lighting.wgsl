@@ -2,6 +2,7 @@
 // include: shadows/pcss.inc.wgsl
 // include: shadows/csm.inc.wgsl
 // include: shadows/cube.inc.wgsl
+// include: ssao/ssao.inc.wgsl
 // Deferred lighting of the main view (thesis 3.3, 4.2, 5.3.6-5.3.8): the sun with Phong (or
 // Blinn-Phong) and stabilised-CSM PCSS shadows, point lights, sky light from the sky volume
 // and one diffuse bounce from the LPV (both looked up per pixel by the crates' own kernels
@@ -111,50 +112,21 @@ fn sky_radiance(dir: vec3<f32>) -> vec3<f32> {
     return mix(a, b, t.y);
 }
 
-fn hash(p: vec2<u32>) -> f32 {
-    var h = p.x * 1664525u + p.y * 1013904223u + 374761393u;
-    h = (h ^ (h >> 16u)) * 2246822519u;
-    h = (h ^ (h >> 13u)) * 3266489917u;
-    h = h ^ (h >> 16u);
-    return f32(h) / 4294967296.0;
+fn ssao_depth(x: i32, y: i32) -> f32 {
+    return textureLoad(depth_t, vec2<i32>(x, y), 0).x;
 }
 
-// Screen-space ambient occlusion (thesis 5.3.8) around p in the hemisphere of the geometry
-// normal: the fraction of sample points in front of the depth buffer.
+// Screen-space ambient occlusion (thesis 5.3.8; ssao/ssao.inc.wgsl) with the frame's knobs.
 fn ambient_occlusion(px: vec2<u32>, p: vec3<f32>, gn: vec3<f32>) -> f32 {
-    let n = u32(frame.params.y);
-    if n == 0u {
-        return 1.0;
-    }
-    let radius = frame.params.x;
-    let t = normalize(select(vec3<f32>(1.0, 0.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), abs(gn.x) > 0.9) - gn * dot(gn, select(vec3<f32>(1.0, 0.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), abs(gn.x) > 0.9)));
-    let b = cross(gn, t);
-    let rot = hash(px) * 6.2831853;
-    var open = 0.0;
-    for (var i = 0u; i < n; i = i + 1u) {
-        let u = (f32(i) + 0.5) / f32(n);
-        let phi = rot + f32(i) * 2.3999632;
-        let r = sqrt(u);
-        let dir = t * (r * cos(phi)) + b * (r * sin(phi)) + gn * sqrt(max(1.0 - u, 0.0));
-        let q = p + dir * radius * mix(0.2, 1.0, u);
-        let clip = frame.view_proj * vec4<f32>(q, 1.0);
-        if clip.w <= 0.0 {
-            open += 1.0;
-            continue;
-        }
-        let ndc = clip.xy / clip.w;
-        let sx = i32((ndc.x * 0.5 + 0.5) * f32(frame.size.x));
-        let sy = i32((0.5 - ndc.y * 0.5) * f32(frame.size.y));
-        if sx < 0 || sy < 0 || sx >= i32(frame.size.x) || sy >= i32(frame.size.y) {
-            open += 1.0;
-            continue;
-        }
-        let scene_depth = textureLoad(depth_t, vec2<i32>(sx, sy), 0).x;
-        let q_depth = dot(q - frame.camera_pos.xyz, frame.camera_fwd.xyz);
-        let blocked = scene_depth > 0.0 && scene_depth < q_depth - 0.02 && q_depth - scene_depth < radius * 2.0;
-        open += select(1.0, 0.0, blocked);
-    }
-    return open / f32(n);
+    var s: SsaoParams;
+    s.view_proj = frame.view_proj;
+    s.camera_pos = frame.camera_pos;
+    s.camera_fwd = frame.camera_fwd;
+    s.width = frame.size.x;
+    s.height = frame.size.y;
+    s.samples = u32(frame.params.y);
+    s.radius = frame.params.x;
+    return ssao(s, px, p, gn);
 }
 
 @fragment

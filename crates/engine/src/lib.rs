@@ -11,15 +11,20 @@
 //! |---|---|---|---|
 //! | `sky map` | paraboloid sky map, rebuilt only when the sun moved | 4.3 | `atmosphere` |
 //! | `sky volume` | sky-light irradiance volume, a few layers per frame | 5.3 | `sky_volume` |
-//! | `shadow maps` | stabilised cascades fitted to the camera, PCSS parameters | 4.2 | `shadows` |
-//! | `point shadows` | cube maps of the shadow-casting point lights | 4.2 | `shadows` |
+//! | `shadow maps` | stabilised cascades fitted to the camera, PCSS parameters (resident pass) | 4.2 | `shadows` |
+//! | `point shadows` | one depth cube array for the shadow-casting point lights (resident pass) | 4.2 | `shadows` |
 //! | `g-buffer` | albedo + gloss, normal + power, geometry normal + material, depth | Table 3.1 | - |
 //! | `rsm + lpv` | sun RSM → VPLs → injection + propagation in 3 cascades | 5.2, 5.3.7 | `shadows`, `lpv` |
 //! | `ray casting buffer` | quarter-res origins + reflection/refraction rays, read back | 6.2.1 | - |
 //! | `ray tracing` | CPU kd-tree tracing and shading of those rays, on a worker thread | 6.2-6.3 | `kdtree_tracer` |
-//! | `lighting` | sun (Phong/Blinn-Phong, PCSS), point lights, sky volume + LPV lookups, SSAO | 3.3, 5.3.6-5.3.8 | all |
+//! | `lighting` | sun (Phong/Blinn-Phong, PCSS), point lights, sky volume + LPV lookups, SSAO (the crates' WGSL snippets) | 3.3, 5.3.6-5.3.8 | `shadows`, `ssao`, `sky_volume`, `lpv` |
 //! | `traced upload + combine` | traced radiance added with Fresnel weights, depth-aware 3x3 gather | 6.3.4-6.3.5 | - |
-//! | `readback` | HDR frame to the CPU; Reinhard with log-average luminance and eye adaptation | 3.7 | - |
+//! | `tone mapping` | on the GPU, every frame: log-average luminance, eye adaptation, Reinhard, sRGB | 3.7 | - |
+//!
+//! Nothing is read back for the frame itself but the ray-casting buffer (and, until `lpv`
+//! injects from the RSM on the GPU, the RSM): [`Renderer::advance_frame`] renders,
+//! [`Renderer::read_frame`] reads the HDR and display images when a caller wants them, and
+//! [`Renderer::render_frame`] does both. The report counts the bytes each frame moved.
 //!
 //! The ray tracing runs on a rayon worker while the main thread submits the GPU lighting
 //! (`frame_scheduler`'s overlapped mode, thesis Fig. 6.14). Every pass's outcome (ran,
@@ -33,7 +38,7 @@
 //! let scene = scene::Generated::City.build(1);
 //! let mut renderer = Renderer::new(scene, Settings::preset(Preset::Default, 1600, 900))?;
 //! for _ in 0..renderer.sky_volume_frames() {
-//!     renderer.render_frame()?; // the sky volume fills over these frames
+//!     renderer.advance_frame()?; // the sky volume fills over these frames
 //! }
 //! let frame = renderer.render_frame()?;
 //! frame.write_png("city.png")?;

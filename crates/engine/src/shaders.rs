@@ -26,7 +26,8 @@ pub fn gbuffer() -> String {
 
 pub fn lighting() -> String {
     use shadows::gpu::{CSM_INC_WGSL, CUBE_INC_WGSL, PCSS_INC_WGSL};
-    format!("{COMMON}\n{PCSS_INC_WGSL}\n{CSM_INC_WGSL}\n{CUBE_INC_WGSL}\n{LIGHTING}")
+    let ssao = ssao::SSAO_INC_WGSL;
+    format!("{COMMON}\n{PCSS_INC_WGSL}\n{CSM_INC_WGSL}\n{CUBE_INC_WGSL}\n{ssao}\n{LIGHTING}")
 }
 
 pub fn queries() -> String {

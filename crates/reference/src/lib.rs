@@ -74,7 +74,7 @@ pub use from_scene::{SceneLighting, camera_from_scene, world_from_scene};
 pub use image::Image;
 pub use integrator::{Component, PathSettings};
 pub use material::{AlbedoTexture, AlphaTest, CoverageFn, Material, Sample, TextureFn};
-pub use query::{QueryPoint, QuerySettings, irradiance, radiance};
+pub use query::{QueryPoint, QuerySettings, ambient_occlusion, irradiance, radiance};
 pub use render::{RenderSettings, Renderer, TILE, render};
 pub use rng::Rng;
 pub use sampling::luminance;

@@ -89,6 +89,38 @@ pub fn irradiance(
         .collect())
 }
 
+/// Ambient occlusion at each point: the cosine-weighted fraction of the hemisphere around
+/// the normal from which a ray travels `radius` without hitting anything opaque (1: open,
+/// 0: enclosed), the truth for screen-space ambient occlusion. Every colour channel of an
+/// estimate holds the same value. A point with a non-finite position, a zero normal or a
+/// radius that is not positive and finite gets a zero estimate with zero samples.
+pub fn ambient_occlusion(
+    world: &World,
+    points: &[QueryPoint],
+    radius: f32,
+    settings: &QuerySettings,
+) -> Result<Vec<Estimate>, crate::Error> {
+    settings.validate()?;
+    Ok(points
+        .par_iter()
+        .enumerate()
+        .map(|(i, q)| {
+            let Some(n) = q.normal.try_normalize() else { return Estimate::default() };
+            if !(q.position.is_finite() && radius.is_finite() && radius > 0.0) {
+                return Estimate::default();
+            }
+            let mut m = Moments::default();
+            for s in 0..settings.samples {
+                let mut rng = Rng::for_sample(settings.seed, i as u64, s as u64);
+                let d = crate::sampling::cosine_hemisphere(n, rng.next_2d());
+                let o = world.offset(q.position, n, d);
+                m.add(Vec3::splat(if world.occluded(o, d, radius) { 0.0 } else { 1.0 }));
+            }
+            m.estimate()
+        })
+        .collect())
+}
+
 /// Radiance of `component` arriving along each ray `(origin, direction)`: e.g. what a
 /// reflection ray from a G-buffer point should see ([`Component::Full`]).
 pub fn radiance(

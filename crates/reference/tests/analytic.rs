@@ -261,3 +261,38 @@ fn point_light_irradiance_is_i_cos_over_d2_within_its_radius() {
     assert!((e[0].mean.x - want).abs() < 1e-4, "{:?} vs {want}", e[0]);
     assert_eq!(e[1].mean, Vec3::ZERO, "beyond the radius");
 }
+
+/// Between two large parallel planes `h` apart, a cosine-weighted ray from the floor reaches
+/// the ceiling within `r` when `cos > h / r`, so the open fraction is `(h / r)^2` (1 when
+/// `h >= r`): the ambient-occlusion query reproduces it.
+#[test]
+fn ambient_occlusion_between_parallel_planes_is_analytic() {
+    let mut b = World::builder();
+    let m = b.material(Material::diffuse(Vec3::splat(0.5)));
+    let h = 1.0f32;
+    b.quad(
+        Vec3::new(-500.0, 0.0, -500.0),
+        Vec3::new(1000.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 1000.0),
+        m,
+    );
+    b.quad(
+        Vec3::new(-500.0, h, -500.0),
+        Vec3::new(0.0, 0.0, 1000.0),
+        Vec3::new(1000.0, 0.0, 0.0),
+        m,
+    );
+    let world = b.build().unwrap();
+    let pts: Vec<QueryPoint> =
+        (0..8).map(|i| QueryPoint::new(Vec3::new(i as f32, 0.0, -(i as f32)), Vec3::Y)).collect();
+    let q = QuerySettings { samples: 2000, ..QuerySettings::DEFAULT };
+    for r in [0.5f32, 2.0, 4.0] {
+        let est = reference::ambient_occlusion(&world, &pts, r, &q).unwrap();
+        let (mean, se) = pooled(&est);
+        let expected = ((h / r) as f64).powi(2).min(1.0);
+        assert!((mean - expected).abs() < 3.0 * se + 1e-9, "r {r}: {mean} +- {se} vs {expected}");
+    }
+    // Bad radius: zero samples, not a panic.
+    let bad = reference::ambient_occlusion(&world, &pts, f32::NAN, &q).unwrap();
+    assert!(bad.iter().all(|e| e.samples == 0));
+}
