@@ -54,17 +54,15 @@ impl QueryPoint {
     }
 }
 
-/// Irradiance of `component` at each point (for [`Component::Reflections`] the same as
-/// [`Component::Full`]). A point with a non-finite position or a zero normal gets a zero
-/// estimate with zero samples. Deterministic for a seed, whatever the thread count.
-pub fn irradiance(
-    world: &World,
-    component: Component,
+/// The mean of `sample(position, unit normal, rng)` over `settings.samples` samples at each
+/// point, in parallel with one seeded stream per point and sample; a point with a non-finite
+/// position or a zero normal gets a zero estimate with zero samples.
+fn per_point(
     points: &[QueryPoint],
     settings: &QuerySettings,
-) -> Result<Vec<Estimate>, crate::Error> {
-    settings.validate()?;
-    Ok(points
+    sample: impl Fn(Vec3, Vec3, &mut Rng) -> Vec3 + Sync,
+) -> Vec<Estimate> {
+    points
         .par_iter()
         .enumerate()
         .map(|(i, q)| {
@@ -75,18 +73,26 @@ pub fn irradiance(
             let mut m = Moments::default();
             for s in 0..settings.samples {
                 let mut rng = Rng::for_sample(settings.seed, i as u64, s as u64);
-                m.add(integrator::irradiance(
-                    world,
-                    component,
-                    q.position,
-                    n,
-                    &settings.path,
-                    &mut rng,
-                ));
+                m.add(sample(q.position, n, &mut rng));
             }
             m.estimate()
         })
-        .collect())
+        .collect()
+}
+
+/// Irradiance of `component` at each point (for [`Component::Reflections`] the same as
+/// [`Component::Full`]). A point with a non-finite position or a zero normal gets a zero
+/// estimate with zero samples. Deterministic for a seed, whatever the thread count.
+pub fn irradiance(
+    world: &World,
+    component: Component,
+    points: &[QueryPoint],
+    settings: &QuerySettings,
+) -> Result<Vec<Estimate>, crate::Error> {
+    settings.validate()?;
+    Ok(per_point(points, settings, |p, n, rng| {
+        integrator::irradiance(world, component, p, n, &settings.path, rng)
+    }))
 }
 
 /// Ambient occlusion at each point: the cosine-weighted fraction of the hemisphere around
@@ -101,24 +107,14 @@ pub fn ambient_occlusion(
     settings: &QuerySettings,
 ) -> Result<Vec<Estimate>, crate::Error> {
     settings.validate()?;
-    Ok(points
-        .par_iter()
-        .enumerate()
-        .map(|(i, q)| {
-            let Some(n) = q.normal.try_normalize() else { return Estimate::default() };
-            if !(q.position.is_finite() && radius.is_finite() && radius > 0.0) {
-                return Estimate::default();
-            }
-            let mut m = Moments::default();
-            for s in 0..settings.samples {
-                let mut rng = Rng::for_sample(settings.seed, i as u64, s as u64);
-                let d = crate::sampling::cosine_hemisphere(n, rng.next_2d());
-                let o = world.offset(q.position, n, d);
-                m.add(Vec3::splat(if world.occluded(o, d, radius) { 0.0 } else { 1.0 }));
-            }
-            m.estimate()
-        })
-        .collect())
+    if !(radius.is_finite() && radius > 0.0) {
+        return Ok(vec![Estimate::default(); points.len()]);
+    }
+    Ok(per_point(points, settings, |p, n, rng| {
+        let d = crate::sampling::cosine_hemisphere(n, rng.next_2d());
+        let open = !world.occluded(world.offset(p, n, d), d, radius);
+        Vec3::splat(if open { 1.0 } else { 0.0 })
+    }))
 }
 
 /// Radiance of `component` arriving along each ray `(origin, direction)`: e.g. what a

@@ -34,6 +34,54 @@ pub(crate) fn depth_attachment(
     }
 }
 
+/// A shadow pipeline: `source`'s `vs_main` over the caller's `vertex` layout (normals at
+/// location 1 when there are colour `targets`, drawn by `fs_main`), group 0 the draw `slots`,
+/// depth test and write, no culling (both windings cast; cube faces mirror them).
+pub(crate) fn shadow_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    source: &str,
+    slots: &UniformSlots,
+    vertex: VertexLayout,
+    targets: &[Option<wgpu::ColorTargetState>],
+) -> wgpu::RenderPipeline {
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    });
+    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: &[Some(&slots.layout)],
+        immediate_size: 0,
+    });
+    let attributes = vertex.attributes(!targets.is_empty());
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(label),
+        layout: Some(&layout),
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some("vs_main"),
+            compilation_options: Default::default(),
+            buffers: &[Some(wgpu::VertexBufferLayout {
+                array_stride: vertex.stride,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: &attributes,
+            })],
+        },
+        primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
+        depth_stencil: Some(depth_state()),
+        multisample: Default::default(),
+        fragment: (!targets.is_empty()).then(|| wgpu::FragmentState {
+            module: &module,
+            entry_point: Some("fs_main"),
+            compilation_options: Default::default(),
+            targets,
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
 pub(crate) struct DepthLayers {
     pipeline: wgpu::RenderPipeline,
     pub(crate) texture: wgpu::Texture,
@@ -64,37 +112,7 @@ impl DepthLayers {
         }
         device_call(device, || {
             let slots = UniformSlots::new(device, label, 64, layers, wgpu::ShaderStages::VERTEX);
-            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some(label),
-                source: wgpu::ShaderSource::Wgsl(DEPTH_WGSL.into()),
-            });
-            let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some(label),
-                bind_group_layouts: &[Some(&slots.layout)],
-                immediate_size: 0,
-            });
-            let attributes = vertex.attributes(false);
-            let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(label),
-                layout: Some(&layout),
-                vertex: wgpu::VertexState {
-                    module: &module,
-                    entry_point: Some("vs_main"),
-                    compilation_options: Default::default(),
-                    buffers: &[Some(wgpu::VertexBufferLayout {
-                        array_stride: vertex.stride,
-                        step_mode: wgpu::VertexStepMode::Vertex,
-                        attributes: &attributes,
-                    })],
-                },
-                // No culling: both windings cast (cube faces mirror them).
-                primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
-                depth_stencil: Some(depth_state()),
-                multisample: Default::default(),
-                fragment: None,
-                multiview_mask: None,
-                cache: None,
-            });
+            let pipeline = shadow_pipeline(device, label, DEPTH_WGSL, &slots, vertex, &[]);
             let texture = device.create_texture(&wgpu::TextureDescriptor {
                 label: Some(label),
                 size: wgpu::Extent3d { width: size, height: size, depth_or_array_layers: layers },

@@ -2,7 +2,7 @@
 //! once at the map's resolution; each record writes the per-draw blocks (flux from each
 //! draw's albedo) and draws the caller's geometry.
 
-use super::depth_layers::{DEPTH_FORMAT, depth_attachment, depth_state};
+use super::depth_layers::{DEPTH_FORMAT, depth_attachment, shadow_pipeline};
 use super::geometry::{Geometry, VertexLayout};
 use super::slots::UniformSlots;
 use super::{RSM_WGSL, device_call, readback};
@@ -80,16 +80,6 @@ impl ReflectiveShadowMap {
         device_call(device, || {
             let stages = wgpu::ShaderStages::VERTEX_FRAGMENT;
             let slots = UniformSlots::new(device, "rsm draws", 160, max_draws, stages);
-            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("shadows rsm"),
-                source: wgpu::ShaderSource::Wgsl(RSM_WGSL.into()),
-            });
-            let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some("shadows rsm"),
-                bind_group_layouts: &[Some(&slots.layout)],
-                immediate_size: 0,
-            });
-            let attributes = vertex.attributes(true);
             let color = RSM_FORMATS.map(|format| {
                 Some(wgpu::ColorTargetState {
                     format,
@@ -97,31 +87,7 @@ impl ReflectiveShadowMap {
                     write_mask: wgpu::ColorWrites::ALL,
                 })
             });
-            let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some("shadows rsm"),
-                layout: Some(&layout),
-                vertex: wgpu::VertexState {
-                    module: &module,
-                    entry_point: Some("vs_main"),
-                    compilation_options: Default::default(),
-                    buffers: &[Some(wgpu::VertexBufferLayout {
-                        array_stride: vertex.stride,
-                        step_mode: wgpu::VertexStepMode::Vertex,
-                        attributes: &attributes,
-                    })],
-                },
-                primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
-                depth_stencil: Some(depth_state()),
-                multisample: Default::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some("fs_main"),
-                    compilation_options: Default::default(),
-                    targets: &color,
-                }),
-                multiview_mask: None,
-                cache: None,
-            });
+            let pipeline = shadow_pipeline(device, "shadows rsm", RSM_WGSL, &slots, vertex, &color);
             let depth = target(device, resolution, DEPTH_FORMAT);
             let targets = RSM_FORMATS.map(|f| target(device, resolution, f));
             Self {
