@@ -91,7 +91,7 @@ fn main() -> anyhow::Result<()> {
     }
 }
 
-/// `cargo run --release -p engine --bin serein-render -- ARGS` (`--help-render` becomes
+/// `cargo run --release -p app --bin serein-render -- ARGS` (`--help-render` becomes
 /// `--help`).
 fn render(root: &std::path::Path, args: &[String]) -> anyhow::Result<()> {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
@@ -100,7 +100,7 @@ fn render(root: &std::path::Path, args: &[String]) -> anyhow::Result<()> {
     run_cmd(
         std::process::Command::new(cargo)
             .current_dir(root)
-            .args(["run", "--release", "-q", "-p", "engine", "--bin", "serein-render", "--"])
+            .args(["run", "--release", "-q", "-p", "app", "--bin", "serein-render", "--"])
             .args(args),
     )
 }

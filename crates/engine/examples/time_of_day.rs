@@ -7,9 +7,10 @@
 use engine::{Preset, Renderer, Settings, pass};
 use scene::{CivilDate, Sun};
 
-fn main() -> anyhow::Result<()> {
+fn main() -> Result<(), Box<dyn std::error::Error>> {
     let size = std::env::args().nth(1).unwrap_or_else(|| "480x270".into());
-    let (w, h) = engine::cli::parse_size(&size)?;
+    let (w, h) = size.split_once('x').ok_or("size: expected WIDTHxHEIGHT")?;
+    let (w, h): (u32, u32) = (w.parse()?, h.parse()?);
     let out = std::path::Path::new("target/time_of_day");
     std::fs::create_dir_all(out)?;
     let mut r =

@@ -1,6 +1,7 @@
-//! The component ledger: the engine's frame split into the lighting terms the `reference`
-//! path tracer computes one by one ([`reference::Component`]), each as a linear HDR image of
-//! the same view, with the passes that produce it.
+//! The engine's frame split into lighting terms, each as a linear HDR image of the same view,
+//! with the passes that produce it: the terms the `reference` path tracer computes one by one
+//! (its `Component`, variant for variant), so that a comparison tool (the `app` crate's
+//! component ledger) can put each beside its truth.
 //!
 //! | component | engine | reference |
 //! |---|---|---|
@@ -19,9 +20,43 @@
 //! image but `full` (the sky seen directly is in `full` only, on both sides).
 
 use crate::graph::pass;
+use crate::renderer::HdrFrame;
 use crate::{EngineError, Renderer};
 use frame_scheduler::FrameReport;
-use reference::{Component, Image};
+
+/// A lighting term the frame can show on its own.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Component {
+    /// The sun's direct light with its shadows.
+    SunDirect,
+    /// One bounce of sunlight (the LPV).
+    SunIndirectDiffuse,
+    /// Sky irradiance at the first surface (the sky volume), with ambient occlusion.
+    SkyIrradiance,
+    /// What the traced mirror and glass rays add.
+    Reflections,
+    /// Point lights with their cube shadows.
+    PointLights,
+    /// Emissive surfaces.
+    Emission,
+    /// The whole frame.
+    Full,
+}
+
+impl Component {
+    /// The component's name, as the reference's component of the same meaning is named.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::SunDirect => "sun_direct",
+            Self::SunIndirectDiffuse => "sun_indirect_diffuse",
+            Self::SkyIrradiance => "sky_irradiance",
+            Self::Reflections => "reflections",
+            Self::PointLights => "point_lights",
+            Self::Emission => "emission",
+            Self::Full => "full",
+        }
+    }
+}
 
 /// The components the engine can show, in the order of the ledger's rows.
 pub const COMPONENTS: [Component; 7] = [
@@ -91,7 +126,7 @@ pub fn passes_ms(report: &FrameReport, component: Component) -> f64 {
 pub struct ComponentImage {
     pub component: Component,
     /// Linear HDR, in the reference component's units.
-    pub image: Image,
+    pub image: HdrFrame,
 }
 
 /// Renders every component of [`COMPONENTS`] of the renderer's current view (one frame
@@ -101,9 +136,9 @@ pub fn render_components(renderer: &mut Renderer) -> Result<Vec<ComponentImage>,
     let mut out = Vec::with_capacity(COMPONENTS.len());
     for c in COMPONENTS {
         renderer.set_component(Some(c));
-        let f = renderer.render_frame();
+        let f = renderer.advance_frame().and_then(|_| renderer.read_frame());
         renderer.set_component(None);
-        out.push(ComponentImage { component: c, image: f?.image() });
+        out.push(ComponentImage { component: c, image: f?.0 });
     }
     Ok(out)
 }

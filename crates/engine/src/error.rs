@@ -33,7 +33,7 @@ pub enum EngineError {
 }
 
 impl EngineError {
-    pub(crate) fn technique(technique: &'static str, e: impl std::fmt::Display) -> Self {
+    pub fn technique(technique: &'static str, e: impl std::fmt::Display) -> Self {
         Self::Technique { technique, message: e.to_string() }
     }
 }

@@ -45,15 +45,15 @@
 //! println!("{}", frame.report.to_markdown());
 //! # Ok::<(), engine::EngineError>(())
 //! ```
-//! `cargo xtask render` (binary `serein-render`, module [`cli`]) is the same from the command
-//! line; [`compare`] measures a frame against the `reference` path tracer, and
-//! [`components`] splits it into the lighting terms the reference computes one by one.
+//! `cargo xtask render` (binary `serein-render` of the `app` crate) is the same from the
+//! command line, and measures a frame against the `reference` path tracer; [`components`]
+//! splits a frame into the lighting terms the reference computes one by one. This library
+//! depends on no command-line, progress-bar or reference crate.
 //!
 //! ## What differs from the thesis
 //! - The traced hits are shaded on the CPU with the same BRDF as the deferred pass (sun with
 //!   shadow rays instead of overlapped shadow maps, sky volume + LPV irradiance), instead of
 //!   uploading a traced G-buffer and lighting it on the GPU.
-//! - Tone mapping runs on the CPU on the read-back HDR frame (which `frame.exr` needs anyway).
 //! - The LPV is looked up 1.5 cells along the normal at the default and high presets (half a
 //!   cell in the thesis and the `lpv` crate): a surface sees less of its own injected bounce
 //!   ([`settings::ENGINE_LPV_LOOKUP_OFFSET`] has the ledger's figures).
@@ -62,26 +62,21 @@
 //! - Glass is handled by the combine pass (reflection + refraction rays weighted by Fresnel),
 //!   not by a forward pass for transparent surfaces; normal maps are not applied.
 
-pub mod cli;
-pub mod compare;
 pub mod components;
-pub mod contact_sheet;
 pub mod error;
 mod frame;
 mod gpu;
 pub mod graph;
-pub mod ledger;
 pub mod passes;
-pub mod regions;
 mod renderer;
-pub mod report;
 pub mod settings;
 pub mod shaders;
 mod state;
-mod thesis;
 pub mod trace;
 
+pub use components::Component;
 pub use error::EngineError;
+pub use gpu::TransferCounts;
 pub use graph::pass;
 pub use renderer::{Frame, FrameStats, HdrFrame, Renderer};
 pub use settings::{Preset, Settings, Specular};

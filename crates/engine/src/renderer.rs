@@ -20,6 +20,24 @@ pub struct HdrFrame {
     pub pixels: Vec<[f32; 4]>,
 }
 
+impl HdrFrame {
+    /// Writes the image as OpenEXR (RGB, 32-bit float).
+    pub fn write_exr(&self, path: impl AsRef<Path>) -> Result<(), EngineError> {
+        let path = path.as_ref();
+        let w = self.width as usize;
+        exr::prelude::write_rgb_file(path, w, self.height as usize, |x, y| {
+            let p = self.pixels[y * w + x];
+            (p[0], p[1], p[2])
+        })
+        .map_err(|e| io_err(path, e))
+    }
+
+    /// Linear RGB of each pixel.
+    pub fn rgb(&self) -> impl Iterator<Item = Vec3> + '_ {
+        self.pixels.iter().map(|p| Vec3::new(p[0], p[1], p[2]))
+    }
+}
+
 /// What rendering a frame did, without its image ([`Renderer::advance_frame`]).
 pub struct FrameStats {
     /// Every pass: ran, skipped or reused, why, and its cost.
@@ -55,17 +73,9 @@ pub struct Frame {
 }
 
 impl Frame {
-    /// The HDR image as `reference::Image` (for comparisons and EXR output).
-    pub fn image(&self) -> reference::Image {
-        let mut im = reference::Image::new(self.width, self.height);
-        im.pixels = self.hdr.pixels.iter().map(|p| Vec3::new(p[0], p[1], p[2])).collect();
-        im
-    }
-
     /// Writes the linear HDR frame as OpenEXR.
     pub fn write_exr(&self, path: impl AsRef<Path>) -> Result<(), EngineError> {
-        let path = path.as_ref();
-        self.image().write_exr(path).map_err(|e| io_err(path, e))
+        self.hdr.write_exr(path)
     }
 
     /// Writes the tone-mapped frame as PNG.
@@ -91,7 +101,7 @@ pub struct Renderer {
     last_frame: Option<Instant>,
     /// Seconds per frame for eye adaptation (None: wall clock).
     fixed_dt: Option<f32>,
-    component: Option<reference::Component>,
+    component: Option<crate::components::Component>,
 }
 
 impl Renderer {
@@ -161,7 +171,7 @@ impl Renderer {
 
     /// Which lighting component the next frames show (`None`: the full frame); see
     /// [`crate::components`] for what each one means.
-    pub fn set_component(&mut self, component: Option<reference::Component>) {
+    pub fn set_component(&mut self, component: Option<crate::components::Component>) {
         self.component = component;
     }
 

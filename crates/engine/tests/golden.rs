@@ -216,6 +216,13 @@ fn golden_furnace() {
     check(Generated::Furnace);
 }
 
+/// The HDR frame as the reference's image type (for its exposure and sRGB helpers).
+fn image(hdr: &engine::HdrFrame) -> reference::Image {
+    let mut im = reference::Image::new(hdr.width, hdr.height);
+    im.pixels = hdr.rgb().collect();
+    im
+}
+
 /// Every lighting component of `g` (`engine::components`) as its own golden,
 /// `tests/golden/<scene>_<component>.png`, tone-mapped at the full frame's exposure (so a
 /// component too bright or too dark shows as such).
@@ -225,17 +232,14 @@ fn check_components(g: Generated) {
     for _ in 0..r.sky_volume_frames() + 1 {
         full = Some(r.render_frame().unwrap_or_else(|e| panic!("{}: {e}", g.name())));
     }
-    let exposure = full.expect("a frame").image().auto_exposure();
+    let exposure = image(&full.expect("a frame").hdr).auto_exposure();
     let images = engine::components::render_components(&mut r)
         .unwrap_or_else(|e| panic!("{}: components: {e}", g.name()));
-    for c in images.iter().filter(|c| c.component != reference::Component::Full) {
-        assert!(c.image.pixels.iter().all(|p| p.is_finite() && p.min_element() >= 0.0));
-        let rgba: Vec<u8> = c
-            .image
-            .to_srgb8(exposure)
-            .chunks_exact(3)
-            .flat_map(|p| [p[0], p[1], p[2], 255])
-            .collect();
+    for c in images.iter().filter(|c| c.component != engine::Component::Full) {
+        let im = image(&c.image);
+        assert!(im.pixels.iter().all(|p| p.is_finite() && p.min_element() >= 0.0));
+        let rgba: Vec<u8> =
+            im.to_srgb8(exposure).chunks_exact(3).flat_map(|p| [p[0], p[1], p[2], 255]).collect();
         check_image(&format!("{}_{}", g.name(), c.component.name()), &rgba);
     }
 }

@@ -7,8 +7,8 @@
 
 mod common;
 
+use engine::Component;
 use engine::{Preset, Settings};
-use reference::Component;
 
 const W: u32 = 64;
 const H: u32 = 36;

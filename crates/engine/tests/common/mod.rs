@@ -84,18 +84,3 @@ pub fn scratch_dir(test: &str) -> std::path::PathBuf {
     std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("creating {}: {e}", dir.display()));
     dir
 }
-
-/// A `RenderJob` for tests: small, low preset, no progress bar.
-pub fn job(scene: &str, out: &std::path::Path) -> engine::cli::RenderJob {
-    engine::cli::RenderJob {
-        scene: scene.into(),
-        width: 96,
-        height: 54,
-        preset: Preset::Low,
-        frames: 2,
-        out: out.to_path_buf(),
-        progress: false,
-        seed: SEED,
-        ..Default::default()
-    }
-}

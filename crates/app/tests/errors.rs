@@ -4,7 +4,7 @@
 
 mod common;
 
-use engine::cli::{load_scene, parse_size, run};
+use app::cli::{load_scene, parse_size, run};
 use engine::{EngineError, Preset, Renderer, Settings};
 use scene::Generated;
 use std::path::Path;
@@ -94,7 +94,7 @@ fn invalid_settings_are_a_settings_error() {
     }
     // Through the command-line entry point too.
     let out = common::scratch_dir("errors-settings");
-    let job = engine::cli::RenderJob { width: 0, height: 0, ..common::job("plane_box", &out) };
+    let job = app::cli::RenderJob { width: 0, height: 0, ..common::job("plane_box", &out) };
     assert!(matches!(run(&job), Err(EngineError::Settings(_))));
     let _ = std::fs::remove_dir_all(&out);
 }

@@ -5,8 +5,8 @@
 
 mod common;
 
+use app::cli::load_scene;
 use engine::EngineError;
-use engine::cli::load_scene;
 use glam::Vec3;
 use scene::{Generated, SceneError};
 

@@ -1,10 +1,10 @@
 //! A scene loaded from a glTF file renders: a box on a ground slab with a camera, written as
-//! a `.gltf` with an embedded base64 buffer, loaded through `engine::cli::load_scene` (with
+//! a `.gltf` with an embedded base64 buffer, loaded through `app::cli::load_scene` (with
 //! a time of day, which gives the sunless file a sun) and rendered.
 
 mod common;
 
-use engine::cli::load_scene;
+use app::cli::load_scene;
 use engine::{Preset, Settings, pass};
 use frame_scheduler::Outcome;
 

@@ -17,11 +17,12 @@
 //! luminance over the whole image (`normaliser`; 1 when the whole component is black).
 
 use crate::compare::{ReferenceRender, reference_component};
-use crate::components::{ComponentImage, passes, passes_ms, render_components};
 use crate::contact_sheet::{Tile, write_contact_sheet};
+use crate::io_err;
 use crate::regions::{RegionMap, region_map};
-use crate::renderer::io_err;
-use crate::{EngineError, Renderer};
+use engine::Component;
+use engine::components::{ComponentImage, passes, passes_ms, render_components};
+use engine::{EngineError, Renderer};
 use frame_scheduler::FrameReport;
 use reference::{Image, luminance};
 use std::fmt::Write;
@@ -107,18 +108,18 @@ pub fn figures(
 
 /// A component's figures over the whole image and every region of `regions`.
 pub fn component_ledger(
-    engine: &ComponentImage,
+    c: Component,
+    engine: &Image,
     reference: &ReferenceRender,
     regions: &RegionMap,
     report: &FrameReport,
 ) -> ComponentLedger {
-    let c = engine.component;
-    let all = 0..engine.image.pixels.len();
-    let lit = figures("all", &engine.image, reference, all.clone(), 1.0).reference_luminance;
+    let all = 0..engine.pixels.len();
+    let lit = figures("all", engine, reference, all.clone(), 1.0).reference_luminance;
     let norm = if lit > 0.0 { lit } else { 1.0 };
-    let mut rows = vec![figures("all", &engine.image, reference, all, norm)];
+    let mut rows = vec![figures("all", engine, reference, all, norm)];
     for (id, name) in regions.names.iter().enumerate() {
-        rows.push(figures(name, &engine.image, reference, regions.pixels(id as u32), norm));
+        rows.push(figures(name, engine, reference, regions.pixels(id as u32), norm));
     }
     ComponentLedger {
         component: c.name().to_string(),
@@ -146,19 +147,20 @@ pub fn run_ledger(
     let images = render_components(renderer)?;
     let mut rows = Vec::with_capacity(images.len());
     let mut tiles = Vec::with_capacity(images.len());
-    for e in &images {
-        let r = reference_component(&scene, &camera, (w, h), spp, e.component, progress)?;
-        let row = component_ledger(e, &r, &regions, report);
+    for ComponentImage { component: c, image } in &images {
+        let image = crate::image_of(image);
+        let rc = crate::to_reference(*c);
+        let r = reference_component(&scene, &camera, (w, h), spp, rc, progress)?;
+        let row = component_ledger(*c, &image, &r, &regions, report);
         if let Some(dir) = out {
             let tech = |err| EngineError::technique("reference", err);
-            let diff = reference::difference_image(&e.image, &r.mean).map_err(tech)?;
-            let name = e.component.name();
-            for (what, im) in [("engine", &e.image), ("reference", &r.mean), ("difference", &diff)]
-            {
+            let diff = reference::difference_image(&image, &r.mean).map_err(tech)?;
+            let name = c.name();
+            for (what, im) in [("engine", &image), ("reference", &r.mean), ("difference", &diff)] {
                 let p = dir.join(format!("{what}_{name}.exr"));
                 im.write_exr(&p).map_err(|err| io_err(&p, err))?;
             }
-            tiles.push(Tile { engine: e.image.clone(), reference: r.mean, figures: row.clone() });
+            tiles.push(Tile { engine: image.clone(), reference: r.mean, figures: row.clone() });
         }
         rows.push(row);
     }

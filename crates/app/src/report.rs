@@ -15,8 +15,8 @@
 //!   "thesis": {...}, "comparison": [...] | null}` (see [`json`]).
 //! * `timeline.svg`: the last frame's CPU/GPU timeline ([`FrameReport::to_svg`]).
 
-use crate::EngineError;
 use crate::thesis::{self, ThesisPass};
+use engine::EngineError;
 use frame_scheduler::{FrameReport, PassRecord};
 use serde_json::{Value, json};
 use std::fmt::Write as _;
@@ -42,7 +42,7 @@ pub struct RunInfo {
     /// Wall-clock milliseconds of every frame.
     pub frame_ms: Vec<f64>,
     /// Bytes uploaded and read back and CPU waits of every frame.
-    pub transfers: Vec<crate::gpu::TransferCounts>,
+    pub transfers: Vec<engine::TransferCounts>,
     /// Frames in which the ray-tracing pass ran.
     pub ray_traced_frames: usize,
     /// Image errors against the reference, when computed.
@@ -174,7 +174,7 @@ fn mib(bytes: u64) -> String {
 
 /// The last frame's transfers (moving camera) and the mean of the still frames after the
 /// first (which fills what every later frame reuses).
-fn transfers_line(t: &[crate::gpu::TransferCounts]) -> Option<String> {
+fn transfers_line(t: &[engine::TransferCounts]) -> Option<String> {
     let last = t.last()?;
     let mut s = format!(
         "last frame: uploaded {}, read back {}, {} CPU waits on the GPU",
@@ -185,7 +185,7 @@ fn transfers_line(t: &[crate::gpu::TransferCounts]) -> Option<String> {
     let still = t.get(1..t.len() - 1).filter(|s| !s.is_empty());
     if let Some(still) = still {
         let n = still.len() as u64;
-        let sum = |f: fn(&crate::gpu::TransferCounts) -> u64| still.iter().map(f).sum::<u64>();
+        let sum = |f: fn(&engine::TransferCounts) -> u64| still.iter().map(f).sum::<u64>();
         let _ = write!(
             s,
             "; still frames 2-{} (mean): uploaded {}, read back {}, {:.1} CPU waits",

@@ -9,7 +9,7 @@
 //!   view-dependent pass really reruns instead of being reused (the time of a frame where
 //!   everything is reused is the setting `reused_frame_ms`). Error = `rel_rms_clamped` of the
 //!   warmed-up frame's linear HDR image against the reference image of the same view
-//!   (`engine::compare::errors`: relative RMS over RGB with both images clamped at
+//!   (`app::compare::errors`: relative RMS over RGB with both images clamped at
 //!   `FIREFLY_CLAMP` times the reference's mean luminance); the unclamped `rel_rms`,
 //!   `mean_rel_luminance`, `luminance_ratio` and the reference's own noise are settings.
 //!   Also: median, sd, min and max frame ms, the mean ms of every pass over the timed frames
@@ -21,7 +21,7 @@
 //!   ms; settings: standard deviation, min, max, the worst frame's index, the share of frames
 //!   that ray traced, and the thesis's Table 7.3 figures beside ours.
 //! - `engine/components_{city,cornell_window,two_rooms}_320x180_{low,default,high}_<component>`:
-//!   the component ledger (`engine::ledger`), one entry per lighting component of
+//!   the component ledger (`app::ledger`), one entry per lighting component of
 //!   `engine::components::COMPONENTS`: time = ms of the passes that produce the component in
 //!   a frame where every per-frame pass ran (camera nudged 1 mm after the warm-up); error =
 //!   the component image's relative RMS against the reference's same component
@@ -37,7 +37,7 @@
 //! Set `ENGINE_SWEEP_IMAGES=<dir>` to also write each engine frame and each reference as PNG
 //! (same exposure per view) and EXR there, to look at what an error figure measures.
 
-use engine::compare::{
+use app::compare::{
     ReferenceErrors, ReferenceRender, errors, reference_component, reference_image,
 };
 use engine::components::{COMPONENTS, passes, passes_ms, render_components};
@@ -273,7 +273,7 @@ fn preset_entry(sweep: &mut Sweep, view: &View, preset: Preset, timed: usize) {
     let mut r = renderer(&view.scene, Settings::preset(preset, w, h));
     r.set_camera(view.camera).expect("camera");
     let (frame, warm_frames) = warm_up(&mut r);
-    let approx = frame.image();
+    let approx = app::image_of(&frame.hdr);
     write_images(&format!("{tag}_engine"), &approx, view.exposure);
     let e = view.errors(&approx);
     let error_frame_ray_tracing = frame
@@ -316,7 +316,7 @@ fn preset_entry(sweep: &mut Sweep, view: &View, preset: Preset, timed: usize) {
             .setting("rel_rms_clamped", e.rel_rms_clamped)
             .setting("mean_rel_luminance", e.mean_rel_luminance)
             .setting("luminance_ratio", e.luminance_ratio)
-            .setting("firefly_clamp_x_mean_luminance", engine::compare::FIREFLY_CLAMP)
+            .setting("firefly_clamp_x_mean_luminance", app::compare::FIREFLY_CLAMP)
             .setting("reference_spp", e.reference_spp)
             .setting("reference_rel_std_error", e.reference_rel_std_error)
             .setting("adapter", r.adapter())
@@ -405,7 +405,7 @@ fn components(sweep: &mut Sweep, which: Generated, w: u32, h: u32, spp: u32) {
         .iter()
         .map(|&c| {
             sweep.stage(&format!("components {name} {w}x{h}: reference {}", c.name()));
-            let r = reference_component(&scene, &camera, (w, h), spp, c, false)
+            let r = reference_component(&scene, &camera, (w, h), spp, app::to_reference(c), false)
                 .expect("reference component");
             let rname = format!("engine/reference_{name}_{w}x{h}_{spp}spp_{}", c.name());
             sweep.entry(
@@ -433,8 +433,9 @@ fn components(sweep: &mut Sweep, which: Generated, w: u32, h: u32, spp: u32) {
         for (img, (reference, rname)) in images.iter().zip(&refs) {
             let c = img.component;
             // The whole image: a black truth (a component the scene lacks) is absolute.
-            let all = 0..img.image.pixels.len();
-            let f = engine::ledger::figures("all", &img.image, reference, all, 1.0);
+            let image = app::image_of(&img.image);
+            let all = 0..image.pixels.len();
+            let f = app::ledger::figures("all", &image, reference, all, 1.0);
             sweep.entry(
                 Entry::new(format!("engine/{tag}_{}", c.name()), "engine", passes_ms(&frame.report, c))
                     .setting("scene", name)

@@ -1,11 +1,11 @@
-//! The component ledger (`engine::ledger`): region maps, the contact sheet and per-region
+//! The component ledger (`app::ledger`): region maps, the contact sheet and per-region
 //! ratios of the engine's components against the reference path tracer.
 
 mod common;
 
+use app::ledger::{Ledger, run_ledger};
+use app::regions::region_map;
 use engine::components::COMPONENTS;
-use engine::ledger::{Ledger, run_ledger};
-use engine::regions::region_map;
 use scene::Generated;
 
 /// The regions of `cornell_window` are its walls (by facing) and boxes; the city's are its

@@ -2,7 +2,7 @@
 //! the image, the report and, on request, the reference image and the error figures.
 
 use crate::report::{RunInfo, write_report};
-use crate::{EngineError, Preset, Renderer, Settings};
+use engine::{EngineError, Preset, Renderer, Settings};
 use std::path::{Path, PathBuf};
 
 /// Options of one render (the command line's, parsed).
@@ -128,7 +128,7 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
     let name = scene.name.clone();
     let settings = Settings::preset(job.preset, job.width, job.height);
     let mut renderer = Renderer::new(scene, settings)?;
-    std::fs::create_dir_all(&job.out).map_err(|e| crate::renderer::io_err(&job.out, e))?;
+    std::fs::create_dir_all(&job.out).map_err(|e| crate::io_err(&job.out, e))?;
     let bar = progress_bar(job.progress, job.frames as u64, "frames");
     let (mut frame_ms, mut transfers) = (Vec::new(), Vec::new());
     let mut traced = 0;

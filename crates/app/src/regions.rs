@@ -9,7 +9,7 @@
 //! ceiling (`down`) and walls by the axis. Regions covering less than [`MIN_SHARE`] of the
 //! image are merged into no region (too few pixels for a figure).
 
-use crate::EngineError;
+use engine::EngineError;
 use glam::Vec3;
 use reference::{SceneLighting, World};
 

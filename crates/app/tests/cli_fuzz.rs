@@ -5,8 +5,8 @@
 //! value, never a panic; a sun the job accepts has a finite unit direction or is refused by
 //! its own validation. Seeded by `PROPTEST_RNG_SEED` like every property test.
 
+use app::cli::{RenderJob, load_scene, parse_size};
 use engine::EngineError;
-use engine::cli::{RenderJob, load_scene, parse_size};
 use proptest::prelude::*;
 
 /// A valid value, or one of its mutations.

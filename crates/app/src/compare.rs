@@ -1,7 +1,7 @@
 //! The engine's image against the `reference` path tracer's image of the same view.
 
-use crate::renderer::io_err;
-use crate::{EngineError, Frame, Renderer};
+use crate::io_err;
+use engine::{EngineError, Frame, Renderer};
 use reference::{Component, Image, RenderSettings, SceneLighting};
 use std::path::Path;
 
@@ -138,7 +138,7 @@ pub fn against_reference(
         spp,
         progress,
     )?;
-    let approx = frame.image();
+    let approx = crate::image_of(&frame.hdr);
     let tech = |e| EngineError::technique("reference", e);
     let exposure = reference.auto_exposure();
     let p = out.join("reference.exr");

@@ -192,7 +192,7 @@ mod tests {
 
     #[test]
     fn engine_passes_map() {
-        use crate::pass::*;
+        use engine::pass::*;
         let mapped = [SKY_VOLUME, LPV, RAY_TRACING, LIGHTING];
         let unmapped =
             [SKY_MAP, SHADOW_MAPS, POINT_SHADOWS, GBUFFER, RAY_CASTING, COMBINE, TONE_MAPPING];

@@ -2,9 +2,9 @@
 //! difference (red: the engine brighter, blue: darker), all three at the reference's
 //! exposure, with the figures written under each in a built-in 3x5 bitmap font.
 
-use crate::EngineError;
+use crate::io_err;
 use crate::ledger::ComponentLedger;
-use crate::renderer::io_err;
+use engine::EngineError;
 use reference::Image;
 use std::path::Path;
 

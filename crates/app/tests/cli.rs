@@ -1,10 +1,10 @@
-//! `engine::cli::run` end to end: a 96x54, 3-frame render into a scratch folder writes
+//! `app::cli::run` end to end: a 96x54, 3-frame render into a scratch folder writes
 //! `frame.exr`, `frame.png`, `report.md`, `report.json` (valid JSON describing the run) and
 //! `timeline.svg`.
 
 mod common;
 
-use engine::cli::run;
+use app::cli::run;
 
 #[test]
 fn run_writes_the_image_the_report_and_the_timeline() {
@@ -14,7 +14,7 @@ fn run_writes_the_image_the_report_and_the_timeline() {
     }
     let dir = common::scratch_dir("cli");
     let out = dir.join("render"); // does not exist yet: run creates it
-    let job = engine::cli::RenderJob { frames: 3, ..common::job("plane_box", &out) };
+    let job = app::cli::RenderJob { frames: 3, ..common::job("plane_box", &out) };
     let info = match run(&job) {
         Ok(info) => info,
         Err(e) => panic!("cli::run failed: {e}"),

@@ -2,9 +2,9 @@
 //! per-pass report. `cargo xtask render` runs it in release mode.
 
 use anyhow::Context;
+use app::cli::{RenderJob, parse_size};
 use clap::Parser;
 use engine::Preset;
-use engine::cli::{RenderJob, parse_size};
 use std::path::PathBuf;
 
 #[derive(Parser)]
@@ -72,8 +72,8 @@ fn main() -> anyhow::Result<()> {
         seed: a.seed,
         progress: !a.quiet,
     };
-    let info = engine::cli::run(&job).context("render failed")?;
-    let (mean, sd, _, _) = engine::report::frame_stats(&info.frame_ms);
+    let info = app::cli::run(&job).context("render failed")?;
+    let (mean, sd, _, _) = app::report::frame_stats(&info.frame_ms);
     println!(
         "{} {}x{} ({}) on {}: {} frames, {mean:.1} ms mean (sd {sd:.1}){}",
         info.scene,
