@@ -3,6 +3,7 @@
 //! and a body that calls the pass's plain function. `frame_scheduler` decides, runs (the CPU
 //! ray tracing on a worker thread while the GPU lights the view) and reports.
 
+use crate::effects::Effect;
 use crate::frame::{FLAG_BLINN, FLAG_LPV, FLAG_SHADOWS, FLAG_SKY, FLAG_SKY_VOLUME, FrameUniform};
 use crate::passes::display::{Exposure, Shown};
 use crate::passes::lighting::LightingInputs;
@@ -78,7 +79,8 @@ fn write_frame_uniform(c: &FrameCtx) {
     }
     let sky_size = s.sky.as_ref().and_then(|k| k.read().ok()).map_or(0, |k| k.map_size());
     u.size = [set.width, set.height, s.scene_lights(), flags];
-    u.params = [set.ssao_radius, set.ssao_samples as f32, sky_size as f32, c.frame as f32];
+    let ao = if c.effects.is_on(Effect::AmbientOcclusion) { set.ssao_samples } else { 0 };
+    u.params = [set.ssao_radius, ao as f32, sky_size as f32, c.frame as f32];
     u.csm[3] = c.component;
     s.gpu.write(&s.frame, 0, bytemuck::bytes_of(&u));
 }
@@ -101,6 +103,9 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
 
     g.sync_point(pass::SKY_MAP)
         .writes(sky_map)
+        .run_if(Effect::SkyLighting.switch_label(), |c: &FrameCtx| {
+            c.effects.is_on(Effect::SkyLighting)
+        })
         .run_if("the scene shows the sky and the sun is up", |c: &FrameCtx| {
             c.state.sky.is_some() && c.needs.sky_lighting.needed
         })
@@ -120,6 +125,9 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
         .gpu_pass(pass::SKY_VOLUME)
         .reads(sky_map)
         .writes(sky_vol)
+        .run_if(Effect::SkyLighting.switch_label(), |c: &FrameCtx| {
+            c.effects.is_on(Effect::SkyLighting)
+        })
         .run_if("the scene shows the sky and the sun is up", |c: &FrameCtx| {
             c.state.sky.is_some() && c.needs.sky_lighting.needed
         })
@@ -138,6 +146,9 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
 
     g.gpu_pass(pass::SHADOW_MAPS)
         .writes(shadow)
+        .run_if(Effect::SunShadows.switch_label(), |c: &FrameCtx| {
+            c.effects.is_on(Effect::SunShadows)
+        })
         .run_if("the sun casts shadows in view", |c: &FrameCtx| {
             c.needs.sun_shadows.needed && c.sun.is_some()
         })
@@ -163,6 +174,9 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
 
     g.gpu_pass(pass::POINT_SHADOWS)
         .writes(cubes)
+        .run_if(Effect::PointLightShadows.switch_label(), |c: &FrameCtx| {
+            c.effects.is_on(Effect::PointLightShadows)
+        })
         .run_if("a shadow-casting point light reaches geometry in view", |c: &FrameCtx| {
             c.needs.point_light_shadows.needed
         })
@@ -191,6 +205,9 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
 
     g.gpu_pass(pass::LPV)
         .writes(lpv)
+        .run_if(Effect::IndirectLight.switch_label(), |c: &FrameCtx| {
+            c.effects.is_on(Effect::IndirectLight)
+        })
         .run_if("the sun lights diffuse surfaces (one indirect bounce)", |c: &FrameCtx| {
             c.needs.indirect_lpv.needed && c.sun.is_some()
         })
@@ -211,6 +228,9 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
         .reads(sky_vol)
         .reads(lpv)
         .writes(batch)
+        .run_if(Effect::RayTracing.switch_label(), |c: &FrameCtx| {
+            c.effects.is_on(Effect::RayTracing)
+        })
         .run_if("a mirror or glass surface is in view", |c: &FrameCtx| c.needs.ray_tracing())
         .cached()
         .run(move |io| -> PassResult {
@@ -226,6 +246,9 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
     g.cpu_job(pass::RAY_TRACING)
         .reads(batch)
         .writes(traced)
+        .run_if(Effect::RayTracing.switch_label(), |c: &FrameCtx| {
+            c.effects.is_on(Effect::RayTracing)
+        })
         .run_if("a mirror or glass surface is in view", |c: &FrameCtx| c.needs.ray_tracing())
         .cached()
         .run(move |io| -> PassResult {
@@ -306,6 +329,9 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
         .reads(batch)
         .reads(traced)
         .writes(combined)
+        .run_if(Effect::RayTracing.switch_label(), |c: &FrameCtx| {
+            c.effects.is_on(Effect::RayTracing)
+        })
         .run_if("a mirror or glass surface is in view", |c: &FrameCtx| c.needs.ray_tracing())
         .cached()
         .key("lighting component shown", |c: &FrameCtx| c.component)

@@ -63,6 +63,7 @@
 //!   not by a forward pass for transparent surfaces; normal maps are not applied.
 
 pub mod components;
+mod effects;
 pub mod error;
 mod frame;
 mod gpu;
@@ -75,6 +76,7 @@ mod state;
 pub mod trace;
 
 pub use components::Component;
+pub use effects::{Effect, Effects};
 pub use error::EngineError;
 pub use gpu::TransferCounts;
 pub use graph::pass;

@@ -2,6 +2,7 @@
 //! and a sun to move, and [`Renderer::render_frame`], which returns the image and the report
 //! of every pass.
 
+use crate::effects::{Effect, Effects};
 use crate::gpu::{TimestampTimer, TransferCounts};
 use crate::graph::{self, pass};
 use crate::passes::display::Shown;
@@ -102,12 +103,35 @@ pub struct Renderer {
     /// Seconds per frame for eye adaptation (None: wall clock).
     fixed_dt: Option<f32>,
     component: Option<crate::components::Component>,
+    effects: Effects,
 }
 
 impl Renderer {
     /// Opens the GPU, uploads `scene` and builds every pass for `settings`.
     pub fn new(scene: scene::Scene, settings: Settings) -> Result<Self, EngineError> {
-        let state = Arc::new(State::new(&scene, settings)?);
+        Self::build(scene, settings, crate::gpu::Gpu::new()?)
+    }
+
+    /// The same on the caller's device (a window's, whose surface shows
+    /// [`Self::display_texture`]); `adapter` describes where it lives. The device needs the
+    /// limits of [`wgpu::Limits::downlevel_defaults`] with the adapter's texture sizes, 8
+    /// storage buffers per stage and cube-array textures.
+    pub fn on_device(
+        scene: scene::Scene,
+        settings: Settings,
+        device: wgpu::Device,
+        queue: wgpu::Queue,
+        adapter: &wgpu::AdapterInfo,
+    ) -> Result<Self, EngineError> {
+        Self::build(scene, settings, crate::gpu::Gpu::from_parts(device, queue, adapter))
+    }
+
+    fn build(
+        scene: scene::Scene,
+        settings: Settings,
+        gpu: crate::gpu::Gpu,
+    ) -> Result<Self, EngineError> {
+        let state = Arc::new(State::new(&scene, settings, gpu)?);
         let layers = state.sky.as_ref().map_or(1, |s| s.read().map_or(1, |s| s.layers()));
         let (g, out) = graph::build(layers, state.settings.sky_layers_per_frame);
         let scheduler =
@@ -124,6 +148,7 @@ impl Renderer {
             last_frame: None,
             fixed_dt: None,
             component: None,
+            effects: Effects::default(),
         })
     }
 
@@ -173,6 +198,17 @@ impl Renderer {
     /// [`crate::components`] for what each one means.
     pub fn set_component(&mut self, component: Option<crate::components::Component>) {
         self.component = component;
+    }
+
+    /// Switches an effect on or off for the next frames; a switched-off effect's passes are
+    /// skipped with the switch as the reason.
+    pub fn set_effect(&mut self, effect: Effect, on: bool) {
+        self.effects.set(effect, on);
+    }
+
+    /// Whether an effect is switched on.
+    pub fn effect(&self, effect: Effect) -> bool {
+        self.effects.is_on(effect)
     }
 
     /// Eye adaptation advances by `dt` seconds per frame instead of the wall clock (for
@@ -225,7 +261,8 @@ impl Renderer {
         let t0 = Instant::now();
         // What moved between frames (uploads at creation, a sun change) is not this frame's.
         self.state.gpu.transfers.take();
-        let needs = scene::SceneNeeds::of(&self.scene, &self.camera);
+        let mut needs = scene::SceneNeeds::of(&self.scene, &self.camera);
+        self.effects.apply(&mut needs);
         let dt = self
             .fixed_dt
             .unwrap_or_else(|| self.last_frame.map_or(0.0, |l| t0.duration_since(l).as_secs_f32()));
@@ -238,6 +275,7 @@ impl Renderer {
             component: crate::components::code(self.component),
             dt,
             reset_exposure: self.last_frame.is_none(),
+            effects: self.effects,
         };
         let mut timer = TimestampTimer::new(&self.state.gpu.device, &self.state.gpu.queue);
         let report = self.scheduler.run_frame_timed(&ctx, &mut timer).map_err(|e| match e {

@@ -66,13 +66,14 @@ pub struct FrameCtx {
     /// Seconds of eye adaptation this frame, and whether exposure adapts at once instead.
     pub dt: f32,
     pub reset_exposure: bool,
+    /// The application's switches (already applied to `needs`).
+    pub effects: crate::effects::Effects,
 }
 
 impl State {
-    pub fn new(scene: &scene::Scene, settings: Settings) -> Result<Self, EngineError> {
+    pub fn new(scene: &scene::Scene, settings: Settings, gpu: Gpu) -> Result<Self, EngineError> {
         settings.validate()?;
         scene.validate()?;
-        let gpu = Gpu::new()?;
         let device = &gpu.device;
         let buffers = SceneBuffers::new(device, &gpu.queue, scene);
         let targets = GBufferTargets::new(device, settings.width, settings.height);

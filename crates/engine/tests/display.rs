@@ -47,3 +47,25 @@ fn a_frame_without_images_reads_back_only_what_its_passes_need() {
     let (hdr, ldr) = r.read_frame().expect("read");
     assert_eq!((hdr.pixels.len(), ldr.len()), (96 * 64, 96 * 64 * 4));
 }
+
+/// A caller's device (as a window makes one for its surface) renders the same frame as the
+/// engine's own.
+#[test]
+fn a_callers_device_renders_the_same_frame() {
+    let Some(mut own) = common::generated(scene::Generated::PlaneBox, 64, 36) else { return };
+    let Some(ctx) = gpu_harness::gpu_test_context() else { return };
+    let settings = own.settings().clone();
+    let described = ctx.describe();
+    let mut theirs = engine::Renderer::on_device(
+        scene::Generated::PlaneBox.build(common::SEED),
+        settings,
+        ctx.device,
+        ctx.queue,
+        &ctx.adapter_info,
+    )
+    .expect("renderer on the caller's device");
+    assert_eq!(theirs.adapter(), described);
+    let (a, b) = (own.render_frame().expect("own"), theirs.render_frame().expect("theirs"));
+    assert_eq!(a.ldr, b.ldr, "the same display image");
+    assert_eq!(theirs.display_texture().format(), wgpu::TextureFormat::Rgba8Unorm);
+}

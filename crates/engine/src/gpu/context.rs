@@ -24,25 +24,28 @@ impl Gpu {
             gpu_harness::GpuError::NoAdapter(m) => EngineError::NoAdapter(m),
             other => EngineError::Gpu(other.to_string()),
         })?;
-        let adapter = ctx.describe();
-        let software = ctx.is_software();
+        Ok(Self::from_parts(ctx.device, ctx.queue, &ctx.adapter_info))
+    }
+
+    /// The engine on a device the caller made (a window's, whose surface it presents to).
+    pub fn from_parts(device: wgpu::Device, queue: wgpu::Queue, info: &wgpu::AdapterInfo) -> Self {
         let errors = Arc::new(Mutex::new(Vec::new()));
         let sink = Arc::clone(&errors);
-        ctx.device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
+        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
             if let Ok(mut v) = sink.lock() {
                 v.push(e.to_string());
             }
         }));
-        let timestamps = ctx.device.features().contains(wgpu::Features::TIMESTAMP_QUERY);
-        Ok(Self {
-            device: ctx.device,
-            queue: ctx.queue,
-            adapter,
-            software,
+        let timestamps = device.features().contains(wgpu::Features::TIMESTAMP_QUERY);
+        Self {
+            device,
+            queue,
+            adapter: format!("{} ({:?}, {:?})", info.name, info.backend, info.device_type),
+            software: info.device_type == wgpu::DeviceType::Cpu,
             timestamps,
             transfers: Default::default(),
             errors,
-        })
+        }
     }
 
     /// The first wgpu error reported since the last call, if any.

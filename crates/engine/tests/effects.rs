@@ -1,0 +1,61 @@
+//! An application's switches: a switched-off effect's passes are skipped with the switch as
+//! the reason, the image changes the way the effect would, and switching back brings the
+//! passes back.
+
+mod common;
+
+use engine::{Effect, pass};
+use frame_scheduler::{Outcome, Reason};
+
+fn skipped_by_switch(f: &engine::Frame, p: &str, e: Effect) {
+    let rec = f.report.pass(p).unwrap_or_else(|| panic!("{p} missing"));
+    assert_eq!(rec.outcome, Outcome::Skipped, "{}", common::describe(f, p));
+    assert_eq!(
+        rec.reason,
+        Reason::ConditionFalse { condition: e.switch_label() },
+        "{}",
+        common::describe(f, p)
+    );
+}
+
+#[test]
+fn switched_off_effects_skip_their_passes_and_come_back() {
+    let Some(mut r) = common::generated(scene::Generated::City, 96, 54) else { return };
+    r.set_fixed_frame_time(Some(0.0));
+    let on = r.render_frame().expect("frame");
+    let (lum_on, _) = common::hdr_stats(&on);
+    // No sun shadows and no occlusion: only ever more light.
+    for e in [Effect::SunShadows, Effect::AmbientOcclusion, Effect::PointLightShadows] {
+        r.set_effect(e, false);
+    }
+    let mut cam = *r.camera();
+    cam.position += cam.forward * 0.01;
+    r.set_camera(cam).unwrap();
+    let unshadowed = r.render_frame().expect("frame");
+    skipped_by_switch(&unshadowed, pass::SHADOW_MAPS, Effect::SunShadows);
+    let need = &unshadowed.needs.sun_shadows;
+    assert!(!need.needed && need.reason == "sun shadows switched off", "{need:?}");
+    let (lum_unshadowed, finite) = common::hdr_stats(&unshadowed);
+    assert!(finite && lum_unshadowed > lum_on * 1.02, "{lum_unshadowed} vs on {lum_on}");
+    // Without the LPV's bounce: less light than with it.
+    r.set_effect(Effect::IndirectLight, false);
+    let unbounced = r.render_frame().expect("frame");
+    skipped_by_switch(&unbounced, pass::LPV, Effect::IndirectLight);
+    let (lum_unbounced, _) = common::hdr_stats(&unbounced);
+    assert!(lum_unbounced < lum_unshadowed * 0.98, "{lum_unbounced} vs {lum_unshadowed}");
+    for e in Effect::ALL {
+        r.set_effect(e, true);
+        assert!(r.effect(e));
+    }
+    cam.position -= cam.forward * 0.01;
+    r.set_camera(cam).unwrap();
+    let back = r.render_frame().expect("frame");
+    // Back at the first frame's camera: the passes serve the frame again (their outputs of
+    // that camera are still valid, so they may be reused rather than rerun).
+    for p in [pass::SHADOW_MAPS, pass::LPV] {
+        let o = common::outcome(&back, p);
+        assert!(matches!(o, Outcome::Ran | Outcome::Reused), "{}", common::describe(&back, p));
+    }
+    let (lum_back, _) = common::hdr_stats(&back);
+    assert!((lum_back - lum_on).abs() < 1e-3 * lum_on, "back {lum_back} vs {lum_on}");
+}
