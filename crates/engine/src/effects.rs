@@ -65,15 +65,9 @@ impl Effect {
 }
 
 /// Which effects are switched on (all, by default).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Effects {
     off: u16,
-}
-
-impl Default for Effects {
-    fn default() -> Self {
-        Self { off: 0 }
-    }
 }
 
 impl Effects {
