@@ -5,6 +5,7 @@
 //! - `cargo xtask bench [--quick] [--json PATH] [--only CRATE]`: every crate's accuracy-vs-time
 //!   sweep, merged into `target/gi-report/` (report.json, report.md, one SVG per technique).
 //! - `cargo xtask render [ARGS]`: the engine's main job (see `serein-render --help`).
+//! - `cargo xtask view [ARGS]`: the engine in a window (see `serein-view --help`).
 //! - `cargo xtask report`: redraws report.md and the charts from an existing report.json.
 //! - `cargo xtask fuzz [--minutes N] [--target NAME] [--seed S]`: the loaders' structure-aware
 //!   fuzzer for N minutes (default 10) with a new seed; summary in `target/fuzz/`.
@@ -75,6 +76,14 @@ enum Command {
         #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
         args: Vec<String>,
     },
+    /// Open the engine in a window (release build of `serein-view`): fly through the city,
+    /// change the time of day, switch effects. `cargo xtask view --help-view` lists the
+    /// options (--scene, --time, --date, --size, --preset, --out, --record).
+    View {
+        /// Arguments for serein-view.
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+        args: Vec<String>,
+    },
 }
 
 fn main() -> anyhow::Result<()> {
@@ -86,21 +95,21 @@ fn main() -> anyhow::Result<()> {
         Command::Fuzz { minutes, target, seed } => {
             fuzz::run(&root, minutes, target.as_deref(), seed.as_deref())
         }
-        Command::Render { args } => render(&root, &args),
+        Command::Render { args } => run_bin(&root, "serein-render", "--help-render", &args),
+        Command::View { args } => run_bin(&root, "serein-view", "--help-view", &args),
         Command::Shaders => shaders::validate_all(&root).map(|n| println!("{n} shaders valid")),
     }
 }
 
-/// `cargo run --release -p app --bin serein-render -- ARGS` (`--help-render` becomes
-/// `--help`).
-fn render(root: &std::path::Path, args: &[String]) -> anyhow::Result<()> {
+/// `cargo run --release -p app --bin BIN -- ARGS` (`help` becomes `--help`).
+fn run_bin(root: &std::path::Path, bin: &str, help: &str, args: &[String]) -> anyhow::Result<()> {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let args: Vec<&str> =
-        args.iter().map(|a| if a == "--help-render" { "--help" } else { a.as_str() }).collect();
+        args.iter().map(|a| if a == help { "--help" } else { a.as_str() }).collect();
     run_cmd(
         std::process::Command::new(cargo)
             .current_dir(root)
-            .args(["run", "--release", "-q", "-p", "app", "--bin", "serein-render", "--"])
+            .args(["run", "--release", "-q", "-p", "app", "--bin", bin, "--"])
             .args(args),
     )
 }

@@ -10,6 +10,7 @@
 //! - [`compare`]: a frame against the reference image of the same view.
 //! - [`ledger`]: each lighting component against its reference, whole frame and per region
 //!   ([`regions`]), with a contact sheet ([`contact_sheet`]).
+//! - [`view`]: `serein-view`, the engine in a window.
 
 pub mod cli;
 pub mod compare;
@@ -18,6 +19,7 @@ pub mod ledger;
 pub mod regions;
 pub mod report;
 pub mod thesis;
+pub mod view;
 
 use engine::EngineError;
 use std::path::Path;

@@ -57,22 +57,7 @@ impl GpuContext {
         });
         let adapter = adapters.remove(0);
         let adapter_info = adapter.get_info();
-        let limits = wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits());
-        let desc = wgpu::DeviceDescriptor {
-            label: Some("gpu_harness"),
-            required_limits: wgpu::Limits {
-                max_storage_buffers_per_shader_stage: adapter
-                    .limits()
-                    .max_storage_buffers_per_shader_stage
-                    .min(8),
-                max_storage_buffer_binding_size: adapter.limits().max_storage_buffer_binding_size,
-                max_buffer_size: adapter.limits().max_buffer_size,
-                ..limits
-            },
-            // Timestamp queries where the adapter has them (per-pass GPU times).
-            required_features: adapter.features() & wgpu::Features::TIMESTAMP_QUERY,
-            ..Default::default()
-        };
+        let desc = device_descriptor(&adapter);
         let (device, queue) = adapter
             .request_device(&desc)
             .await
@@ -228,6 +213,29 @@ impl GpuContext {
             slice.get_mapped_range().map_err(|e| GpuError::Readback(e.to_string()))?.to_vec();
         buffer.unmap();
         Ok(data)
+    }
+}
+
+/// What the workspace's GPU code asks of a device on `adapter`: WebGPU's downlevel limits
+/// with the adapter's texture sizes, buffer sizes and up to 8 storage buffers per stage, and
+/// timestamp queries where the adapter has them. An application that makes its own device
+/// (a window's, for its surface) asks for the same.
+pub fn device_descriptor(adapter: &wgpu::Adapter) -> wgpu::DeviceDescriptor<'static> {
+    let limits = wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits());
+    wgpu::DeviceDescriptor {
+        label: Some("gpu_harness"),
+        required_limits: wgpu::Limits {
+            max_storage_buffers_per_shader_stage: adapter
+                .limits()
+                .max_storage_buffers_per_shader_stage
+                .min(8),
+            max_storage_buffer_binding_size: adapter.limits().max_storage_buffer_binding_size,
+            max_buffer_size: adapter.limits().max_buffer_size,
+            ..limits
+        },
+        // Timestamp queries where the adapter has them (per-pass GPU times).
+        required_features: adapter.features() & wgpu::Features::TIMESTAMP_QUERY,
+        ..Default::default()
     }
 }
 

@@ -31,6 +31,6 @@ mod context;
 mod error;
 mod support;
 
-pub use context::{Binding, GpuContext};
+pub use context::{Binding, GpuContext, device_descriptor};
 pub use error::GpuError;
 pub use support::{SKIP_ENV, cast_vec, gpu_test_context, skip_requested};

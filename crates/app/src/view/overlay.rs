@@ -1,0 +1,171 @@
+//! The overlay (egui): the adapter and its warning, frame time and its rolling graph, the
+//! controls (time of day, effect switches, component shown, fly-through), and the last
+//! frame's pass table. It only reads and edits [`Controls`]; the window applies them.
+
+use super::controls::Controls;
+use engine::{Component, Effect, FrameStats};
+use std::collections::VecDeque;
+
+/// What the overlay shows besides the controls.
+pub struct OverlayInfo<'a> {
+    pub adapter: &'a str,
+    pub software: bool,
+    pub size: (u32, u32),
+    pub frame_ms: &'a VecDeque<f32>,
+    pub overlay_ms: f32,
+    pub last: Option<&'a FrameStats>,
+    pub message: Option<&'a str>,
+}
+
+/// Buttons pressed this frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct OverlayActions {
+    pub screenshot: bool,
+    pub reset_camera: bool,
+}
+
+const COMPONENTS: [(&str, Option<Component>); 7] = [
+    ("frame", None),
+    ("sun direct", Some(Component::SunDirect)),
+    ("sky irradiance", Some(Component::SkyIrradiance)),
+    ("sun bounce (LPV)", Some(Component::SunIndirectDiffuse)),
+    ("reflections", Some(Component::Reflections)),
+    ("point lights", Some(Component::PointLights)),
+    ("emission", Some(Component::Emission)),
+];
+
+/// The next component in the overlay's list (the `C` key).
+pub fn next_component(c: Option<Component>) -> Option<Component> {
+    let i = COMPONENTS.iter().position(|(_, x)| *x == c).unwrap_or(0);
+    COMPONENTS[(i + 1) % COMPONENTS.len()].1
+}
+
+pub fn draw(
+    ctx: &egui::Context,
+    controls: &mut Controls,
+    info: &OverlayInfo<'_>,
+) -> OverlayActions {
+    let mut actions = OverlayActions::default();
+    egui::Window::new("serein").default_pos([8.0, 8.0]).default_width(360.0).show(ctx, |ui| {
+        ui.label(format!("{}  {}x{}", info.adapter, info.size.0, info.size.1));
+        if info.software {
+            ui.colored_label(
+                egui::Color32::YELLOW,
+                "software adapter (Mesa): timings are CPU timings, not GPU timings",
+            );
+        }
+        let last = info.frame_ms.back().copied().unwrap_or(0.0);
+        ui.label(format!(
+            "frame {last:.1} ms ({:.1} fps), overlay {:.2} ms",
+            1e3 / last.max(1e-3),
+            info.overlay_ms
+        ));
+        frame_graph(ui, info.frame_ms);
+        if let Some(m) = info.message {
+            ui.label(m);
+        }
+        ui.separator();
+        let h = controls.local_hours;
+        let mut hours = h as f32;
+        ui.add(egui::Slider::new(&mut hours, 0.0..=23.99).text(format!(
+            "time {:02}:{:02}, {}-{:02}-{:02}",
+            h as u32,
+            ((h.fract()) * 60.0) as u32,
+            controls.date.year,
+            controls.date.month,
+            controls.date.day
+        )));
+        if (hours as f64 - h).abs() > 1e-4 {
+            controls.local_hours = hours as f64;
+        }
+        for (i, e) in Effect::ALL.into_iter().enumerate() {
+            let mut on = controls.effects.is_on(e);
+            if ui.checkbox(&mut on, format!("[{}] {}", i + 1, e.name())).changed() {
+                controls.effects.set(e, on);
+            }
+        }
+        egui::ComboBox::from_label("[C] shown")
+            .selected_text(
+                COMPONENTS.iter().find(|(_, c)| *c == controls.component).map_or("", |c| c.0),
+            )
+            .show_ui(ui, |ui| {
+                for (name, c) in COMPONENTS {
+                    ui.selectable_value(&mut controls.component, c, name);
+                }
+            });
+        ui.horizontal(|ui| {
+            ui.toggle_value(&mut controls.playing, "[P] fly-through");
+            actions.reset_camera = ui.button("[R] reset camera").clicked();
+            actions.screenshot = ui.button("[F12] screenshot").clicked();
+        });
+        if let Some(stats) = info.last {
+            ui.separator();
+            pass_table(ui, stats);
+        }
+        ui.small(
+            "WASD + Q/E fly, right mouse look, Shift fast, T / Shift+T time ±15 min, Tab overlay",
+        );
+    });
+    actions
+}
+
+fn frame_graph(ui: &mut egui::Ui, ms: &VecDeque<f32>) {
+    let (rect, _) = ui.allocate_exact_size(egui::vec2(340.0, 48.0), egui::Sense::hover());
+    let painter = ui.painter_at(rect);
+    painter.rect_filled(rect, 2.0, egui::Color32::from_black_alpha(120));
+    let max = ms.iter().copied().fold(1.0f32, f32::max);
+    let n = ms.len().max(2) as f32;
+    let points: Vec<egui::Pos2> = ms
+        .iter()
+        .enumerate()
+        .map(|(i, v)| {
+            egui::pos2(
+                rect.left() + rect.width() * i as f32 / (n - 1.0),
+                rect.bottom() - rect.height() * v / max,
+            )
+        })
+        .collect();
+    painter.add(egui::Shape::line(points, egui::Stroke::new(1.5, egui::Color32::LIGHT_GREEN)));
+    painter.text(
+        rect.left_top(),
+        egui::Align2::LEFT_TOP,
+        format!("{max:.0} ms"),
+        egui::FontId::monospace(10.0),
+        egui::Color32::WHITE,
+    );
+}
+
+fn pass_table(ui: &mut egui::Ui, stats: &FrameStats) {
+    let ms = |v: Option<f64>| v.map_or("-".to_owned(), |v| format!("{v:.2}"));
+    egui::Grid::new("passes").striped(true).show(ui, |ui| {
+        for h in ["pass", "outcome", "CPU ms", "GPU ms"] {
+            ui.strong(h);
+        }
+        ui.end_row();
+        for p in &stats.report.passes {
+            ui.label(&p.name).on_hover_text(p.reason.to_string());
+            ui.label(p.outcome.to_string()).on_hover_text(p.reason.to_string());
+            ui.label(ms(p.cpu_ms));
+            ui.label(ms(p.gpu_ms));
+            ui.end_row();
+        }
+    });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn components_cycle_through_all_and_back() {
+        let mut c = None;
+        let mut seen = Vec::new();
+        for _ in 0..COMPONENTS.len() {
+            c = next_component(c);
+            seen.push(c);
+        }
+        assert_eq!(c, None);
+        assert_eq!(seen.len(), 7);
+        assert!(seen.contains(&Some(Component::SunDirect)));
+    }
+}
