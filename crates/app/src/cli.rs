@@ -49,6 +49,42 @@ impl Default for RenderJob {
     }
 }
 
+/// The command-line options that choose a scene and its sun, shared by `serein-render` and
+/// `serein-view`.
+#[derive(Clone, Debug, clap::Args)]
+pub struct SceneArgs {
+    /// `city` (or cornell_window, cornell_area, two_rooms, plane_box, furnace) or a
+    /// .gltf/.glb/.obj/.toml file.
+    #[arg(long, default_value = "city")]
+    pub scene: String,
+    /// Local time at the scene's place, HH:MM (default: the scene's own, 17:30 for the city).
+    #[arg(long)]
+    pub time: Option<String>,
+    /// Date, YYYY-MM-DD (default: the scene's own, 2024-06-21 for the city).
+    #[arg(long)]
+    pub date: Option<String>,
+    /// Hours the local time is ahead of UTC (Lisbon in summer: 1).
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    pub utc_offset: f64,
+    /// Seed of generated scenes.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+}
+
+impl SceneArgs {
+    /// A job for this scene with every other option at its default.
+    pub fn job(&self) -> RenderJob {
+        RenderJob {
+            scene: self.scene.clone(),
+            time: self.time.clone(),
+            date: self.date.clone(),
+            utc_offset_h: self.utc_offset,
+            seed: self.seed,
+            ..Default::default()
+        }
+    }
+}
+
 /// `WxH` to `(W, H)`.
 pub fn parse_size(s: &str) -> Result<(u32, u32), EngineError> {
     let bad = || EngineError::Settings(format!("size {s:?}: expected WIDTHxHEIGHT, e.g. 1600x900"));

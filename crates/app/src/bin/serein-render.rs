@@ -2,7 +2,7 @@
 //! per-pass report. `cargo xtask render` runs it in release mode.
 
 use anyhow::Context;
-use app::cli::{RenderJob, parse_size};
+use app::cli::{RenderJob, SceneArgs, parse_size};
 use clap::Parser;
 use engine::Preset;
 use std::path::PathBuf;
@@ -10,18 +10,8 @@ use std::path::PathBuf;
 #[derive(Parser)]
 #[command(name = "serein-render", about = "Render a scene with the serein hybrid GI engine")]
 struct Args {
-    /// `city` (or cornell_window, two_rooms, plane_box, furnace) or a .gltf/.glb/.obj/.toml file.
-    #[arg(long, default_value = "city")]
-    scene: String,
-    /// Local time at the scene's place, HH:MM (default: the scene's own, 17:30 for the city).
-    #[arg(long)]
-    time: Option<String>,
-    /// Date, YYYY-MM-DD (default: the scene's own, 2024-06-21 for the city).
-    #[arg(long)]
-    date: Option<String>,
-    /// Hours the local time is ahead of UTC (Lisbon in summer: 1).
-    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
-    utc_offset: f64,
+    #[command(flatten)]
+    scene: SceneArgs,
     /// Image size, WIDTHxHEIGHT.
     #[arg(long, default_value = "1600x900")]
     size: String,
@@ -46,9 +36,6 @@ struct Args {
     /// components.png (contact sheet) and a ledger section in report.md / report.json.
     #[arg(long, requires = "reference")]
     components: bool,
-    /// Seed of generated scenes.
-    #[arg(long, default_value_t = 1)]
-    seed: u64,
     /// No progress bars.
     #[arg(long)]
     quiet: bool,
@@ -58,10 +45,6 @@ fn main() -> anyhow::Result<()> {
     let a = Args::parse();
     let (width, height) = parse_size(&a.size)?;
     let job = RenderJob {
-        scene: a.scene,
-        time: a.time,
-        date: a.date,
-        utc_offset_h: a.utc_offset,
         width,
         height,
         preset: a.preset.parse::<Preset>()?,
@@ -69,8 +52,8 @@ fn main() -> anyhow::Result<()> {
         out: a.out.clone(),
         reference_spp: a.reference,
         components: a.components,
-        seed: a.seed,
         progress: !a.quiet,
+        ..a.scene.job()
     };
     let info = app::cli::run(&job).context("render failed")?;
     let (mean, sd, _, _) = app::report::frame_stats(&info.frame_ms);

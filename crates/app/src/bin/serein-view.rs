@@ -1,7 +1,7 @@
 //! `serein-view`: the engine in a window. `cargo xtask view` runs it in release mode.
 
 use anyhow::Context;
-use app::cli::{RenderJob, load_scene, parse_size};
+use app::cli::{SceneArgs, load_scene, parse_size};
 use app::view::{ViewOptions, run, script::Script};
 use clap::Parser;
 use engine::Preset;
@@ -10,18 +10,8 @@ use std::path::PathBuf;
 #[derive(Parser)]
 #[command(name = "serein-view", about = "Fly through a scene rendered by the serein engine")]
 struct Args {
-    /// `city` (or cornell_window, two_rooms, plane_box, furnace) or a .gltf/.glb/.obj/.toml file.
-    #[arg(long, default_value = "city")]
-    scene: String,
-    /// Local time at the scene's place, HH:MM.
-    #[arg(long)]
-    time: Option<String>,
-    /// Date, YYYY-MM-DD.
-    #[arg(long)]
-    date: Option<String>,
-    /// Hours the local time is ahead of UTC.
-    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
-    utc_offset: f64,
+    #[command(flatten)]
+    scene: SceneArgs,
     /// Quality preset: low, default, high.
     #[arg(long, default_value = "default")]
     preset: String,
@@ -38,27 +28,16 @@ struct Args {
     /// shadows off, a screenshot), write script.json into --out and exit.
     #[arg(long)]
     script: bool,
-    /// Seed of generated scenes.
-    #[arg(long, default_value_t = 1)]
-    seed: u64,
 }
 
 fn main() -> anyhow::Result<()> {
     let a = Args::parse();
     let (width, height) = parse_size(&a.size)?;
-    let job = RenderJob {
-        scene: a.scene,
-        time: a.time,
-        date: a.date,
-        utc_offset_h: a.utc_offset,
-        seed: a.seed,
-        ..Default::default()
-    };
-    let scene = load_scene(&job)?;
+    let scene = load_scene(&a.scene.job())?;
     let opts = ViewOptions {
         preset: a.preset.parse::<Preset>()?,
         size: (width, height),
-        utc_offset_h: a.utc_offset,
+        utc_offset_h: a.scene.utc_offset,
         out: a.out,
         record: a.record,
     };
