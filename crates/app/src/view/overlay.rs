@@ -12,6 +12,8 @@ pub struct OverlayInfo<'a> {
     pub software: bool,
     pub size: (u32, u32),
     pub frame_ms: &'a VecDeque<f32>,
+    /// Milliseconds from the overlay's input to the present: the UI, the blit of the engine's image
+    /// and the overlay's draw, and the present (which waits for the surface).
     pub overlay_ms: f32,
     pub last: Option<&'a FrameStats>,
     pub message: Option<&'a str>,
@@ -56,7 +58,7 @@ pub fn draw(
         }
         let last = info.frame_ms.back().copied().unwrap_or(0.0);
         ui.label(format!(
-            "frame {last:.1} ms ({:.1} fps), overlay {:.2} ms",
+            "frame {last:.1} ms ({:.1} fps), overlay + present {:.2} ms",
             1e3 / last.max(1e-3),
             info.overlay_ms
         ));

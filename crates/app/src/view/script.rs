@@ -73,6 +73,8 @@ pub struct FrameLog {
     /// `name: outcome (reason)` of every pass.
     pub passes: Vec<String>,
     pub frame_ms: f64,
+    /// Milliseconds from the overlay's input to the present: the UI, the blit of the engine's image
+    /// and the overlay's draw, and the present (which waits for the surface).
     pub overlay_ms: f32,
 }
 
