@@ -207,14 +207,7 @@ impl Viewer {
         }
         let camera = self.camera();
         let Some((presenter, renderer, egui_state)) = &mut self.gfx else { return Ok(()) };
-        renderer.set_camera(camera)?;
-        if self.applied.as_ref().is_none_or(|a| a.local_hours != self.controls.local_hours) {
-            renderer.set_sun(self.controls.sun(renderer.scene().sun.as_ref()))?;
-        }
-        for e in Effect::ALL {
-            renderer.set_effect(e, self.controls.effects.is_on(e));
-        }
-        renderer.set_component(self.controls.component);
+        apply(renderer, &self.controls, self.applied.as_ref(), camera)?;
         self.applied = Some(self.controls.clone());
         let stats = renderer.advance_frame()?;
         let t_overlay = Instant::now();
@@ -282,6 +275,25 @@ impl Viewer {
         image::save_buffer(&path, &ldr, hdr.width, hdr.height, image::ColorType::Rgba8)
             .map_err(|e| crate::io_err(&path, e))
     }
+}
+
+/// The controls into the engine: camera, sun (only when the time changed, so the sky passes
+/// are not invalidated every frame), effect switches, the component shown.
+fn apply(
+    renderer: &mut Renderer,
+    controls: &Controls,
+    applied: Option<&Controls>,
+    camera: scene::Camera,
+) -> Result<(), EngineError> {
+    renderer.set_camera(camera)?;
+    if applied.is_none_or(|a| a.local_hours != controls.local_hours) {
+        renderer.set_sun(controls.sun(renderer.scene().sun.as_ref()))?;
+    }
+    for e in Effect::ALL {
+        renderer.set_effect(e, controls.effects.is_on(e));
+    }
+    renderer.set_component(controls.component);
+    Ok(())
 }
 
 /// One-shot actions from keys, buttons and scripts.
