@@ -24,6 +24,10 @@ pub fn run(root: &Path, quick: bool, json: Option<PathBuf>, only: &[String]) -> 
     let parts_dir = out_dir.join("parts");
     std::fs::create_dir_all(&parts_dir)?;
     let crates = sweep_crates(root)?;
+    // The engine's sweep (entries `engine/...`) lives in `app`, beside the reference comparisons.
+    let only: Vec<String> =
+        only.iter().map(|n| if n == "engine" { "app".to_owned() } else { n.clone() }).collect();
+    let only = &only[..];
     for name in only {
         anyhow::ensure!(
             crates.contains(name),
