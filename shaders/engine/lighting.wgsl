@@ -129,6 +129,18 @@ fn ambient_occlusion(px: vec2<u32>, p: vec3<f32>, gn: vec3<f32>) -> f32 {
     return ssao(s, px, p, gn);
 }
 
+// A G-buffer channel view in [0, 1] (`ch`: the index in engine::views::Channel::ALL).
+fn channel_view(ch: u32, px: vec2<i32>, a: vec4<f32>, n: vec3<f32>, gn: vec3<f32>, p: vec3<f32>, depth: f32) -> vec3<f32> {
+    switch ch {
+        case 0u: { return a.rgb; }
+        case 1u: { return vec3<f32>(a.w); }
+        case 2u: { return 0.5 + 0.5 * n; }
+        case 3u: { return 0.5 + 0.5 * gn; }
+        case 4u: { return vec3<f32>(1.0 - exp(-depth / 20.0)); }
+        default: { return vec3<f32>(ambient_occlusion(vec2<u32>(px), p, gn)); }
+    }
+}
+
 @fragment
 fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     let px = vec2<i32>(frag.xy);
@@ -148,6 +160,9 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     let n = normalize(ns.xyz);
     let gn = normalize(gm.xyz);
     let p = world_position(frame, pxf, depth);
+    if component >= CHANNEL_BASE {
+        return vec4<f32>(channel_view(component - CHANNEL_BASE, px, a, n, gn, p, depth), 1.0);
+    }
     let v = normalize(frame.camera_pos.xyz - p);
     let g = a.w;
     let power = max(ns.w, 1.0);

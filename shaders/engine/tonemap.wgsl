@@ -5,6 +5,7 @@
 // by a GPU/CPU parity test. Three entry points, dispatched in order:
 //   reduce: 64 workgroups of 256 threads, partial sums of ln(delta + L) and counts;
 //   adapt:  one thread, the log average and the adapted luminance (kept in `state`);
+//           nothing for a raw view;
 //   map:    8x8 tiles, the display image.
 
 struct Params {
@@ -16,7 +17,9 @@ struct Params {
     key: f32,
     // 1: adapt at once (the first frame)
     reset: u32,
-    _pad0: u32,
+    // 1: show the values as they are, clamped to [0, 1] (G-buffer channel views); the
+    // adapted luminance is kept for when the frame is shown again
+    raw: u32,
     _pad1: u32,
 }
 
@@ -68,6 +71,9 @@ fn reduce(@builtin(local_invocation_index) li: u32, @builtin(workgroup_id) wg: v
 
 @compute @workgroup_size(1)
 fn adapt() {
+    if params.raw != 0u {
+        return;
+    }
     var total = vec2<f32>(0.0);
     for (var g = 0u; g < REDUCE_GROUPS; g = g + 1u) {
         total += partial[g];
@@ -103,6 +109,6 @@ fn map(@builtin(global_invocation_id) id: vec3<u32>) {
     );
     let l = luminance(c) * scale;
     let s = select(0.0, scale / (1.0 + l), l > 0.0);
-    let v = min(c * s, vec3<f32>(1.0));
+    let v = min(select(c * s, c, params.raw != 0u), vec3<f32>(1.0));
     textureStore(ldr, id.xy, vec4<f32>(srgb(v.r), srgb(v.g), srgb(v.b), 1.0));
 }

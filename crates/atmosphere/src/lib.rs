@@ -84,7 +84,7 @@ pub use skymap::{
     disk_to_direction, texel_direction, texel_disk,
 };
 pub use skyview::SkyViewLut;
-pub use solar::{CivilDate, MAX_UTC_HOURS, SolarPosition, solar_position};
+pub use solar::{CivilDate, MAX_UTC_HOURS, SolarPosition, days_in_month, solar_position};
 pub use transmittance::{
     TransmittanceLut, optical_depth, optical_depth_quadratic, transmittance_between_exact,
     transmittance_to_top_exact,

@@ -48,17 +48,29 @@ impl CivilDate {
         if !(1..=12).contains(&self.month) {
             return Err(err("month must be within 1..=12"));
         }
-        let leap = (self.year % 4 == 0 && self.year % 100 != 0) || self.year % 400 == 0;
-        let days = match self.month {
-            2 if leap => 29,
-            2 => 28,
-            4 | 6 | 9 | 11 => 30,
-            _ => 31,
-        };
-        if self.day < 1 || self.day > days {
+        if self.day < 1 || self.day > days_in_month(self.year, self.month) {
             return Err(err("day does not exist in that month"));
         }
         Ok(())
+    }
+
+    /// Day of the year, 1 for January 1st (up to 365, or 366 in a leap year).
+    pub fn day_of_year(&self) -> u32 {
+        (1..self.month.min(13)).map(|m| days_in_month(self.year, m)).sum::<u32>() + self.day
+    }
+
+    /// The `day`th day of `year` (1 for January 1st); days past the year's last are clamped
+    /// to December 31st, 0 to January 1st.
+    pub fn from_day_of_year(year: i32, day: u32) -> Self {
+        let mut left = day.max(1);
+        for month in 1..=12 {
+            let n = days_in_month(year, month);
+            if left <= n {
+                return Self { year, month, day: left };
+            }
+            left -= n;
+        }
+        Self { year, month: 12, day: 31 }
     }
 
     /// Julian day number at 0h UTC of this date (Meeus ch. 7, Gregorian calendar).
@@ -72,6 +84,18 @@ impl CivilDate {
         let b = 2.0 - a + (a / 4.0).floor();
         (365.25 * (y + 4716.0)).floor() + (30.6001 * (m + 1.0)).floor() + self.day as f64 + b
             - 1524.5
+    }
+}
+
+/// Days in `month` (1..=12) of `year` in the Gregorian calendar (0 for other months).
+pub fn days_in_month(year: i32, month: u32) -> u32 {
+    let leap = (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
+    match month {
+        2 if leap => 29,
+        2 => 28,
+        4 | 6 | 9 | 11 => 30,
+        1..=12 => 31,
+        _ => 0,
     }
 }
 
@@ -187,6 +211,27 @@ pub fn solar_position(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn day_of_year_round_trips_in_leap_and_common_years() {
+        for (year, days) in [(2023, 365), (2024, 366), (1900, 365), (2000, 366)] {
+            let mut expected = CivilDate::new(year, 1, 1);
+            for d in 1..=days {
+                let date = CivilDate::from_day_of_year(year, d);
+                assert!(date.validate().is_ok(), "{date:?}");
+                assert_eq!(date.day_of_year(), d);
+                assert_eq!(date, expected, "day {d} of {year}");
+                let next = date.julian_day() + 1.0;
+                expected = CivilDate::from_day_of_year(year, d + 1);
+                if d < days {
+                    assert_eq!(expected.julian_day(), next, "consecutive days");
+                }
+            }
+            assert_eq!(CivilDate::from_day_of_year(year, days + 5), CivilDate::new(year, 12, 31));
+            assert_eq!(CivilDate::from_day_of_year(year, 0), CivilDate::new(year, 1, 1));
+        }
+        assert_eq!(CivilDate::new(2024, 6, 21).day_of_year(), 173);
+    }
 
     #[test]
     fn julian_day_of_j2000() {

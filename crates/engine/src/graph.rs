@@ -295,7 +295,7 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
         .reads(lpv)
         .writes(lit)
         .cached()
-        .key("lighting component shown", |c: &FrameCtx| c.component)
+        .key("view shown", |c: &FrameCtx| c.component)
         .run(move |io| -> PassResult {
             let c = io.ctx();
             let s = &c.state;
@@ -334,7 +334,7 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
         })
         .run_if("a mirror or glass surface is in view", |c: &FrameCtx| c.needs.ray_tracing())
         .cached()
-        .key("lighting component shown", |c: &FrameCtx| c.component)
+        .key("view shown", |c: &FrameCtx| c.component)
         .run(move |io| -> PassResult {
             let c = io.ctx();
             let s = &c.state;
@@ -369,6 +369,7 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
                 rate: set.adaptation_per_s,
                 key: set.key,
                 reset: c.reset_exposure,
+                raw: crate::views::View::of_code(c.component).is_some_and(|v| v.is_raw()),
             };
             s.display.record(&s.gpu, &mut enc, which, exposure);
             s.gpu.queue.submit([enc.finish()]);

@@ -74,6 +74,7 @@ pub mod settings;
 pub mod shaders;
 mod state;
 pub mod trace;
+pub mod views;
 
 pub use components::Component;
 pub use effects::{Effect, Effects};
@@ -82,3 +83,4 @@ pub use gpu::TransferCounts;
 pub use graph::pass;
 pub use renderer::{Frame, FrameStats, HdrFrame, Renderer};
 pub use settings::{Preset, Settings, Specular};
+pub use views::{Channel, View};

@@ -7,6 +7,7 @@ use crate::gpu::{TimestampTimer, TransferCounts};
 use crate::graph::{self, pass};
 use crate::passes::display::Shown;
 use crate::state::{FrameCtx, State, SunLight};
+use crate::views::View;
 use crate::{EngineError, Settings};
 use frame_scheduler::{FrameReport, PassId, Res, Scheduler};
 use glam::Vec3;
@@ -102,7 +103,7 @@ pub struct Renderer {
     last_frame: Option<Instant>,
     /// Seconds per frame for eye adaptation (None: wall clock).
     fixed_dt: Option<f32>,
-    component: Option<crate::components::Component>,
+    view: crate::views::View,
     effects: Effects,
 }
 
@@ -147,7 +148,7 @@ impl Renderer {
             camera,
             last_frame: None,
             fixed_dt: None,
-            component: None,
+            view: crate::views::View::Frame,
             effects: Effects::default(),
         })
     }
@@ -197,7 +198,18 @@ impl Renderer {
     /// Which lighting component the next frames show (`None`: the full frame); see
     /// [`crate::components`] for what each one means.
     pub fn set_component(&mut self, component: Option<crate::components::Component>) {
-        self.component = component;
+        self.view = component.map_or(View::Frame, View::Component);
+    }
+
+    /// What the next frames show: the frame, a lighting component or a G-buffer channel
+    /// ([`crate::views`]).
+    pub fn set_view(&mut self, view: View) {
+        self.view = view;
+    }
+
+    /// What the frames show.
+    pub fn view(&self) -> View {
+        self.view
     }
 
     /// Switches an effect on or off for the next frames; a switched-off effect's passes are
@@ -272,7 +284,7 @@ impl Renderer {
             needs: needs.clone(),
             sun: self.sun_light()?,
             frame: self.scheduler.frames(),
-            component: crate::components::code(self.component),
+            component: self.view.code(),
             dt,
             reset_exposure: self.last_frame.is_none(),
             effects: self.effects,

@@ -14,3 +14,34 @@ fn engine_shaders_validate_with_naga() {
         .unwrap_or_else(|e| panic!("{name}: {e:?}"));
     }
 }
+
+/// The value of `const NAME: u32 = Nu;` in `source`.
+fn wgsl_u32(source: &str, name: &str) -> u32 {
+    let line = source
+        .lines()
+        .find(|l| l.trim_start().starts_with(&format!("const {name}: u32 =")))
+        .unwrap_or_else(|| panic!("{name} not in the shader"));
+    let value = line.split('=').nth(1).unwrap().trim().trim_end_matches(';').trim_end_matches('u');
+    value.parse().unwrap_or_else(|_| panic!("{line}"))
+}
+
+/// The view codes the shaders switch on are the ones `engine::views` writes.
+#[test]
+fn view_codes_match_the_shaders() {
+    use engine::{Channel, Component, View};
+    let src = engine::shaders::lighting();
+    let pairs = [
+        ("COMPONENT_FULL", View::Frame),
+        ("COMPONENT_SUN_DIRECT", View::Component(Component::SunDirect)),
+        ("COMPONENT_SUN_INDIRECT", View::Component(Component::SunIndirectDiffuse)),
+        ("COMPONENT_SKY_IRRADIANCE", View::Component(Component::SkyIrradiance)),
+        ("COMPONENT_REFLECTIONS", View::Component(Component::Reflections)),
+        ("COMPONENT_POINT_LIGHTS", View::Component(Component::PointLights)),
+        ("COMPONENT_EMISSION", View::Component(Component::Emission)),
+        ("CHANNEL_BASE", View::Channel(Channel::ALL[0])),
+    ];
+    for (name, view) in pairs {
+        assert_eq!(wgsl_u32(&src, name), view.code(), "{name}");
+    }
+    assert_eq!(wgsl_u32(&src, "CHANNEL_BASE"), engine::views::CHANNEL_BASE);
+}

@@ -19,7 +19,8 @@ struct Params {
     rate: f32,
     key: f32,
     reset: u32,
-    _pad: [u32; 2],
+    raw: u32,
+    _pad: u32,
 }
 
 /// How the exposure moves this frame.
@@ -33,6 +34,9 @@ pub struct Exposure {
     pub key: f32,
     /// Adapt at once (the first frame).
     pub reset: bool,
+    /// Show the values as they are (a G-buffer channel view): no exposure, no tone curve,
+    /// the adaptation state kept.
+    pub raw: bool,
 }
 
 /// Which HDR target the display image was made from.
@@ -147,7 +151,8 @@ impl DisplayPass {
             rate: e.rate,
             key: e.key,
             reset: u32::from(e.reset),
-            _pad: [0; 2],
+            raw: u32::from(e.raw),
+            _pad: 0,
         };
         gpu.write(&self.params, 0, bytemuck::bytes_of(&p));
         let source = usize::from(shown == Shown::Combined);
