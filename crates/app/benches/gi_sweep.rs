@@ -475,6 +475,90 @@ const FULL: &[Size] = &[
     Size { width: 1600, height: 900, reference_spp: 128, timed_frames: 4, flythrough_frames: 100 },
 ];
 
+/// The command that runs `serein-view` in a window: under `xvfb-run` when there is no
+/// display, directly when there is one; `None` when neither works.
+fn window_command() -> Option<std::process::Command> {
+    let exe = env!("CARGO_BIN_EXE_serein-view");
+    if std::env::var_os("DISPLAY").is_some() {
+        return Some(std::process::Command::new(exe));
+    }
+    let xvfb = std::process::Command::new("sh").args(["-c", "command -v xvfb-run"]).output();
+    xvfb.is_ok_and(|o| o.status.success()).then(|| {
+        let mut c = std::process::Command::new("xvfb-run");
+        c.args(["-a", "-s", "-screen 0 1280x720x24", exe]);
+        c
+    })
+}
+
+fn mean(xs: &[f64]) -> f64 {
+    xs.iter().sum::<f64>() / xs.len().max(1) as f64
+}
+
+/// The viewer's interactive figures (`serein-view --script measure` at 1280x720, default
+/// preset, on this machine's adapter): frames flying forward and still, the overlay switched
+/// on and off every frame. Entries `engine/viewer_city_1280x720_default_{moving,still}`: time
+/// = mean frame ms with the overlay (what the user sees), settings: the fps, the mean without
+/// the overlay, what the overlay adds (`overlay_added_ms`: the span from the UI to the present
+/// with the overlay minus without it; `overlay_added_ms_frames`: the same from whole frames,
+/// noisier) and its share of the frame without it, and the UI pass alone (`overlay_ui_ms`).
+fn viewer(sweep: &mut Sweep) {
+    sweep.stage("viewer 1280x720 in a window");
+    let Some(mut cmd) = window_command() else {
+        eprintln!("no display and no xvfb-run: the viewer's figures are left out");
+        return;
+    };
+    let out = std::env::temp_dir().join(format!("serein-view-bench-{}", std::process::id()));
+    let status = cmd
+        .args(["--scene", "city", "--size", "1280x720", "--preset", "default"])
+        .args(["--script", "measure", "--out"])
+        .arg(&out)
+        .status()
+        .expect("run serein-view");
+    assert!(status.success(), "serein-view --script measure: {status}");
+    let text = std::fs::read_to_string(out.join("script.json")).expect("script.json");
+    let log: serde_json::Value = serde_json::from_str(&text).expect("script.json is JSON");
+    let frames = log["frames"].as_array().expect("frames").clone();
+    let software = log["software"].as_bool().unwrap_or(true);
+    for moving in [true, false] {
+        let pick = |overlay: bool, key: &str| -> Vec<f64> {
+            frames
+                .iter()
+                .skip(11)
+                .filter(|f| f["moving"].as_bool() == Some(moving))
+                .filter(|f| f["overlay"].as_bool() == Some(overlay))
+                .filter_map(|f| f[key].as_f64())
+                .collect()
+        };
+        let (on, off) = (pick(true, "frame_ms"), pick(false, "frame_ms"));
+        let (m_on, m_off) = (mean(&on), mean(&off));
+        // The span from the overlay's UI to the present, with and without the overlay: the
+        // frames' own spread (tens of ms moving) hides what the overlay adds, this does not.
+        let added = mean(&pick(true, "overlay_ms")) - mean(&pick(false, "overlay_ms"));
+        let what = if moving { "moving" } else { "still" };
+        sweep.entry(
+            Entry::new(format!("engine/viewer_city_1280x720_default_{what}"), "viewer", m_on)
+                .setting("scene", "city")
+                .setting("adapter", log["adapter"].as_str().unwrap_or("?"))
+                .setting("camera", what)
+                .setting("fps", 1e3 / m_on.max(1e-9))
+                .setting("frames_with_overlay", on.len())
+                .setting("frames_without_overlay", off.len())
+                .setting("mean_ms_without_overlay", m_off)
+                .setting("overlay_added_ms_frames", m_on - m_off)
+                .setting("overlay_added_ms", added)
+                .setting("overlay_share_percent", 100.0 * added / m_off.max(1e-9))
+                .setting("overlay_ui_ms", mean(&pick(true, "ui_ms")))
+                .threads(rayon::current_num_threads())
+                .note(timing_note(
+                    software,
+                    "serein-view's frame in a 1280x720 window (engine frame, blit, overlay, \
+                     present), overlay on and off in alternate frames",
+                )),
+        );
+    }
+    let _ = std::fs::remove_dir_all(&out);
+}
+
 fn main() {
     let mut sweep = Sweep::from_env("engine");
     let sizes = if sweep.quick() { QUICK } else { FULL };
@@ -496,5 +580,6 @@ fn main() {
             }
         }
     }
+    viewer(&mut sweep);
     sweep.finish().expect("write the report part");
 }

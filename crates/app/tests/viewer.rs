@@ -1,8 +1,9 @@
 //! The viewer in a real window: `serein-view --script` under a virtual display (Xvfb) drives
 //! the real event loop with a scripted input sequence (W held, a mouse move, the time of day
-//! 15 minutes on, sun shadows switched off, a screenshot), and its log must show the camera
-//! moved, the sky passes re-run after the sun moved, the shadow pass skipped with the switch
-//! named as the reason, and a plausible picture. Without `xvfb-run` the test says so and
+//! 15 minutes on, sun shadows switched off, a screenshot, the next view and preset), and its
+//! log must show the camera moved, the sky passes re-run after the sun moved, the shadow pass
+//! skipped with the switch named as the reason, a plausible picture, and the new view and
+//! preset in effect. Without `xvfb-run` the test says so and
 //! passes, except in CI (`CI` set), where a missing display is a failure.
 
 use std::path::Path;
@@ -48,7 +49,7 @@ fn scripted_flight_through_a_window() {
         .expect("run serein-view");
     assert!(status.success(), "serein-view --script exited with {status}");
     let f = frames(&out);
-    assert_eq!(f.len(), 19, "every scripted frame rendered");
+    assert_eq!(f.len(), 21, "every scripted frame rendered");
     let cam = |i: usize| -> Vec<f64> {
         f[i]["camera"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect()
     };
@@ -61,6 +62,13 @@ fn scripted_flight_through_a_window() {
         shadows.contains("skipped") && shadows.contains("sun shadows switched on"),
         "{shadows}"
     );
+    // The next view and the next preset: a new renderer on the same device, lit again.
+    assert_eq!((f[16]["view"].as_str(), f[16]["preset"].as_str()), (Some("frame"), Some("low")));
+    assert_eq!(f[17]["view"].as_str(), Some("sun_direct"));
+    assert_eq!(f[17]["preset"].as_str(), Some("default"));
+    assert!(pass(&f[17], "sky map").contains("ran"), "rebuilt: {}", pass(&f[17], "sky map"));
+    let shadows = pass(&f[17], "shadow maps");
+    assert!(shadows.contains("sun shadows switched on"), "the switch survives: {shadows}");
     // The screenshot: the engine's image and the window with the overlay.
     for name in ["frame.png", "window.png"] {
         let img = image::open(out.join(name)).unwrap_or_else(|e| panic!("{name}: {e}")).to_rgb8();

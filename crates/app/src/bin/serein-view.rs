@@ -24,10 +24,12 @@ struct Args {
     /// Also write every frame as PNG into this folder.
     #[arg(long)]
     record: Option<PathBuf>,
-    /// Run the scripted input sequence of the tests (W, a mouse move, time +15 min, sun
-    /// shadows off, a screenshot), write script.json into --out and exit.
-    #[arg(long)]
-    script: bool,
+    /// Run a scripted input sequence, write script.json into --out and exit: `standard`
+    /// (the tests': W, a mouse move, time +15 min, sun shadows off, a screenshot, the next
+    /// view and preset) or `measure` (frames flying and still, the overlay on and off every
+    /// frame, for `cargo xtask bench`).
+    #[arg(long, num_args = 0..=1, default_missing_value = "standard")]
+    script: Option<String>,
 }
 
 fn main() -> anyhow::Result<()> {
@@ -41,5 +43,12 @@ fn main() -> anyhow::Result<()> {
         out: a.out,
         record: a.record,
     };
-    run(scene, opts, a.script.then(Script::standard)).context("serein-view")
+    let script = match a.script.as_deref() {
+        Some(name) => Some(
+            Script::named(name)
+                .with_context(|| format!("--script {name}: expected standard or measure"))?,
+        ),
+        None => None,
+    };
+    run(scene, opts, script).context("serein-view")
 }

@@ -1,7 +1,8 @@
-//! What the viewer's controls hold (time of day, effect switches, the component shown, the
-//! fly-through), as plain state with the functions that turn it into the engine's inputs.
+//! What the viewer's controls hold (time of day and date, effect switches, preset, the view
+//! shown, the fly-through), as plain state with the functions that turn it into the engine's
+//! inputs.
 
-use engine::{Component, Effect, Effects};
+use engine::{Channel, Component, Effect, Effects, Preset, View};
 use glam::Vec3;
 use scene::{CivilDate, Sun, SunPosition};
 
@@ -17,8 +18,10 @@ pub struct Controls {
     pub date: CivilDate,
     pub place: (f64, f64),
     pub effects: Effects,
-    /// The lighting term shown (`None`: the frame).
-    pub component: Option<Component>,
+    /// The quality preset (a change rebuilds the renderer on the same device).
+    pub preset: Preset,
+    /// The frame, a lighting component or a G-buffer channel.
+    pub view: View,
     /// The fly-through is playing (the fly camera is ignored).
     pub playing: bool,
     /// Seconds into the fly-through.
@@ -28,7 +31,7 @@ pub struct Controls {
 
 impl Controls {
     /// The controls of `scene` as loaded: its sun's date, place and local time.
-    pub fn of_scene(scene: &scene::Scene, utc_offset_h: f64) -> Self {
+    pub fn of_scene(scene: &scene::Scene, utc_offset_h: f64, preset: Preset) -> Self {
         let (date, utc, place) = match scene.sun.as_ref().map(|s| s.position) {
             Some(SunPosition::Time { date, utc_hours, latitude_deg, longitude_deg }) => {
                 (date, utc_hours, (latitude_deg, longitude_deg))
@@ -41,7 +44,8 @@ impl Controls {
             date,
             place,
             effects: Effects::default(),
-            component: None,
+            preset,
+            view: View::Frame,
             playing: false,
             path_time: 0.0,
             overlay: true,
@@ -51,6 +55,17 @@ impl Controls {
     /// Moves the time of day by `minutes`, wrapping around midnight.
     pub fn nudge_time(&mut self, minutes: f64) {
         self.local_hours = (self.local_hours + minutes / 60.0).rem_euclid(24.0);
+    }
+
+    /// Moves the date to the `day`th day of its year (1..=365 or 366; clamped).
+    pub fn set_day_of_year(&mut self, day: u32) {
+        self.date = scene::CivilDate::from_day_of_year(self.date.year, day);
+    }
+
+    /// Whether the sun of `self` differs from that of `other` (time, date or place).
+    pub fn sun_moved(&self, other: &Controls) -> bool {
+        (self.local_hours, self.utc_offset_h, self.date, self.place)
+            != (other.local_hours, other.utc_offset_h, other.date, other.place)
     }
 
     /// The sun at the controls' time and place, with `base`'s colour and disk (`None`: the
@@ -66,6 +81,33 @@ impl Controls {
     pub fn toggle(&mut self, e: Effect) {
         self.effects.set(e, !self.effects.is_on(e));
     }
+}
+
+/// Every view the viewer offers, in the order of its list and of the `C` key: the frame, the
+/// lighting components the ledger compares with the reference, the G-buffer channels.
+pub fn views() -> Vec<View> {
+    let mut v = vec![View::Frame];
+    v.extend(
+        engine::components::COMPONENTS
+            .into_iter()
+            .filter(|&c| c != Component::Full)
+            .map(View::Component),
+    );
+    v.extend(Channel::ALL.map(View::Channel));
+    v
+}
+
+/// The view after `v` in [`views`], wrapping around.
+pub fn next_view(v: View) -> View {
+    let all = views();
+    let i = all.iter().position(|&x| x == v).unwrap_or(0);
+    all[(i + 1) % all.len()]
+}
+
+/// The preset after `p`, wrapping around.
+pub fn next_preset(p: Preset) -> Preset {
+    let i = Preset::ALL.iter().position(|&x| x == p).unwrap_or(0);
+    Preset::ALL[(i + 1) % Preset::ALL.len()]
 }
 
 /// The fly-through: a loop around the point the scene camera looks at, at its height, 40
@@ -89,7 +131,7 @@ mod tests {
     #[test]
     fn time_of_day_wraps_and_moves_the_sun() {
         let scene = scene::Generated::City.build(1);
-        let mut c = Controls::of_scene(&scene, 1.0);
+        let mut c = Controls::of_scene(&scene, 1.0, Preset::Default);
         assert!((c.local_hours - 17.5).abs() < 1e-6, "the city is at 17:30, got {}", c.local_hours);
         let evening = c.sun(scene.sun.as_ref()).unwrap().elevation_deg().unwrap();
         c.nudge_time(-5.0 * 60.0);
@@ -101,8 +143,41 @@ mod tests {
     }
 
     #[test]
+    fn the_date_moves_the_sun_and_counts_as_a_move() {
+        let scene = scene::Generated::City.build(1);
+        let mut c = Controls::of_scene(&scene, 1.0, Preset::Default);
+        let june = c.clone();
+        let summer = c.sun(scene.sun.as_ref()).unwrap().elevation_deg().unwrap();
+        c.set_day_of_year(355);
+        assert_eq!(c.date, scene::CivilDate::new(2024, 12, 20), "2024 is a leap year");
+        let winter = c.sun(scene.sun.as_ref()).unwrap().elevation_deg().unwrap();
+        assert!(summer > winter + 15.0, "17:30 in June {summer} vs December {winter}");
+        assert!(c.sun_moved(&june) && !june.sun_moved(&june.clone()));
+        c.set_day_of_year(1000);
+        assert_eq!(c.date, scene::CivilDate::new(2024, 12, 31));
+    }
+
+    #[test]
+    fn views_and_presets_cycle_through_all_and_back() {
+        let all = views();
+        assert_eq!(all.len(), 1 + 6 + Channel::ALL.len());
+        let mut v = View::Frame;
+        for expected in all.iter().skip(1).chain([&View::Frame]) {
+            v = next_view(v);
+            assert_eq!(v, *expected);
+        }
+        assert!(all.contains(&View::Channel(Channel::Depth)));
+        assert!(all.contains(&View::Component(Component::SunDirect)));
+        let mut p = Preset::Low;
+        for _ in 0..Preset::ALL.len() {
+            p = next_preset(p);
+        }
+        assert_eq!(p, Preset::Low);
+    }
+
+    #[test]
     fn toggles_flip_effects() {
-        let mut c = Controls::of_scene(&scene::Generated::PlaneBox.build(1), 0.0);
+        let mut c = Controls::of_scene(&scene::Generated::PlaneBox.build(1), 0.0, Preset::Low);
         c.toggle(Effect::SunShadows);
         assert!(!c.effects.is_on(Effect::SunShadows) && c.effects.is_on(Effect::SkyLighting));
         c.toggle(Effect::SunShadows);

@@ -1,13 +1,13 @@
 //! `serein-view`: the engine in a window (winit + the wgpu surface + an egui overlay). Fly
-//! through the scene, change the time of day, switch effects, show one lighting component,
-//! and watch the passes' outcomes and times.
+//! through the scene, change the time of day and the date, switch effects and presets, show
+//! one lighting component or G-buffer channel, and watch the passes' outcomes and times.
 //!
 //! - [`fly`]: the fly camera (plain functions of keys and mouse).
-//! - [`controls`]: time of day, effect switches, component shown, the fly-through.
+//! - [`controls`]: time and date, effect switches, preset, view shown, the fly-through.
 //! - [`overlay`]: the egui overlay.
 //! - [`present`]: the surface, the blit of the engine's display image, the overlay on top.
 //! - [`window`]: the event loop tying them together, screenshots, recording.
-//! - [`script`]: scripted input for the windowed test.
+//! - [`script`]: scripted input for the windowed test and the bench's figures.
 
 pub mod controls;
 pub mod fly;

@@ -1,9 +1,9 @@
 //! The overlay (egui): the adapter and its warning, frame time and its rolling graph, the
-//! controls (time of day, effect switches, component shown, fly-through), and the last
-//! frame's pass table. It only reads and edits [`Controls`]; the window applies them.
+//! controls (time of day and date, effect switches, preset, view shown, fly-through), and
+//! the last frame's pass table. It only reads and edits [`Controls`]; the window applies them.
 
-use super::controls::Controls;
-use engine::{Component, Effect, FrameStats};
+use super::controls::{Controls, views};
+use engine::{Effect, FrameStats, Preset, View};
 use std::collections::VecDeque;
 
 /// What the overlay shows besides the controls.
@@ -26,20 +26,13 @@ pub struct OverlayActions {
     pub reset_camera: bool,
 }
 
-const COMPONENTS: [(&str, Option<Component>); 7] = [
-    ("frame", None),
-    ("sun direct", Some(Component::SunDirect)),
-    ("sky irradiance", Some(Component::SkyIrradiance)),
-    ("sun bounce (LPV)", Some(Component::SunIndirectDiffuse)),
-    ("reflections", Some(Component::Reflections)),
-    ("point lights", Some(Component::PointLights)),
-    ("emission", Some(Component::Emission)),
-];
-
-/// The next component in the overlay's list (the `C` key).
-pub fn next_component(c: Option<Component>) -> Option<Component> {
-    let i = COMPONENTS.iter().position(|(_, x)| *x == c).unwrap_or(0);
-    COMPONENTS[(i + 1) % COMPONENTS.len()].1
+/// The label of a view in the list.
+fn view_label(v: View) -> String {
+    match v {
+        View::Frame => "frame".into(),
+        View::Component(c) => format!("component: {}", c.name()),
+        View::Channel(c) => format!("g-buffer: {}", c.name()),
+    }
 }
 
 pub fn draw(
@@ -80,21 +73,32 @@ pub fn draw(
         if (hours as f64 - h).abs() > 1e-4 {
             controls.local_hours = hours as f64;
         }
+        let mut day = controls.date.day_of_year();
+        if ui.add(egui::Slider::new(&mut day, 1..=366).text("day of the year")).changed() {
+            controls.set_day_of_year(day);
+        }
         for (i, e) in Effect::ALL.into_iter().enumerate() {
             let mut on = controls.effects.is_on(e);
             if ui.checkbox(&mut on, format!("[{}] {}", i + 1, e.name())).changed() {
                 controls.effects.set(e, on);
             }
         }
-        egui::ComboBox::from_label("[C] shown")
-            .selected_text(
-                COMPONENTS.iter().find(|(_, c)| *c == controls.component).map_or("", |c| c.0),
-            )
-            .show_ui(ui, |ui| {
-                for (name, c) in COMPONENTS {
-                    ui.selectable_value(&mut controls.component, c, name);
+        egui::ComboBox::from_label("[C] shown").selected_text(view_label(controls.view)).show_ui(
+            ui,
+            |ui| {
+                for v in views() {
+                    ui.selectable_value(&mut controls.view, v, view_label(v));
                 }
-            });
+            },
+        );
+        egui::ComboBox::from_label("[F5] preset").selected_text(controls.preset.name()).show_ui(
+            ui,
+            |ui| {
+                for p in Preset::ALL {
+                    ui.selectable_value(&mut controls.preset, p, p.name());
+                }
+            },
+        );
         ui.horizontal(|ui| {
             ui.toggle_value(&mut controls.playing, "[P] fly-through");
             actions.reset_camera = ui.button("[R] reset camera").clicked();
@@ -152,22 +156,4 @@ fn pass_table(ui: &mut egui::Ui, stats: &FrameStats) {
             ui.end_row();
         }
     });
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn components_cycle_through_all_and_back() {
-        let mut c = None;
-        let mut seen = Vec::new();
-        for _ in 0..COMPONENTS.len() {
-            c = next_component(c);
-            seen.push(c);
-        }
-        assert_eq!(c, None);
-        assert_eq!(seen.len(), 7);
-        assert!(seen.contains(&Some(Component::SunDirect)));
-    }
 }

@@ -2,6 +2,7 @@
 //! the window's events call, and a log of what the engine did, written as `script.json`. The
 //! windowed test runs [`Script::standard`] under a virtual display.
 
+use super::controls::Controls;
 use super::window::Viewer;
 use engine::{EngineError, FrameStats, pass};
 use glam::Vec3;
@@ -37,7 +38,7 @@ pub struct Script {
 
 impl Script {
     /// Six frames of W, a mouse move, the time of day 15 minutes on, sun shadows switched off,
-    /// a screenshot.
+    /// a screenshot, then the next view (the sun's direct light) and the next preset.
     pub fn standard() -> Self {
         let steps = vec![
             (2, Step::Key(KeyCode::KeyW, true)),
@@ -48,8 +49,35 @@ impl Script {
             (13, Step::Key(KeyCode::Digit2, true)),
             (13, Step::Key(KeyCode::Digit2, false)),
             (16, Step::Screenshot),
+            (17, Step::Key(KeyCode::KeyC, true)),
+            (17, Step::Key(KeyCode::KeyC, false)),
+            (17, Step::Key(KeyCode::F5, true)),
+            (17, Step::Key(KeyCode::F5, false)),
         ];
-        Self { steps, last: 18 }
+        Self { steps, last: 20 }
+    }
+
+    /// The viewer's cost figures: `warm_up` still frames (the sky volume fills), then
+    /// `frames` frames flying forward and `frames` still frames, the overlay switched on and
+    /// off every frame so that frames with and without it interleave.
+    pub fn measure(warm_up: u64, frames: u64) -> Self {
+        let mut steps = vec![(warm_up, Step::Key(KeyCode::KeyW, true))];
+        steps.push((warm_up + frames, Step::Key(KeyCode::KeyW, false)));
+        for f in warm_up..warm_up + 2 * frames {
+            steps.push((f, Step::Key(KeyCode::Tab, true)));
+            steps.push((f, Step::Key(KeyCode::Tab, false)));
+        }
+        Self { steps, last: warm_up + 2 * frames - 1 }
+    }
+
+    /// A script by name: `standard` or `measure` (`measure` takes 10 warm-up frames and 24
+    /// of each kind).
+    pub fn named(name: &str) -> Option<Self> {
+        match name {
+            "standard" => Some(Self::standard()),
+            "measure" => Some(Self::measure(10, 24)),
+            _ => None,
+        }
     }
 
     pub fn at(&self, frame: u64) -> impl Iterator<Item = &Step> {
@@ -76,10 +104,21 @@ pub struct FrameLog {
     /// Milliseconds from the overlay's input to the present: the UI, the blit of the engine's image
     /// and the overlay's draw, and the present (which waits for the surface).
     pub overlay_ms: f32,
+    /// Milliseconds of the overlay's UI pass alone (egui layout on the CPU).
+    pub ui_ms: f32,
+    /// The overlay was drawn in this frame.
+    pub overlay: bool,
+    /// The camera moved since the last frame.
+    pub moving: bool,
+    pub preset: String,
+    pub view: String,
 }
 
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct ScriptLog {
+    pub adapter: String,
+    /// A software adapter (Mesa): the times are CPU times.
+    pub software: bool,
     pub frames: Vec<FrameLog>,
 }
 
@@ -89,9 +128,11 @@ impl ScriptLog {
         frame: u64,
         stats: &FrameStats,
         camera: Vec3,
-        overlay_ms: f32,
+        controls: &Controls,
+        (ui_ms, overlay_ms): (f32, f32),
         wall: Duration,
     ) {
+        let moving = self.frames.last().is_some_and(|f| f.camera != camera.to_array());
         let passes = stats
             .report
             .passes
@@ -104,6 +145,11 @@ impl ScriptLog {
             passes,
             frame_ms: wall.as_secs_f64() * 1e3,
             overlay_ms,
+            ui_ms,
+            overlay: controls.overlay,
+            moving,
+            preset: controls.preset.name().into(),
+            view: controls.view.name().into(),
         });
     }
 

@@ -2,12 +2,12 @@
 //! presentation with the overlay, screenshots, and the scripted run the tests use.
 
 use super::ViewOptions;
-use super::controls::{Controls, path_camera};
+use super::controls::{Controls, next_preset, next_view, path_camera};
 use super::fly::{FlyCamera, FlyInput};
 use super::overlay::{self, OverlayInfo};
 use super::present::Presenter;
 use super::script::{Script, ScriptLog};
-use engine::{Effect, EngineError, FrameStats, Renderer};
+use engine::{Effect, EngineError, FrameStats, Preset, Renderer, Settings};
 use std::collections::VecDeque;
 use std::sync::Arc;
 use std::time::Instant;
@@ -33,6 +33,8 @@ pub struct Viewer {
     applied: Option<Controls>,
     frame_ms: VecDeque<f32>,
     overlay_ms: f32,
+    /// Milliseconds of the overlay's UI pass (egui layout on the CPU).
+    ui_ms: f32,
     last: Option<FrameStats>,
     last_time: Option<Instant>,
     message: Option<String>,
@@ -43,7 +45,7 @@ pub struct Viewer {
 
 impl Viewer {
     pub fn new(opts: ViewOptions, scene: scene::Scene, script: Option<Script>) -> Self {
-        let controls = Controls::of_scene(&scene, opts.utc_offset_h);
+        let controls = Controls::of_scene(&scene, opts.utc_offset_h, opts.preset);
         let fly = FlyCamera::from_camera(&scene.camera, 6.0);
         Self {
             opts,
@@ -57,6 +59,7 @@ impl Viewer {
             applied: None,
             frame_ms: VecDeque::with_capacity(GRAPH_FRAMES),
             overlay_ms: 0.0,
+            ui_ms: 0.0,
             last: None,
             last_time: None,
             message: None,
@@ -100,9 +103,8 @@ impl Viewer {
             }
             _ if !pressed => {}
             KeyCode::KeyT => self.controls.nudge_time(if self.shift { -15.0 } else { 15.0 }),
-            KeyCode::KeyC => {
-                self.controls.component = overlay::next_component(self.controls.component)
-            }
+            KeyCode::KeyC => self.controls.view = next_view(self.controls.view),
+            KeyCode::F5 => self.controls.preset = next_preset(self.controls.preset),
             KeyCode::KeyP => self.controls.playing = !self.controls.playing,
             KeyCode::KeyR => return Some(Action::ResetCamera),
             KeyCode::Tab => self.controls.overlay = !self.controls.overlay,
@@ -207,6 +209,10 @@ impl Viewer {
         }
         let camera = self.camera();
         let Some((presenter, renderer, egui_state)) = &mut self.gfx else { return Ok(()) };
+        if self.applied.as_ref().is_some_and(|a| a.preset != self.controls.preset) {
+            *renderer = with_preset(presenter, renderer, self.controls.preset)?;
+            self.applied = None;
+        }
         apply(renderer, &self.controls, self.applied.as_ref(), camera)?;
         self.applied = Some(self.controls.clone());
         let stats = renderer.advance_frame()?;
@@ -231,6 +237,7 @@ impl Viewer {
             }
         });
         egui_state.handle_platform_output(&presenter.window, output.platform_output.clone());
+        self.ui_ms = t_overlay.elapsed().as_secs_f32() * 1e3;
         let capture = screenshot || actions.screenshot;
         let shot = presenter.present(renderer.display_texture(), &ctx, output, capture)?;
         if let Some(img) = shot {
@@ -245,7 +252,10 @@ impl Viewer {
         }
         self.frame_ms.push_back(now.elapsed().as_secs_f32() * 1e3);
         if let Some((_, log)) = &mut self.script {
-            log.frame(self.frame, &stats, camera.position, self.overlay_ms, now.elapsed());
+            (log.adapter, log.software) = (renderer.adapter().into(), renderer.is_software());
+            let wall = now.elapsed();
+            let spans = (self.ui_ms, self.overlay_ms);
+            log.frame(self.frame, &stats, camera.position, &self.controls, spans, wall);
         }
         self.last = Some(stats);
         if actions.screenshot || screenshot {
@@ -277,8 +287,25 @@ impl Viewer {
     }
 }
 
-/// The controls into the engine: camera, sun (only when the time changed, so the sky passes
-/// are not invalidated every frame), effect switches, the component shown.
+/// The renderer of `renderer`'s scene and view size at `preset`, on the presenter's device
+/// (the old one is dropped after the new one is built).
+fn with_preset(
+    presenter: &Presenter,
+    renderer: &Renderer,
+    preset: Preset,
+) -> Result<Renderer, EngineError> {
+    let (w, h) = (renderer.settings().width, renderer.settings().height);
+    Renderer::on_device(
+        renderer.scene().clone(),
+        Settings::preset(preset, w, h),
+        presenter.device.clone(),
+        presenter.queue.clone(),
+        &presenter.adapter,
+    )
+}
+
+/// The controls into the engine: camera, sun (only when the time or date changed, so the sky
+/// passes are not invalidated every frame), effect switches, the view shown.
 fn apply(
     renderer: &mut Renderer,
     controls: &Controls,
@@ -286,13 +313,13 @@ fn apply(
     camera: scene::Camera,
 ) -> Result<(), EngineError> {
     renderer.set_camera(camera)?;
-    if applied.is_none_or(|a| a.local_hours != controls.local_hours) {
+    if applied.is_none_or(|a| a.sun_moved(controls)) {
         renderer.set_sun(controls.sun(renderer.scene().sun.as_ref()))?;
     }
     for e in Effect::ALL {
         renderer.set_effect(e, controls.effects.is_on(e));
     }
-    renderer.set_component(controls.component);
+    renderer.set_view(controls.view);
     Ok(())
 }
 
@@ -326,7 +353,7 @@ impl ApplicationHandler for Viewer {
             Ok(p) => p,
             Err(e) => return self.fail(event_loop, e),
         };
-        let settings = engine::Settings::preset(self.opts.preset, w, h);
+        let settings = Settings::preset(self.controls.preset, w, h);
         let (device, queue) = (presenter.device.clone(), presenter.queue.clone());
         let renderer =
             match Renderer::on_device(scene.clone(), settings, device, queue, &presenter.adapter) {
