@@ -5,8 +5,8 @@
 // include: ssao/ssao.inc.wgsl
 // Deferred lighting of the main view (thesis 3.3, 4.2, 5.3.6-5.3.8): the sun with Phong (or
 // Blinn-Phong) and stabilised-CSM PCSS shadows, point lights, sky light from the sky volume
-// and one diffuse bounce from the LPV (both looked up per pixel by the crates' own kernels
-// into `sky` and `lpv`), SSAO on the indirect light only, emission, and the sky map where no
+// and one diffuse bounce of sunlight (the LPV's lookup or the RSM gather, per pixel by the
+// crates' own kernels into `sky` and `bounce`, irradiance), SSAO on the indirect light only, emission, and the sky map where no
 // geometry was drawn. The base BRDF is the reference's:
 // w_b ((1 - g) albedo / pi + g (n + 2) / (2 pi) cos^n), w_b = 1 - reflectivity - transparency;
 // the mirror and glass parts come from the ray tracer in the combine pass.
@@ -29,7 +29,7 @@ struct PointLight {
 @group(0) @binding(6) var<storage, read> cascades: array<CsmCascade>;
 @group(0) @binding(7) var<storage, read> taps: array<vec2<f32>>;
 @group(0) @binding(8) var<storage, read> sky: array<vec4<f32>>;
-@group(0) @binding(9) var<storage, read> lpv: array<vec4<f32>>;
+@group(0) @binding(9) var<storage, read> bounce: array<vec4<f32>>;
 @group(0) @binding(10) var<storage, read> materials: array<Material>;
 @group(0) @binding(11) var<storage, read> skymap: array<vec4<f32>>;
 @group(0) @binding(12) var<storage, read> lights: array<PointLight>;
@@ -193,9 +193,9 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     if (frame.size.w & FLAG_SKY_VOLUME) != 0u {
         sky_e_over_pi = sky[i].xyz;
     }
-    var lpv_e = vec3<f32>(0.0);
-    if (frame.size.w & FLAG_LPV) != 0u {
-        lpv_e = lpv[i].xyz;
+    var bounce_e = vec3<f32>(0.0);
+    if (frame.size.w & FLAG_INDIRECT) != 0u {
+        bounce_e = bounce[i].xyz;
     }
     let ao = ambient_occlusion(vec2<u32>(px), p, gn);
     let diffuse = base * (1.0 - g) * a.rgb;
@@ -205,11 +205,11 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
         case COMPONENT_POINT_LIGHTS: { c = base * points; }
         // Irradiance at the surface, as the reference's SkyIrradiance image.
         case COMPONENT_SKY_IRRADIANCE: { c = PI * sky_e_over_pi * ao; }
-        case COMPONENT_SUN_INDIRECT: { c = diffuse / PI * lpv_e * ao; }
+        case COMPONENT_SUN_INDIRECT: { c = diffuse / PI * bounce_e * ao; }
         case COMPONENT_EMISSION: { c = m.emission.rgb; }
         case COMPONENT_REFLECTIONS: { c = vec3<f32>(0.0); }
         default: {
-            c = base * (sun + points) + diffuse * (sky_e_over_pi + lpv_e / PI) * ao + m.emission.rgb;
+            c = base * (sun + points) + diffuse * (sky_e_over_pi + bounce_e / PI) * ao + m.emission.rgb;
         }
     }
     return vec4<f32>(max(c, vec3<f32>(0.0)), 1.0);

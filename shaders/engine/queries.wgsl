@@ -2,6 +2,7 @@
 // One lookup query per pixel for the sky-volume and LPV lookup kernels of their crates
 // (`shaders/sky_volume/lookup.wgsl`, `shaders/lpv/lookup.wgsl`): world position and shading
 // normal from the G-buffer; background pixels get a zero normal and albedo (zero light).
+// The world positions also go to a texture (w 1, 0 for the background) for the RSM gather.
 
 struct SkyQuery {
     position: vec4<f32>,
@@ -19,6 +20,7 @@ struct LpvQuery {
 @group(0) @binding(2) var depth_t: texture_2d<f32>;
 @group(0) @binding(3) var<storage, read_write> sky_q: array<SkyQuery>;
 @group(0) @binding(4) var<storage, read_write> lpv_q: array<LpvQuery>;
+@group(0) @binding(5) var positions: texture_storage_2d<rgba32float, write>;
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -37,4 +39,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     sky_q[i] = SkyQuery(vec4<f32>(p, 1.0), vec4<f32>(n, 0.0), vec4<f32>(albedo));
     lpv_q[i] = LpvQuery(vec4<f32>(p, 1.0), vec4<f32>(n, 0.0));
+    textureStore(positions, vec2<i32>(id.xy), vec4<f32>(p, albedo));
 }

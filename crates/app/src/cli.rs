@@ -2,7 +2,7 @@
 //! the image, the report and, on request, the reference image and the error figures.
 
 use crate::report::{RunInfo, write_report};
-use engine::{EngineError, Preset, Renderer, Settings};
+use engine::{EngineError, Indirect, Preset, Renderer, Settings};
 use std::path::{Path, PathBuf};
 
 /// Options of one render (the command line's, parsed).
@@ -18,6 +18,8 @@ pub struct RenderJob {
     pub width: u32,
     pub height: u32,
     pub preset: Preset,
+    /// The one-bounce technique (the presets': the RSM gather).
+    pub indirect: Indirect,
     pub frames: u32,
     pub out: PathBuf,
     /// Samples per pixel of the reference image, if wanted.
@@ -39,6 +41,7 @@ impl Default for RenderJob {
             width: 1600,
             height: 900,
             preset: Preset::Default,
+            indirect: Indirect::Rsm,
             frames: 24,
             out: PathBuf::from("target/render"),
             reference_spp: None,
@@ -83,6 +86,18 @@ impl SceneArgs {
             ..Default::default()
         }
     }
+}
+
+/// The engine's options both binaries take.
+#[derive(clap::Args, Clone, Debug)]
+pub struct EngineArgs {
+    /// Quality preset: low, default, high.
+    #[arg(long, default_value = "default")]
+    pub preset: Preset,
+    /// One-bounce indirect sunlight: rsm (interleaved gather from the sun's reflective shadow
+    /// map, the presets' choice), lpv (light propagation volumes, the thesis's), none.
+    #[arg(long, default_value = "rsm")]
+    pub indirect: Indirect,
 }
 
 /// `WxH` to `(W, H)`.
@@ -162,7 +177,8 @@ pub fn load_scene(job: &RenderJob) -> Result<scene::Scene, EngineError> {
 pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
     let scene = load_scene(job)?;
     let name = scene.name.clone();
-    let settings = Settings::preset(job.preset, job.width, job.height);
+    let settings =
+        Settings { indirect: job.indirect, ..Settings::preset(job.preset, job.width, job.height) };
     let mut renderer = Renderer::new(scene, settings)?;
     std::fs::create_dir_all(&job.out).map_err(|e| crate::io_err(&job.out, e))?;
     let bar = progress_bar(job.progress, job.frames as u64, "frames");
@@ -212,6 +228,7 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
         })
         .collect();
     notes.push(format!("sky volume complete: {}", renderer.sky_volume_complete()));
+    notes.push(format!("one-bounce technique: {}", job.indirect));
     notes.push(format!(
         "the passes table is of frame {}: after {} frames of a still camera the camera moved 1 cm, \
          so every per-frame pass ran while the sky map and sky volume were reused",

@@ -6,7 +6,7 @@
 //! | component | engine | reference |
 //! |---|---|---|
 //! | `sun_direct` | `w_b f_base cos E_sun V_pcss` | the same with the sun disk sampled and a shadow ray |
-//! | `sun_indirect_diffuse` | `w_b (1 - g) albedo / pi E_lpv ao` | `rho_d / pi` times one-bounce sun irradiance |
+//! | `sun_indirect_diffuse` | `w_b (1 - g) albedo / pi E_bounce ao` (E from the LPV or the RSM gather) | `rho_d / pi` times one-bounce sun irradiance |
 //! | `sky_irradiance` | `pi (E_sky / pi) ao`: **irradiance** at the first surface | occluded sky irradiance at the first surface |
 //! | `reflections` | what the combine pass adds (traced mirror + glass radiance with Fresnel weights) | light through the first surface's delta part, full GI after it |
 //! | `point_lights` | `w_b f_base cos I / d² V_cube` | the same with one shadow ray per light |
@@ -29,7 +29,7 @@ use frame_scheduler::FrameReport;
 pub enum Component {
     /// The sun's direct light with its shadows.
     SunDirect,
-    /// One bounce of sunlight (the LPV).
+    /// One bounce of sunlight (the LPV or the RSM gather, `Settings::indirect`).
     SunIndirectDiffuse,
     /// Sky irradiance at the first surface (the sky volume), with ambient occlusion.
     SkyIrradiance,
@@ -87,7 +87,7 @@ pub fn code(component: Option<Component>) -> u32 {
 pub fn passes(component: Component) -> &'static [&'static str] {
     match component {
         Component::SunDirect => &[pass::SHADOW_MAPS, pass::GBUFFER, pass::LIGHTING],
-        Component::SunIndirectDiffuse => &[pass::LPV, pass::GBUFFER, pass::LIGHTING],
+        Component::SunIndirectDiffuse => &[pass::LPV, pass::SUN_RSM, pass::GBUFFER, pass::LIGHTING],
         Component::SkyIrradiance => {
             &[pass::SKY_MAP, pass::SKY_VOLUME, pass::GBUFFER, pass::LIGHTING]
         }
@@ -103,6 +103,7 @@ pub fn passes(component: Component) -> &'static [&'static str] {
             pass::POINT_SHADOWS,
             pass::GBUFFER,
             pass::LPV,
+            pass::SUN_RSM,
             pass::RAY_CASTING,
             pass::RAY_TRACING,
             pass::LIGHTING,

@@ -5,7 +5,8 @@ use glam::{Mat4, Vec3};
 
 pub(crate) const FLAG_SKY: u32 = 1;
 pub(crate) const FLAG_BLINN: u32 = 2;
-pub(crate) const FLAG_LPV: u32 = 4;
+/// One-bounce irradiance (the LPV's lookup or the RSM gather) is in the lighting's input.
+pub(crate) const FLAG_INDIRECT: u32 = 4;
 pub(crate) const FLAG_SKY_VOLUME: u32 = 8;
 pub(crate) const FLAG_SHADOWS: u32 = 16;
 

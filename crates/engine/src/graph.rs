@@ -4,11 +4,13 @@
 //! ray tracing on a worker thread while the GPU lights the view) and reports.
 
 use crate::effects::Effect;
-use crate::frame::{FLAG_BLINN, FLAG_LPV, FLAG_SHADOWS, FLAG_SKY, FLAG_SKY_VOLUME, FrameUniform};
+use crate::frame::{
+    FLAG_BLINN, FLAG_INDIRECT, FLAG_SHADOWS, FLAG_SKY, FLAG_SKY_VOLUME, FrameUniform,
+};
 use crate::passes::display::{Exposure, Shown};
-use crate::passes::lighting::LightingInputs;
+use crate::passes::lighting::{IndirectSource, LightingInputs};
 use crate::passes::raycast::RayBatch;
-use crate::settings::Specular;
+use crate::settings::{Indirect, Specular};
 use crate::state::{FrameCtx, poisoned};
 use crate::trace::{TraceLighting, TraceSettings, trace_rays};
 use frame_scheduler::{Budget, FrameGraph, PassId, PassResult, Res, quantise_dir};
@@ -33,6 +35,7 @@ pub mod pass {
     pub const POINT_SHADOWS: &str = "point shadows";
     pub const GBUFFER: &str = "g-buffer";
     pub const LPV: &str = "rsm + lpv";
+    pub const SUN_RSM: &str = "rsm (gather)";
     pub const RAY_CASTING: &str = "ray casting buffer";
     pub const RAY_TRACING: &str = "ray tracing";
     pub const LIGHTING: &str = "lighting";
@@ -63,8 +66,8 @@ fn write_frame_uniform(c: &FrameCtx) {
     if s.sky.is_some() && c.needs.sky_lighting.needed {
         flags |= FLAG_SKY | FLAG_SKY_VOLUME;
     }
-    if c.needs.indirect_lpv.needed {
-        flags |= FLAG_LPV;
+    if c.needs.indirect_lpv.needed && c.indirect != Indirect::None {
+        flags |= FLAG_INDIRECT;
     }
     if set.specular == Specular::BlinnPhong {
         flags |= FLAG_BLINN;
@@ -94,6 +97,7 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
     let gbuf = g.resource::<u64>("g-buffer");
     let cubes = g.resource::<u64>("point-light cube maps");
     let lpv = g.resource::<u64>("lpv");
+    let sun_rsm = g.resource::<u64>("sun rsm (gather)");
     let batch = g.resource::<RayBatch>("ray batch");
     let traced = g.resource::<Traced>("traced radiance");
     let lit = g.resource::<u64>("lit view");
@@ -211,6 +215,7 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
         .run_if("the sun lights diffuse surfaces (one indirect bounce)", |c: &FrameCtx| {
             c.needs.indirect_lpv.needed && c.sun.is_some()
         })
+        .run_if("the indirect technique is the LPV", |c: &FrameCtx| c.indirect == Indirect::Lpv)
         .key("camera cell (1 m)", |c: &FrameCtx| quantise_dir(c.camera.position.to_array(), 1.0))
         .key("sun direction", sun_key)
         .run(move |io| -> PassResult {
@@ -220,6 +225,29 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
             l.update(&c.state.gpu, &c.state.scene, c.camera.position, sun.dir, sun.irradiance)?;
             io.ctx().state.gpu.take_error()?;
             io.put(lpv, c.frame)?;
+            Ok(())
+        });
+
+    g.gpu_pass(pass::SUN_RSM)
+        .writes(sun_rsm)
+        .run_if(Effect::IndirectLight.switch_label(), |c: &FrameCtx| {
+            c.effects.is_on(Effect::IndirectLight)
+        })
+        .run_if("the sun lights diffuse surfaces (one indirect bounce)", |c: &FrameCtx| {
+            c.needs.indirect_lpv.needed && c.sun.is_some()
+        })
+        .run_if("the indirect technique is the RSM gather", |c: &FrameCtx| {
+            c.indirect == Indirect::Rsm
+        })
+        .key("camera cell (1 m)", |c: &FrameCtx| quantise_dir(c.camera.position.to_array(), 1.0))
+        .key("sun direction", sun_key)
+        .run(move |io| -> PassResult {
+            let c = io.ctx();
+            let sun = c.sun.ok_or_else(|| crate::EngineError::Settings("no sun".into()))?;
+            let mut r = c.state.rsm_gather.write().map_err(poisoned)?;
+            r.update(&c.state.gpu, &c.state.scene, c.camera.position, sun.dir, sun.irradiance)?;
+            io.ctx().state.gpu.take_error()?;
+            io.put(sun_rsm, c.frame)?;
             Ok(())
         });
 
@@ -260,7 +288,8 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
                 None => None,
             };
             let lpv_guard = s.lpv.read().map_err(poisoned)?;
-            let use_lpv = c.needs.indirect_lpv.needed;
+            // The RSM gather is per pixel of the view: traced hits get no bounce from it.
+            let use_lpv = c.needs.indirect_lpv.needed && c.indirect == Indirect::Lpv;
             let use_sky = c.needs.sky_lighting.needed;
             let sky_fn = |d: Vec3| {
                 sky_guard.as_ref().filter(|_| use_sky).map_or(Vec3::ZERO, |k| k.radiance(d))
@@ -293,6 +322,7 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
         .reads(cubes)
         .reads(sky_vol)
         .reads(lpv)
+        .reads(sun_rsm)
         .writes(lit)
         .cached()
         .key("view shown", |c: &FrameCtx| c.component)
@@ -306,18 +336,27 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
                 None => None,
             };
             let lpv_state = s.lpv.read().map_err(poisoned)?;
+            let rsm_state = s.rsm_gather.read().map_err(poisoned)?;
+            let indirect = match c.indirect {
+                _ if !c.needs.indirect_lpv.needed => IndirectSource::None,
+                Indirect::Lpv => IndirectSource::Lpv(&lpv_state),
+                Indirect::Rsm if rsm_state.ready => {
+                    IndirectSource::Rsm(&rsm_state, c.camera.view_projection())
+                }
+                Indirect::Rsm | Indirect::None => IndirectSource::None,
+            };
             let inputs = LightingInputs {
                 frame: &s.frame,
                 shadows: s.shadow.bindings(maps.as_ref().filter(|_| c.needs.sun_shadows.needed)),
                 sky: sky.as_deref(),
                 sky_volume: c.needs.sky_lighting.needed && sky.is_some(),
-                lpv: Some(&*lpv_state).filter(|_| c.needs.indirect_lpv.needed),
+                indirect,
                 materials: &s.scene.materials,
                 lights: &s.lights,
                 cubes: s.point_shadow.bindings(),
             };
             let mut enc = s.gpu.device.create_command_encoder(&Default::default());
-            s.lighting.record(&s.gpu, &mut enc, &s.targets, &inputs);
+            s.lighting.record(&s.gpu, &mut enc, &s.targets, &inputs)?;
             s.gpu.queue.submit([enc.finish()]);
             io.ctx().state.gpu.take_error()?;
             io.put(lit, c.frame)?;

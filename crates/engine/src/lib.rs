@@ -14,10 +14,11 @@
 //! | `shadow maps` | stabilised cascades fitted to the camera, PCSS parameters (resident pass) | 4.2 | `shadows` |
 //! | `point shadows` | one depth cube array for the shadow-casting point lights (resident pass) | 4.2 | `shadows` |
 //! | `g-buffer` | albedo + gloss, normal + power, geometry normal + material, depth | Table 3.1 | - |
-//! | `rsm + lpv` | sun RSM → VPLs → injection + propagation in 3 cascades | 5.2, 5.3.7 | `shadows`, `lpv` |
+//! | `rsm + lpv` | sun RSM → VPLs → injection + propagation in 3 cascades (indirect `lpv`) | 5.2, 5.3.7 | `shadows`, `lpv` |
+//! | `rsm (gather)` | the same sun RSM, kept on the GPU for the lighting pass's interleaved gather (indirect `rsm`) | seed 2 | `shadows`, `rsm_gi` |
 //! | `ray casting buffer` | quarter-res origins + reflection/refraction rays, read back | 6.2.1 | - |
 //! | `ray tracing` | CPU kd-tree tracing and shading of those rays, on a worker thread | 6.2-6.3 | `kdtree_tracer` |
-//! | `lighting` | sun (Phong/Blinn-Phong, PCSS), point lights, sky volume + LPV lookups, SSAO (the crates' WGSL snippets) | 3.3, 5.3.6-5.3.8 | `shadows`, `ssao`, `sky_volume`, `lpv` |
+//! | `lighting` | sun (Phong/Blinn-Phong, PCSS), point lights, sky volume + LPV lookups or the RSM gather, SSAO (the crates' WGSL snippets) | 3.3, 5.3.6-5.3.8 | `shadows`, `ssao`, `sky_volume`, `lpv`, `rsm_gi` |
 //! | `traced upload + combine` | traced radiance added with Fresnel weights, depth-aware 3x3 gather | 6.3.4-6.3.5 | - |
 //! | `tone mapping` | on the GPU, every frame: log-average luminance, eye adaptation, Reinhard, sRGB | 3.7 | - |
 //!
@@ -29,7 +30,7 @@
 //! The ray tracing runs on a rayon worker while the main thread submits the GPU lighting
 //! (`frame_scheduler`'s overlapped mode, thesis Fig. 6.14). Every pass's outcome (ran,
 //! reused, skipped, amortised), its reason, CPU ms and GPU ms (wgpu timestamp queries) are in
-//! [`Frame::report`]; [`report::write_report`] writes it as markdown, JSON and an SVG
+//! [`Frame::report`]; `app::report::write_report` writes it as markdown, JSON and an SVG
 //! timeline beside the thesis's Table 7.1.
 //!
 //! ## Use
@@ -51,6 +52,11 @@
 //! depends on no command-line, progress-bar or reference crate.
 //!
 //! ## What differs from the thesis
+//! - The presets gather the sun's bounce from its reflective shadow map (`rsm_gi`, the second
+//!   seed's technique) instead of the LPV: on the component ledger it halves to thirds the
+//!   bounce's error at the same or less time ([`Indirect`] has the figures);
+//!   `Settings::indirect` (`--indirect lpv`) brings back the thesis's LPV, and
+//!   [`Renderer::set_indirect`] switches between them per frame.
 //! - The traced hits are shaded on the CPU with the same BRDF as the deferred pass (sun with
 //!   shadow rays instead of overlapped shadow maps, sky volume + LPV irradiance), instead of
 //!   uploading a traced G-buffer and lighting it on the GPU.
@@ -82,5 +88,5 @@ pub use error::EngineError;
 pub use gpu::TransferCounts;
 pub use graph::pass;
 pub use renderer::{Frame, FrameStats, HdrFrame, Renderer};
-pub use settings::{Preset, Settings, Specular};
+pub use settings::{Indirect, Preset, Settings, Specular};
 pub use views::{Channel, View};

@@ -105,6 +105,7 @@ pub struct Renderer {
     fixed_dt: Option<f32>,
     view: crate::views::View,
     effects: Effects,
+    indirect: crate::Indirect,
 }
 
 impl Renderer {
@@ -139,6 +140,7 @@ impl Renderer {
             g.build().map_err(|e| EngineError::Settings(format!("frame graph: {e}")))?;
         let mut camera = scene.camera;
         camera.aspect = state.settings.width as f32 / state.settings.height as f32;
+        let indirect = state.settings.indirect;
         Ok(Self {
             state,
             scheduler,
@@ -150,6 +152,7 @@ impl Renderer {
             fixed_dt: None,
             view: crate::views::View::Frame,
             effects: Effects::default(),
+            indirect,
         })
     }
 
@@ -210,6 +213,16 @@ impl Renderer {
     /// What the frames show.
     pub fn view(&self) -> View {
         self.view
+    }
+
+    /// The one-bounce technique of the next frames (both are built with the renderer, so a
+    /// switch costs one update of the new technique).
+    pub fn set_indirect(&mut self, indirect: crate::Indirect) {
+        self.indirect = indirect;
+    }
+
+    pub fn indirect(&self) -> crate::Indirect {
+        self.indirect
     }
 
     /// Switches an effect on or off for the next frames; a switched-off effect's passes are
@@ -288,6 +301,7 @@ impl Renderer {
             dt,
             reset_exposure: self.last_frame.is_none(),
             effects: self.effects,
+            indirect: self.indirect,
         };
         let mut timer = TimestampTimer::new(&self.state.gpu.device, &self.state.gpu.queue);
         let report = self.scheduler.run_frame_timed(&ctx, &mut timer).map_err(|e| match e {

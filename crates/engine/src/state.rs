@@ -10,6 +10,7 @@ use crate::passes::{
     lpv::LpvState,
     point_shadows::{PointShadowPass, gpu_lights},
     raycast::RayCastPass,
+    rsm_gather::RsmGatherState,
     shadow::ShadowMaps,
     shadow::ShadowPass,
     sky::SkyState,
@@ -34,6 +35,7 @@ pub struct State {
     pub display: DisplayPass,
     pub sky: Option<RwLock<SkyState>>,
     pub lpv: RwLock<LpvState>,
+    pub rsm_gather: RwLock<RsmGatherState>,
     pub trace: TraceScene,
     pub frame: wgpu::Buffer,
     pub lights: wgpu::Buffer,
@@ -68,6 +70,8 @@ pub struct FrameCtx {
     pub reset_exposure: bool,
     /// The application's switches (already applied to `needs`).
     pub effects: crate::effects::Effects,
+    /// The one-bounce technique of this frame.
+    pub indirect: crate::settings::Indirect,
 }
 
 impl State {
@@ -96,6 +100,9 @@ impl State {
             combine: CombinePass::new(device, &targets)?,
             display: DisplayPass::new(device, &targets)?,
             lpv: RwLock::new(LpvState::new(&gpu, &buffers, &settings)?),
+            rsm_gather: RwLock::new(RsmGatherState::new(
+                &gpu, scene, &buffers, &targets, &settings,
+            )?),
             trace: TraceScene::new(scene)?,
             frame: uniform(
                 device,

@@ -37,10 +37,10 @@ fn switched_off_effects_skip_their_passes_and_come_back() {
     assert!(!need.needed && need.reason == "sun shadows switched off", "{need:?}");
     let (lum_unshadowed, finite) = common::hdr_stats(&unshadowed);
     assert!(finite && lum_unshadowed > lum_on * 1.02, "{lum_unshadowed} vs on {lum_on}");
-    // Without the LPV's bounce: less light than with it.
+    // Without the bounce (the presets' RSM gather): less light than with it.
     r.set_effect(Effect::IndirectLight, false);
     let unbounced = r.render_frame().expect("frame");
-    skipped_by_switch(&unbounced, pass::LPV, Effect::IndirectLight);
+    skipped_by_switch(&unbounced, pass::SUN_RSM, Effect::IndirectLight);
     let (lum_unbounced, _) = common::hdr_stats(&unbounced);
     assert!(lum_unbounced < lum_unshadowed * 0.98, "{lum_unbounced} vs {lum_unshadowed}");
     for e in Effect::ALL {
@@ -52,7 +52,7 @@ fn switched_off_effects_skip_their_passes_and_come_back() {
     let back = r.render_frame().expect("frame");
     // Back at the first frame's camera: the passes serve the frame again (their outputs of
     // that camera are still valid, so they may be reused rather than rerun).
-    for p in [pass::SHADOW_MAPS, pass::LPV] {
+    for p in [pass::SHADOW_MAPS, pass::SUN_RSM] {
         let o = common::outcome(&back, p);
         assert!(matches!(o, Outcome::Ran | Outcome::Reused), "{}", common::describe(&back, p));
     }

@@ -2,9 +2,8 @@
 //! per-pass report. `cargo xtask render` runs it in release mode.
 
 use anyhow::Context;
-use app::cli::{RenderJob, SceneArgs, parse_size};
+use app::cli::{EngineArgs, RenderJob, SceneArgs, parse_size};
 use clap::Parser;
-use engine::Preset;
 use std::path::PathBuf;
 
 #[derive(Parser)]
@@ -15,9 +14,8 @@ struct Args {
     /// Image size, WIDTHxHEIGHT.
     #[arg(long, default_value = "1600x900")]
     size: String,
-    /// Quality preset: low, default, high.
-    #[arg(long, default_value = "default")]
-    preset: String,
+    #[command(flatten)]
+    engine: EngineArgs,
     /// Still frames to render (the sky volume fills over them); one more frame follows with
     /// the camera moved by 1 cm, so that every per-frame pass runs: that frame is the image
     /// and the report's pass table.
@@ -47,7 +45,8 @@ fn main() -> anyhow::Result<()> {
     let job = RenderJob {
         width,
         height,
-        preset: a.preset.parse::<Preset>()?,
+        preset: a.engine.preset,
+        indirect: a.engine.indirect,
         frames: a.frames,
         out: a.out.clone(),
         reference_spp: a.reference,

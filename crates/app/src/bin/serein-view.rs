@@ -1,10 +1,9 @@
 //! `serein-view`: the engine in a window. `cargo xtask view` runs it in release mode.
 
 use anyhow::Context;
-use app::cli::{SceneArgs, load_scene, parse_size};
+use app::cli::{EngineArgs, SceneArgs, load_scene, parse_size};
 use app::view::{ViewOptions, run, script::Script};
 use clap::Parser;
-use engine::Preset;
 use std::path::PathBuf;
 
 #[derive(Parser)]
@@ -12,9 +11,8 @@ use std::path::PathBuf;
 struct Args {
     #[command(flatten)]
     scene: SceneArgs,
-    /// Quality preset: low, default, high.
-    #[arg(long, default_value = "default")]
-    preset: String,
+    #[command(flatten)]
+    engine: EngineArgs,
     /// Window and render size, WIDTHxHEIGHT.
     #[arg(long, default_value = "1280x720")]
     size: String,
@@ -37,7 +35,8 @@ fn main() -> anyhow::Result<()> {
     let (width, height) = parse_size(&a.size)?;
     let scene = load_scene(&a.scene.job())?;
     let opts = ViewOptions {
-        preset: a.preset.parse::<Preset>()?,
+        preset: a.engine.preset,
+        indirect: a.engine.indirect,
         size: (width, height),
         utc_offset_h: a.scene.utc_offset,
         out: a.out,

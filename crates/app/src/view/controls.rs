@@ -2,7 +2,7 @@
 //! shown, the fly-through), as plain state with the functions that turn it into the engine's
 //! inputs.
 
-use engine::{Channel, Component, Effect, Effects, Preset, View};
+use engine::{Channel, Component, Effect, Effects, Indirect, Preset, View};
 use glam::Vec3;
 use scene::{CivilDate, Sun, SunPosition};
 
@@ -20,6 +20,8 @@ pub struct Controls {
     pub effects: Effects,
     /// The quality preset (a change rebuilds the renderer on the same device).
     pub preset: Preset,
+    /// The one-bounce technique (switched per frame, both are built).
+    pub indirect: Indirect,
     /// The frame, a lighting component or a G-buffer channel.
     pub view: View,
     /// The fly-through is playing (the fly camera is ignored).
@@ -32,6 +34,16 @@ pub struct Controls {
 impl Controls {
     /// The controls of `scene` as loaded: its sun's date, place and local time.
     pub fn of_scene(scene: &scene::Scene, utc_offset_h: f64, preset: Preset) -> Self {
+        Self::with(scene, utc_offset_h, preset, Indirect::default())
+    }
+
+    /// [`Controls::of_scene`] with the one-bounce technique `indirect`.
+    pub fn with(
+        scene: &scene::Scene,
+        utc_offset_h: f64,
+        preset: Preset,
+        indirect: Indirect,
+    ) -> Self {
         let (date, utc, place) = match scene.sun.as_ref().map(|s| s.position) {
             Some(SunPosition::Time { date, utc_hours, latitude_deg, longitude_deg }) => {
                 (date, utc_hours, (latitude_deg, longitude_deg))
@@ -45,6 +57,7 @@ impl Controls {
             place,
             effects: Effects::default(),
             preset,
+            indirect,
             view: View::Frame,
             playing: false,
             path_time: 0.0,
@@ -102,6 +115,12 @@ pub fn next_view(v: View) -> View {
     let all = views();
     let i = all.iter().position(|&x| x == v).unwrap_or(0);
     all[(i + 1) % all.len()]
+}
+
+/// The one-bounce technique after `i`, wrapping around.
+pub fn next_indirect(i: Indirect) -> Indirect {
+    let k = Indirect::ALL.iter().position(|&x| x == i).unwrap_or(0);
+    Indirect::ALL[(k + 1) % Indirect::ALL.len()]
 }
 
 /// The preset after `p`, wrapping around.
@@ -173,6 +192,8 @@ mod tests {
             p = next_preset(p);
         }
         assert_eq!(p, Preset::Low);
+        let i = next_indirect(next_indirect(next_indirect(Indirect::Rsm)));
+        assert_eq!((next_indirect(Indirect::Lpv), i), (Indirect::Rsm, Indirect::Rsm));
     }
 
     #[test]

@@ -16,13 +16,15 @@ pub mod present;
 pub mod script;
 pub mod window;
 
-use engine::{EngineError, Preset};
+use engine::{EngineError, Indirect, Preset};
 use std::path::PathBuf;
 
 /// What `serein-view` opens.
 #[derive(Clone, Debug)]
 pub struct ViewOptions {
     pub preset: Preset,
+    /// The one-bounce technique at the start.
+    pub indirect: Indirect,
     /// Window and render size.
     pub size: (u32, u32),
     pub utc_offset_h: f64,

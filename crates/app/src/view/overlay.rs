@@ -3,7 +3,7 @@
 //! the last frame's pass table. It only reads and edits [`Controls`]; the window applies them.
 
 use super::controls::{Controls, views};
-use engine::{Effect, FrameStats, Preset, View};
+use engine::{Effect, FrameStats, Indirect, Preset, View};
 use std::collections::VecDeque;
 
 /// What the overlay shows besides the controls.
@@ -83,6 +83,13 @@ pub fn draw(
                 controls.effects.set(e, on);
             }
         }
+        egui::ComboBox::from_label("[I] indirect technique")
+            .selected_text(controls.indirect.name())
+            .show_ui(ui, |ui| {
+                for i in Indirect::ALL {
+                    ui.selectable_value(&mut controls.indirect, i, i.name());
+                }
+            });
         egui::ComboBox::from_label("[C] shown").selected_text(view_label(controls.view)).show_ui(
             ui,
             |ui| {

@@ -2,7 +2,7 @@
 //! presentation with the overlay, screenshots, and the scripted run the tests use.
 
 use super::ViewOptions;
-use super::controls::{Controls, next_preset, next_view, path_camera};
+use super::controls::{Controls, next_indirect, next_preset, next_view, path_camera};
 use super::fly::{FlyCamera, FlyInput};
 use super::overlay::{self, OverlayInfo};
 use super::present::Presenter;
@@ -45,7 +45,7 @@ pub struct Viewer {
 
 impl Viewer {
     pub fn new(opts: ViewOptions, scene: scene::Scene, script: Option<Script>) -> Self {
-        let controls = Controls::of_scene(&scene, opts.utc_offset_h, opts.preset);
+        let controls = Controls::with(&scene, opts.utc_offset_h, opts.preset, opts.indirect);
         let fly = FlyCamera::from_camera(&scene.camera, 6.0);
         Self {
             opts,
@@ -105,6 +105,7 @@ impl Viewer {
             KeyCode::KeyT => self.controls.nudge_time(if self.shift { -15.0 } else { 15.0 }),
             KeyCode::KeyC => self.controls.view = next_view(self.controls.view),
             KeyCode::F5 => self.controls.preset = next_preset(self.controls.preset),
+            KeyCode::KeyI => self.controls.indirect = next_indirect(self.controls.indirect),
             KeyCode::KeyP => self.controls.playing = !self.controls.playing,
             KeyCode::KeyR => return Some(Action::ResetCamera),
             KeyCode::Tab => self.controls.overlay = !self.controls.overlay,
@@ -320,6 +321,7 @@ fn apply(
         renderer.set_effect(e, controls.effects.is_on(e));
     }
     renderer.set_view(controls.view);
+    renderer.set_indirect(controls.indirect);
     Ok(())
 }
 

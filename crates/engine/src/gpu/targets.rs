@@ -21,6 +21,9 @@ pub struct GBufferTargets {
     pub geometry: wgpu::TextureView,
     pub depth: wgpu::TextureView,
     pub zbuffer: wgpu::TextureView,
+    /// World position per pixel (w 1; 0 for the background), written by the lookup queries
+    /// pass for the techniques that read positions as a texture (the RSM gather).
+    pub positions: wgpu::TextureView,
     pub lit_texture: wgpu::Texture,
     pub lit: wgpu::TextureView,
     pub combined_texture: wgpu::Texture,
@@ -62,6 +65,19 @@ impl GBufferTargets {
             geometry: view("geometry", GBUFFER_FORMATS[2]),
             depth: view("linear depth", GBUFFER_FORMATS[3]),
             zbuffer: view("z-buffer", wgpu::TextureFormat::Depth32Float),
+            positions: device
+                .create_texture(&wgpu::TextureDescriptor {
+                    label: Some("world positions"),
+                    size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+                    mip_level_count: 1,
+                    sample_count: 1,
+                    dimension: wgpu::TextureDimension::D2,
+                    format: wgpu::TextureFormat::Rgba32Float,
+                    usage: wgpu::TextureUsages::STORAGE_BINDING
+                        | wgpu::TextureUsages::TEXTURE_BINDING,
+                    view_formats: &[],
+                })
+                .create_view(&Default::default()),
             lit: lit_texture.create_view(&Default::default()),
             lit_texture,
             combined: combined_texture.create_view(&Default::default()),

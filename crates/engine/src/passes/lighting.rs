@@ -1,8 +1,9 @@
 //! Deferred lighting of the main view (thesis 3.3 and 5.3.6-5.3.8): per-pixel lookup queries
-//! from the G-buffer, the sky-volume and LPV lookups by their crates' kernels, then one
-//! full-screen pass (`shaders/engine/lighting.wgsl`) into the HDR target.
+//! from the G-buffer, the sky-volume lookup and the one-bounce irradiance (the LPV's lookup
+//! or the RSM gather) by their crates' kernels, then one full-screen pass
+//! (`shaders/engine/lighting.wgsl`) into the HDR target.
 
-use super::{lpv::LpvState, sky::SkyState};
+use super::{lpv::LpvState, rsm_gather::RsmGatherState, sky::SkyState};
 use crate::EngineError;
 use crate::gpu::{
     GBufferTargets, Gpu, bind_group, compute_pipeline, dispatch, draw_fullscreen,
@@ -27,11 +28,20 @@ pub struct LightingInputs<'a> {
     pub sky: Option<&'a SkyState>,
     /// Run the sky-volume lookup this frame.
     pub sky_volume: bool,
-    pub lpv: Option<&'a LpvState>,
+    pub indirect: IndirectSource<'a>,
     pub materials: &'a wgpu::Buffer,
     pub lights: &'a wgpu::Buffer,
     /// The point lights' depth cube array and its comparison sampler.
     pub cubes: (&'a wgpu::TextureView, &'a wgpu::Sampler),
+}
+
+/// Where the one-bounce irradiance of this frame comes from.
+pub enum IndirectSource<'a> {
+    None,
+    /// The LPV's lookup.
+    Lpv(&'a LpvState),
+    /// The RSM gather over the view seen through the camera's `view_proj`.
+    Rsm(&'a RsmGatherState, glam::Mat4),
 }
 
 impl LightingPass {
@@ -62,9 +72,10 @@ impl LightingPass {
         enc: &mut wgpu::CommandEncoder,
         targets: &GBufferTargets,
         inputs: &LightingInputs<'_>,
-    ) {
+    ) -> Result<(), EngineError> {
         let (device, tv) = (&gpu.device, wgpu::BindingResource::TextureView);
-        if inputs.sky_volume || inputs.lpv.is_some() {
+        let indirect = !matches!(inputs.indirect, IndirectSource::None);
+        if inputs.sky_volume || indirect {
             let bg = bind_group(
                 device,
                 &self.queries.get_bind_group_layout(0),
@@ -74,6 +85,7 @@ impl LightingPass {
                     tv(&targets.depth),
                     self.sky_q.as_entire_binding(),
                     self.lpv_q.as_entire_binding(),
+                    tv(&targets.positions),
                 ],
             );
             dispatch(
@@ -86,9 +98,14 @@ impl LightingPass {
         if let (true, Some(sky)) = (inputs.sky_volume, inputs.sky) {
             sky.record_lookup(gpu, enc, &self.sky_q, &self.sky_out, self.pixels);
         }
-        if let Some(lpv) = inputs.lpv {
-            lpv.record_lookup(gpu, enc, &self.lpv_q, &self.lpv_out, self.pixels);
-        }
+        let indirect = match inputs.indirect {
+            IndirectSource::Lpv(lpv) => {
+                lpv.record_lookup(gpu, enc, &self.lpv_q, &self.lpv_out, self.pixels);
+                &self.lpv_out
+            }
+            IndirectSource::Rsm(rsm, view_proj) => rsm.record_gather(gpu, enc, view_proj)?,
+            IndirectSource::None => &self.lpv_out,
+        };
         let skymap = inputs.sky.map(|s| &s.map_buffer).unwrap_or(inputs.lights);
         let bg = bind_group(
             device,
@@ -103,7 +120,7 @@ impl LightingPass {
                 inputs.shadows.cascades.as_entire_binding(),
                 inputs.shadows.taps.as_entire_binding(),
                 self.sky_out.as_entire_binding(),
-                self.lpv_out.as_entire_binding(),
+                indirect.as_entire_binding(),
                 inputs.materials.as_entire_binding(),
                 skymap.as_entire_binding(),
                 inputs.lights.as_entire_binding(),
@@ -112,5 +129,6 @@ impl LightingPass {
             ],
         );
         draw_fullscreen(enc, "lighting", &self.pipeline, &bg, &targets.lit);
+        Ok(())
     }
 }

@@ -4,19 +4,17 @@
 //! and a per-pixel lookup by the crate's own kernel. The RSM is still read back: `lpv`
 //! injects from a VPL list until it takes the RSM textures itself.
 
+use super::sun_rsm::SunRsm;
 use crate::gpu::{Gpu, SceneBuffers, compute_pipeline, dispatch_lookup, storage_empty, uniform};
 use crate::{EngineError, Settings};
 use glam::Vec3;
 use lpv::gpu::{GpuGrid, GpuLookupParams};
 use lpv::{Lpv, Surfel, Vpl};
-use shadows::{LightBasis, ShadowView};
 
 pub struct LpvState {
     pub lpv: Lpv,
     gpu_lpv: lpv::gpu::GpuLpv,
-    rsm: shadows::gpu::ReflectiveShadowMap,
-    /// Diffuse albedo of each material draw (the RSM's flux).
-    albedo: Vec<Vec3>,
+    rsm: SunRsm,
     pub volumes: wgpu::Buffer,
     lookup: wgpu::ComputePipeline,
     lookup_params: wgpu::Buffer,
@@ -30,6 +28,15 @@ fn volume_bytes(lpv: &Lpv) -> u64 {
     lpv.cascades().iter().map(|c| c.volume.data.len() as u64 * 4).sum()
 }
 
+/// The sphere around `lpv`'s coarsest cascade (after it followed the camera): what the sun's
+/// RSM covers for both one-bounce techniques.
+pub fn bounce_region(lpv: &Lpv) -> Option<(glam::DVec3, f64)> {
+    let grid = lpv.cascades().last()?.grid;
+    let half = grid.extent() as f64 * 0.5;
+    let center = grid.origin.as_dvec3() + glam::DVec3::splat(half);
+    Some((center, half * 3f64.sqrt()))
+}
+
 impl LpvState {
     pub fn new(
         gpu: &Gpu,
@@ -37,29 +44,11 @@ impl LpvState {
         settings: &Settings,
     ) -> Result<Self, EngineError> {
         let lpv = Lpv::new(settings.lpv).map_err(|e| EngineError::technique("lpv", e))?;
-        let rsm = shadows::gpu::ReflectiveShadowMap::new(
-            &gpu.device,
-            SceneBuffers::SHADOW_LAYOUT,
-            settings.rsm_resolution,
-            buffers.draws.len() as u32,
-        )
-        .map_err(|e| EngineError::technique("shadows", e))?;
-        let albedo = buffers
-            .draws
-            .iter()
-            .map(|d| {
-                buffers.material_table.get(d.material as usize).map_or(Vec3::ZERO, |m| {
-                    let [r, g, b, _] = m.albedo;
-                    Vec3::new(r, g, b) * (1.0 - m.params[1] - m.params[2]).max(0.0)
-                })
-            })
-            .collect();
         let volumes = storage_empty(&gpu.device, "lpv volumes", volume_bytes(&lpv));
         Ok(Self {
             lpv,
             gpu_lpv: lpv::gpu::GpuLpv::new(&gpu.device),
-            rsm,
-            albedo,
+            rsm: SunRsm::new(gpu, buffers, settings)?,
             volumes,
             lookup: compute_pipeline(&gpu.device, "lpv lookup", lpv::gpu::LOOKUP_WGSL, "lookup")?,
             lookup_params: uniform(
@@ -82,36 +71,13 @@ impl LpvState {
         sun_dir: Vec3,
         sun_irradiance: Vec3,
     ) -> Result<(), EngineError> {
-        let tech = |e| EngineError::technique("shadows", e);
         self.lpv.follow(eye);
-        let coarsest = self.lpv.cascades().last().map(|c| c.grid);
-        let Some(grid) = coarsest else { return Ok(()) };
-        let half = grid.extent() as f64 * 0.5;
-        let center = grid.origin.as_dvec3() + glam::DVec3::splat(half);
-        let basis = LightBasis::new(-sun_dir).map_err(tech)?;
-        let view = ShadowView::fit_sphere(
-            basis,
-            center,
-            half * 3f64.sqrt(),
-            self.rsm.resolution(),
-            200.0,
-            true,
-        );
-        let mut enc = gpu.device.create_command_encoder(&Default::default());
-        let geometry = scene.shadow_geometry(true);
-        self.rsm
-            .record(&gpu.queue, &mut enc, &geometry, &self.albedo, &view, sun_irradiance)
-            .map_err(tech)?;
-        gpu.queue.submit([enc.finish()]);
-        let (rsm, _depth) = self.rsm.read_back(&gpu.device, &gpu.queue).map_err(tech)?;
-        // Depth, flux, normal, position: four copies and waits.
-        let texels = (rsm.width * rsm.height) as u64;
-        for bytes_per_texel in [4, 8, 8, 16] {
-            gpu.transfers.read_back(texels * bytes_per_texel);
-        }
+        let Some(region) = bounce_region(&self.lpv) else { return Ok(()) };
+        let view = self.rsm.render(gpu, scene, region, sun_dir, sun_irradiance)?;
+        let rsm = self.rsm.read_back(gpu)?;
         let vpls: Vec<Vpl> = rsm
             .extract_vpls(1)
-            .map_err(tech)?
+            .map_err(|e| EngineError::technique("shadows", e))?
             .into_iter()
             .map(|v| Vpl::new(v.position, v.normal, v.flux))
             .collect();

@@ -8,6 +8,8 @@ pub mod lighting;
 pub mod lpv;
 pub mod point_shadows;
 pub mod raycast;
+pub mod rsm_gather;
 pub mod shadow;
 pub mod sky;
+pub mod sun_rsm;
 pub mod tonemap;

@@ -1,0 +1,121 @@
+//! Indirect sunlight gathered straight from the sun's RSM (`rsm_gi`: Dachsbacher & Stamminger
+//! 2005 with interleaved sampling and a geometry-aware blur), the alternative to the LPV
+//! (`Settings::indirect`). The RSM covers the scene, or the region around the camera when
+//! the scene is larger ([`Settings::rsm_gather_radius`]), and is never read back; the crate's GPU gather runs over the engine's world positions (from
+//! the lookup queries pass) and shading normals, and writes irradiance per pixel where the
+//! lighting pass reads the LPV's. The RSM has no occlusion: its bounce leaks through walls
+//! (the `rsm_gi` crate doc has the figures).
+
+use super::sun_rsm::SunRsm;
+use crate::gpu::{GBufferTargets, Gpu, SceneBuffers};
+use crate::{EngineError, Settings};
+use glam::{DVec3, Vec3};
+use rsm_gi::gpu::{GpuGBuffer, GpuGather, GpuRsm};
+
+pub struct RsmGatherState {
+    rsm: SunRsm,
+    gather: GpuGather,
+    maps: GpuRsm,
+    /// World positions and shading normals of the view.
+    positions: wgpu::TextureView,
+    normals: wgpu::TextureView,
+    /// The sphere the RSM covers: the scene's bounding sphere when it is at most
+    /// `Settings::rsm_gather_radius` (then fixed), else that radius around the camera.
+    region: Region,
+    /// The RSM has been rendered.
+    pub ready: bool,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Region {
+    Fixed(DVec3, f64),
+    AroundCamera(f64),
+}
+
+impl Region {
+    /// The whole scene when it fits in `radius`, else `radius` around the camera: the gather
+    /// samples a disc that is a fraction of the map's width, so a map much larger than the
+    /// scene leaves a few huge texels (VPLs) per wall.
+    fn of(bounds: &scene::Aabb, radius: f64) -> Self {
+        let r = 0.5 * bounds.size().as_dvec3().length();
+        if !bounds.is_empty() && r <= radius {
+            Region::Fixed(bounds.center().as_dvec3(), r.max(0.5))
+        } else {
+            Region::AroundCamera(radius)
+        }
+    }
+
+    fn sphere(self, eye: Vec3) -> (DVec3, f64) {
+        match self {
+            Region::Fixed(c, r) => (c, r),
+            Region::AroundCamera(r) => (eye.as_dvec3(), r),
+        }
+    }
+}
+
+fn tech(e: rsm_gi::RsmGiError) -> EngineError {
+    EngineError::technique("rsm_gi", e)
+}
+
+impl RsmGatherState {
+    pub fn new(
+        gpu: &Gpu,
+        scene: &scene::Scene,
+        buffers: &SceneBuffers,
+        targets: &GBufferTargets,
+        settings: &Settings,
+    ) -> Result<Self, EngineError> {
+        let rsm = SunRsm::new(gpu, buffers, settings)?;
+        let gi = rsm_gi::RsmGi::new(settings.rsm_gi).map_err(tech)?;
+        let (w, h, res) = (targets.width, targets.height, rsm.resolution());
+        let gather = GpuGather::new(&gpu.device, &gi, w, h, res).map_err(tech)?;
+        let [flux, normal, position] = rsm.views().clone();
+        let maps = GpuRsm {
+            flux,
+            normal,
+            position,
+            width: res,
+            height: res,
+            world_to_texel: glam::Mat4::IDENTITY,
+        };
+        let region = Region::of(&scene.bounds(), settings.rsm_gather_radius as f64);
+        let (positions, normals) = (targets.positions.clone(), targets.normal.clone());
+        Ok(Self { rsm, gather, maps, positions, normals, region, ready: false })
+    }
+
+    /// Renders the sun's RSM around `eye`.
+    pub fn update(
+        &mut self,
+        gpu: &Gpu,
+        scene: &SceneBuffers,
+        eye: Vec3,
+        sun_dir: Vec3,
+        sun_irradiance: Vec3,
+    ) -> Result<(), EngineError> {
+        let view = self.rsm.render(gpu, scene, self.region.sphere(eye), sun_dir, sun_irradiance)?;
+        let res = self.rsm.resolution();
+        let projection = rsm_gi::RsmProjection::from_view_proj(view.view_proj(), res, res);
+        self.maps.world_to_texel = projection.world_to_texel;
+        self.ready = true;
+        Ok(())
+    }
+
+    /// Records the gather (and blur) over the view seen through `view_proj`; returns the
+    /// buffer of irradiance per pixel (`vec4`, rgb).
+    pub fn record_gather(
+        &self,
+        gpu: &Gpu,
+        enc: &mut wgpu::CommandEncoder,
+        view_proj: glam::Mat4,
+    ) -> Result<&wgpu::Buffer, EngineError> {
+        let size = self.positions.texture().size();
+        let gbuffer = GpuGBuffer {
+            position: self.positions.clone(),
+            normal: self.normals.clone(),
+            width: size.width,
+            height: size.height,
+            view_proj,
+        };
+        self.gather.record(&gpu.device, &gpu.queue, enc, &self.maps, &gbuffer, true).map_err(tech)
+    }
+}

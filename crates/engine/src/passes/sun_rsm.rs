@@ -1,0 +1,89 @@
+//! The sun's reflective shadow map over the region around the camera that the one-bounce
+//! techniques light (`shadows`' resident RSM over the scene's buffers): the flux, normal and
+//! position of every texel the sun reaches, the input of both the LPV's injection and the
+//! RSM gather (`rsm_gi`).
+
+use crate::gpu::{Gpu, SceneBuffers};
+use crate::{EngineError, Settings};
+use glam::{DVec3, Vec3};
+use shadows::{LightBasis, ShadowView};
+
+pub struct SunRsm {
+    rsm: shadows::gpu::ReflectiveShadowMap,
+    /// Diffuse albedo of each material draw (the RSM's flux).
+    albedo: Vec<Vec3>,
+    views: [wgpu::TextureView; 3],
+}
+
+fn tech(e: shadows::ShadowError) -> EngineError {
+    EngineError::technique("shadows", e)
+}
+
+impl SunRsm {
+    pub fn new(
+        gpu: &Gpu,
+        buffers: &SceneBuffers,
+        settings: &Settings,
+    ) -> Result<Self, EngineError> {
+        let rsm = shadows::gpu::ReflectiveShadowMap::new(
+            &gpu.device,
+            SceneBuffers::SHADOW_LAYOUT,
+            settings.rsm_resolution,
+            buffers.draws.len() as u32,
+        )
+        .map_err(tech)?;
+        let albedo = buffers
+            .draws
+            .iter()
+            .map(|d| {
+                buffers.material_table.get(d.material as usize).map_or(Vec3::ZERO, |m| {
+                    let [r, g, b, _] = m.albedo;
+                    Vec3::new(r, g, b) * (1.0 - m.params[1] - m.params[2]).max(0.0)
+                })
+            })
+            .collect();
+        let views = rsm.targets().each_ref().map(|t| t.create_view(&Default::default()));
+        Ok(Self { rsm, albedo, views })
+    }
+
+    pub fn resolution(&self) -> u32 {
+        self.rsm.resolution()
+    }
+
+    /// Flux, normal and position targets.
+    pub fn views(&self) -> &[wgpu::TextureView; 3] {
+        &self.views
+    }
+
+    /// Renders the map of the sphere of `radius` around `center` lit by the sun (`sun_dir`
+    /// towards it) and returns the light's view of it.
+    pub fn render(
+        &self,
+        gpu: &Gpu,
+        scene: &SceneBuffers,
+        (center, radius): (DVec3, f64),
+        sun_dir: Vec3,
+        sun_irradiance: Vec3,
+    ) -> Result<ShadowView, EngineError> {
+        let basis = LightBasis::new(-sun_dir).map_err(tech)?;
+        let view = ShadowView::fit_sphere(basis, center, radius, self.resolution(), 200.0, true);
+        let mut enc = gpu.device.create_command_encoder(&Default::default());
+        let geometry = scene.shadow_geometry(true);
+        self.rsm
+            .record(&gpu.queue, &mut enc, &geometry, &self.albedo, &view, sun_irradiance)
+            .map_err(tech)?;
+        gpu.queue.submit([enc.finish()]);
+        Ok(view)
+    }
+
+    /// The map read back (for a technique that runs on the CPU), counted as four copies.
+    pub fn read_back(&self, gpu: &Gpu) -> Result<shadows::Rsm, EngineError> {
+        let (rsm, _depth) = self.rsm.read_back(&gpu.device, &gpu.queue).map_err(tech)?;
+        // Depth, flux, normal, position: four copies and waits.
+        let texels = (rsm.width * rsm.height) as u64;
+        for bytes_per_texel in [4, 8, 8, 16] {
+            gpu.transfers.read_back(texels * bytes_per_texel);
+        }
+        Ok(rsm)
+    }
+}

@@ -1,0 +1,72 @@
+//! The one-bounce technique is a per-frame switch: the LPV's pass or the RSM gather's runs
+//! (the other is skipped with the technique named as the reason), both give a finite bounce of
+//! the same order on the city, the RSM gather reads nothing back, and `none` adds no bounce.
+
+mod common;
+
+use engine::{Component, Indirect, pass};
+use frame_scheduler::Outcome;
+
+fn mean_luminance(f: &engine::Frame) -> f64 {
+    let n = f.hdr.pixels.len() as f64;
+    f.hdr
+        .pixels
+        .iter()
+        .map(|p| 0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64)
+        .sum::<f64>()
+        / n
+}
+
+#[test]
+fn the_indirect_technique_switches_per_frame() {
+    let Some(mut r) = common::generated(scene::Generated::City, 96, 54) else { return };
+    assert_eq!(r.indirect(), Indirect::Rsm, "the presets gather from the RSM");
+    r.set_indirect(Indirect::Lpv);
+    r.set_component(Some(Component::SunIndirectDiffuse));
+    let lpv = r.render_frame().expect("lpv frame");
+    assert_eq!(
+        common::outcome(&lpv, pass::LPV),
+        Outcome::Ran,
+        "{}",
+        common::describe(&lpv, pass::LPV)
+    );
+    let skipped = lpv.report.pass(pass::SUN_RSM).expect("rsm pass");
+    assert_eq!(skipped.outcome, Outcome::Skipped);
+    assert!(
+        skipped.reason.to_string().contains("the indirect technique is the RSM gather"),
+        "{}",
+        skipped.reason
+    );
+
+    r.set_indirect(Indirect::Rsm);
+    assert_eq!(r.indirect(), Indirect::Rsm);
+    let rsm = r.render_frame().expect("rsm frame");
+    assert_eq!(
+        common::outcome(&rsm, pass::SUN_RSM),
+        Outcome::Ran,
+        "{}",
+        common::describe(&rsm, pass::SUN_RSM)
+    );
+    let lpv_pass = rsm.report.pass(pass::LPV).expect("lpv pass");
+    assert!(
+        lpv_pass.reason.to_string().contains("the indirect technique is the LPV"),
+        "{}",
+        lpv_pass.reason
+    );
+    let (a, b) = (mean_luminance(&lpv), mean_luminance(&rsm));
+    assert!(common::hdr_stats(&rsm).1, "finite");
+    assert!(a > 0.0 && b > 0.0 && b / a > 0.1 && b / a < 10.0, "bounce: lpv {a}, rsm {b}");
+    assert!(
+        rsm.transfers.read_back_bytes < lpv.transfers.read_back_bytes,
+        "the gather's RSM stays on the GPU: {} vs the LPV's {} bytes read back",
+        rsm.transfers.read_back_bytes,
+        lpv.transfers.read_back_bytes
+    );
+
+    r.set_indirect(Indirect::None);
+    let none = r.render_frame().expect("frame without bounce");
+    for p in [pass::LPV, pass::SUN_RSM] {
+        assert_eq!(common::outcome(&none, p), Outcome::Skipped, "{}", common::describe(&none, p));
+    }
+    assert_eq!(mean_luminance(&none), 0.0, "no bounce without a technique");
+}
