@@ -50,7 +50,7 @@ pub struct ReferenceRender {
     pub ms: f64,
 }
 
-/// Renders one component of the reference (see [`crate::components`] for what each is):
+/// Renders one component of the reference (see [`engine::components`] for what each is):
 /// the mean image, its mean relative standard error and the milliseconds it took.
 pub fn reference_component(
     scene: &scene::Scene,

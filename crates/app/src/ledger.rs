@@ -1,4 +1,4 @@
-//! The component ledger of one view: per lighting component ([`crate::components`]) and per
+//! The component ledger of one view: per lighting component ([`engine::components`]) and per
 //! named region ([`crate::regions`]), the engine against the `reference` path tracer.
 //!
 //! Figures per component and region:
@@ -8,7 +8,7 @@
 //!   luminance over that mean (pixels independent): ratios within a few of these of 1 are
 //!   noise, not disagreement;
 //! - `passes_ms`: milliseconds of the passes that produce the component
-//!   ([`crate::components::passes_ms`]) in the report's frame;
+//!   ([`engine::components::passes_ms`]) in the report's frame;
 //! - `abs_rms`: `sqrt(sum |e - r|² / n)`, always defined.
 //!
 //! Where a region's truth is black (a closed room), a ratio to it is undefined: the region is

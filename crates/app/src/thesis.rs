@@ -5,7 +5,7 @@
 //! 2.66 GHz with 4 GB of RAM and an NVIDIA GeForce GTX 260. §7.3 gives:
 //!
 //! * **Table 7.1** ("Timings of the first test"): one typical frame, lighting for the whole
-//!   screen, ray-traced reflections on a small part of it: [`TABLE_7_1`], total
+//!   screen, ray-traced reflections on a small part of it: `TABLE_7_1`, total
 //!   [`TABLE_7_1_TOTAL_MS`] (42.6 ms, 23 fps). The sky-volume layer (12.6 ms) is left out of
 //!   the total because it stops once the volume is complete; the other rows sum to
 //!   [`TABLE_7_1_SUM_MS`] (65.1 ms): the CPU ray tracing overlaps the GPU lighting, and run in
