@@ -6,9 +6,9 @@
 //!
 //! * **Table 7.1** ("Timings of the first test"): one typical frame, lighting for the whole
 //!   screen, ray-traced reflections on a small part of it: `TABLE_7_1`, total
-//!   [`TABLE_7_1_TOTAL_MS`] (42.6 ms, 23 fps). The sky-volume layer (12.6 ms) is left out of
+//!   `TABLE_7_1_TOTAL_MS` (42.6 ms, 23 fps). The sky-volume layer (12.6 ms) is left out of
 //!   the total because it stops once the volume is complete; the other rows sum to
-//!   [`TABLE_7_1_SUM_MS`] (65.1 ms): the CPU ray tracing overlaps the GPU lighting, and run in
+//!   `TABLE_7_1_SUM_MS` (65.1 ms): the CPU ray tracing overlaps the GPU lighting, and run in
 //!   series the frame took [`TABLE_7_1_SERIAL_MS`] (68 ms, 14 fps).
 //! * **Table 7.2** ("Timings of the second test", reflections filling the screen): the same
 //!   rows, kept here as [`ThesisPass::worst_ms`], total [`TABLE_7_2_TOTAL_MS`] (95.6 ms, 10 fps).
