@@ -9,13 +9,13 @@
 //!   `TABLE_7_1_TOTAL_MS` (42.6 ms, 23 fps). The sky-volume layer (12.6 ms) is left out of
 //!   the total because it stops once the volume is complete; the other rows sum to
 //!   `TABLE_7_1_SUM_MS` (65.1 ms): the CPU ray tracing overlaps the GPU lighting, and run in
-//!   series the frame took [`TABLE_7_1_SERIAL_MS`] (68 ms, 14 fps).
+//!   series the frame took `TABLE_7_1_SERIAL_MS` (68 ms, 14 fps).
 //! * **Table 7.2** ("Timings of the second test", reflections filling the screen): the same
-//!   rows, kept here as [`ThesisPass::worst_ms`], total [`TABLE_7_2_TOTAL_MS`] (95.6 ms, 10 fps).
+//!   rows, kept here as `ThesisPass::worst_ms`, total `TABLE_7_2_TOTAL_MS` (95.6 ms, 10 fps).
 //! * **Table 7.3** ("Timings of the third test", a fly-through): [`TABLE_7_3`], mean frame
 //!   48.4 ms (20 fps), standard deviation 5.9 ms, 5000 frames. The table gives no share of
 //!   frames with ray tracing; the text says ray-traced effects were constantly present but
-//!   rarely covered much of the screen ([`TABLE_7_3_RAY_TRACING`]).
+//!   rarely covered much of the screen (`TABLE_7_3_RAY_TRACING`).
 //!
 //! [`thesis_pass_for`] maps our pass names to these rows. Rows with no counterpart: Screen
 //! Space Ambient Occlusion (6.0 ms; we have no SSAO pass). Our passes with no row: "sky map"
