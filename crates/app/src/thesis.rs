@@ -12,12 +12,12 @@
 //!   series the frame took `TABLE_7_1_SERIAL_MS` (68 ms, 14 fps).
 //! * **Table 7.2** ("Timings of the second test", reflections filling the screen): the same
 //!   rows, kept here as `ThesisPass::worst_ms`, total `TABLE_7_2_TOTAL_MS` (95.6 ms, 10 fps).
-//! * **Table 7.3** ("Timings of the third test", a fly-through): [`TABLE_7_3`], mean frame
+//! * **Table 7.3** ("Timings of the third test", a fly-through): `TABLE_7_3`, mean frame
 //!   48.4 ms (20 fps), standard deviation 5.9 ms, 5000 frames. The table gives no share of
 //!   frames with ray tracing; the text says ray-traced effects were constantly present but
 //!   rarely covered much of the screen (`TABLE_7_3_RAY_TRACING`).
 //!
-//! [`thesis_pass_for`] maps our pass names to these rows. Rows with no counterpart: Screen
+//! `thesis_pass_for` maps our pass names to these rows. Rows with no counterpart: Screen
 //! Space Ambient Occlusion (6.0 ms; we have no SSAO pass). Our passes with no row: "sky map"
 //! (regenerated only when the time of day changes, §3.6, not timed in chapter 7), "shadow maps"
 //! (the thesis times shadow-map rendering inside "Direct Lighting (Phong + CSM + PCSS)", which
