@@ -12,7 +12,7 @@
 //!   its **Table 7.3** (fly-through: mean 48.4 ms, standard deviation 5.9 ms, 5000 frames); the
 //!   figures and the pass mapping live in `thesis.rs`.
 //! * `report.json`: `{"run": RunInfo, "frame_stats": {...}, "last_frame": FrameReport,
-//!   "thesis": {...}, "comparison": [...] | null}` (see [`json`]).
+//!   "thesis": {...}, "comparison": [...] | null}` (see [`json()`]).
 //! * `timeline.svg`: the last frame's CPU/GPU timeline ([`FrameReport::to_svg`]).
 
 use crate::thesis::{self, ThesisPass};

@@ -30,7 +30,7 @@ struct Args {
     reference: Option<u32>,
     /// With --reference: also the component ledger: per lighting component (sun direct, sky
     /// irradiance, LPV bounce, reflections, point lights, emission, full) and per named
-    /// region, the engine against the reference; writes engine_/reference_/difference_<c>.exr,
+    /// region, the engine against the reference; writes `engine_/reference_/difference_<c>.exr`,
     /// components.png (contact sheet) and a ledger section in report.md / report.json.
     #[arg(long, requires = "reference")]
     components: bool,
