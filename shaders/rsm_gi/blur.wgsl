@@ -1,7 +1,7 @@
 // include: rsm_gi/common.inc.wgsl
-// rsm_gi geometry-aware blur, one direction of the separable Gaussian (pattern.w = 0: along
-// x with radius pattern.z, 1: along y), sigma = radius / 2 + 1/2; walks outwards from the
-// centre and stops at the first discontinuity. Workgroup 8 x 8, one invocation per pixel.
+// rsm_gi geometry-aware blur of the (low-resolution) image, one direction of the separable
+// Gaussian (pattern.w = 0: along x with radius pattern.z, 1: along y), sigma = radius / 2 +
+// 1/2; walks outwards from the centre and stops at the first discontinuity. Workgroup 8 x 8, one invocation per pixel.
 
 @group(0) @binding(0) var<uniform> view: RsmGiView;
 @group(0) @binding(1) var g_position: texture_2d<f32>;
@@ -9,8 +9,11 @@
 @group(0) @binding(3) var<storage, read> src: array<vec4<f32>>;
 @group(0) @binding(4) var<storage, read_write> dst: array<vec4<f32>>;
 
+// The G-buffer pixel a (low-resolution) image pixel stands for.
 fn pixel_at(t: vec2<i32>) -> RsmGiPixel {
-    return rsm_gi_make_pixel(textureLoad(g_position, t, 0).xyz, textureLoad(g_normal, t, 0).xyz, view.view_proj);
+    let full = vec2<i32>(textureDimensions(g_position));
+    let f = rsm_gi_texel(t, i32(view.knobs.w), full);
+    return rsm_gi_make_pixel(textureLoad(g_position, f, 0).xyz, textureLoad(g_normal, f, 0).xyz, view.view_proj);
 }
 
 @compute @workgroup_size(8, 8)

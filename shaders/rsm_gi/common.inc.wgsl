@@ -3,8 +3,10 @@
 
 const RSM_GI_PI: f32 = 3.14159265358979;
 
-// One view of one RSM: matrices, sizes (G-buffer w, h; RSM w, h), pattern (nx, ny, blur
-// radius, 1 = vertical blur pass), knobs (vpl offset, depth tolerance, normal power).
+// One view of one RSM: matrices, sizes (the pass's image w, h: the low-resolution grid for
+// the gather and the blur, the full G-buffer for the upsampling; RSM w, h), pattern (nx, ny,
+// blur radius, 1 = vertical blur pass; the upsampling: nx, ny, low-resolution w, h), knobs
+// (vpl offset, depth tolerance, normal power, low-resolution factor f).
 struct RsmGiView {
     world_to_texel: mat4x4<f32>,
     view_proj: mat4x4<f32>,
@@ -56,4 +58,10 @@ fn rsm_gi_geometry_weight(c: RsmGiPixel, q: RsmGiPixel, tolerance: f32, power: f
         return -1.0;
     }
     return pow(cosine, power);
+}
+
+// The full-resolution texel a low-resolution pixel `c` stands for (factor `f`; CPU twin:
+// filter.rs `fine`): the centre of its f x f block, clamped to the image.
+fn rsm_gi_texel(c: vec2<i32>, f: i32, full: vec2<i32>) -> vec2<i32> {
+    return min(c * f + vec2<i32>(f / 2), full - vec2<i32>(1));
 }

@@ -5,10 +5,12 @@
 //! [`GpuGBuffer`]: `Rgba32Float`, xyz used). Read-back ([`GpuGather::read_back`]) is a
 //! separate call for the parity tests.
 //!
-//! The shaders (`shaders/rsm_gi/gather.wgsl`, `blur.wgsl`, sharing `common.inc.wgsl`)
-//! expect finite inputs: [`GpuRsm::upload`] and [`GpuGBuffer::upload`] turn non-finite
-//! texels and pixels into non-emitting texels and background pixels, as the CPU path
-//! skips them. The gather evaluates at full resolution (`low_res` is the CPU path's).
+//! The shaders (`shaders/rsm_gi/gather.wgsl`, `blur.wgsl`, `upsample.wgsl`, sharing
+//! `common.inc.wgsl` and `gather.inc.wgsl`) expect finite inputs: [`GpuRsm::upload`] and
+//! [`GpuGBuffer::upload`] turn non-finite texels and pixels into non-emitting texels and
+//! background pixels, as the CPU path skips them. With `low_res` f > 1 the gather and the
+//! blur run on the `1/f` grid and a geometry-aware upsampling (with a full-resolution gather
+//! where no coarse pixel fits) fills the full image, as the CPU path does.
 
 use crate::error::RsmGiError;
 use crate::input::{GBuffer, RsmInput};
@@ -19,18 +21,20 @@ use glam::{Mat4, Vec3};
 use wgpu::util::DeviceExt;
 
 macro_rules! shader {
-    ($file:literal) => {
+    ($($file:literal),+) => {
         concat!(
             include_str!("../../../shaders/rsm_gi/common.inc.wgsl"),
-            include_str!(concat!("../../../shaders/rsm_gi/", $file))
+            $(include_str!(concat!("../../../shaders/rsm_gi/", $file))),+
         )
     };
 }
 
 /// The gather shader (entry point `gather`).
-pub const GATHER_WGSL: &str = shader!("gather.wgsl");
+pub const GATHER_WGSL: &str = shader!("gather.inc.wgsl", "gather.wgsl");
 /// One direction of the blur (entry point `blur`).
 pub const BLUR_WGSL: &str = shader!("blur.wgsl");
+/// The upsampling of a low-resolution result (entry point `upsample`).
+pub const UPSAMPLE_WGSL: &str = shader!("gather.inc.wgsl", "upsample.wgsl");
 const WORKGROUP: u32 = 8;
 
 /// `RsmGiView` in `common.inc.wgsl`.
@@ -219,20 +223,56 @@ fn pipeline(
     (p, layout)
 }
 
-/// The resident interleaved gather + blur for one [`RsmGi`] and one image size.
+/// The resident interleaved gather + blur (+ upsampling at `low_res` > 1) for one [`RsmGi`]
+/// and one image size.
 pub struct GpuGather {
     gi: RsmGi,
     width: u32,
     height: u32,
+    /// The grid the gather and the blur run on (`1/low_res` of the image).
+    low: (u32, u32),
     gather: (wgpu::ComputePipeline, wgpu::BindGroupLayout),
     blur: (wgpu::ComputePipeline, wgpu::BindGroupLayout),
+    upsample: (wgpu::ComputePipeline, wgpu::BindGroupLayout),
     samples: wgpu::Buffer,
     ranges: wgpu::Buffer,
-    /// Uniform blocks of the gather, the x blur and the y blur.
-    views: [wgpu::Buffer; 3],
-    /// The gather's output, the x blur's, and the final image (the y blur's).
-    images: [wgpu::Buffer; 3],
+    /// Uniform blocks of the gather, the x blur, the y blur and the upsampling.
+    views: [wgpu::Buffer; 4],
+    /// On the low grid: the gather's output, the x blur's, the y blur's; then the full
+    /// image (the upsampling's).
+    images: [wgpu::Buffer; 4],
     readback: wgpu::Buffer,
+}
+
+/// The pattern's sub-buffer subsets, then the whole pattern (the upsampling's fallback), as
+/// (samples, ranges): range `c` is cell `c`'s subset, range `cells` the whole pattern.
+fn pattern_sets(gi: &RsmGi, radius: f32) -> (Vec<[f32; 4]>, Vec<[u32; 2]>) {
+    let cells = gi.settings().pattern.cells();
+    let (mut flat, mut ranges) = (Vec::<[f32; 4]>::new(), Vec::<[u32; 2]>::new());
+    let sets = (0..cells).map(|c| subset(gi.samples(), c, cells, radius));
+    for set in sets.chain([subset(gi.samples(), 0, 1, radius)]) {
+        ranges.push([flat.len() as u32, set.len() as u32]);
+        flat.extend(set.iter().map(|(o, w)| [o.x, o.y, *w, 0.0]));
+    }
+    flat.push([0.0; 4]);
+    (flat, ranges)
+}
+
+/// Bindings 0..=7 of the gather and the upsampling: view, RSM textures, G-buffer textures,
+/// samples, ranges.
+fn gather_layout(extra: &[wgpu::BindGroupLayoutEntry]) -> Vec<wgpu::BindGroupLayoutEntry> {
+    let mut e = vec![
+        uniform(0),
+        tex(1),
+        tex(2),
+        tex(3),
+        tex(4),
+        tex(5),
+        storage(6, true),
+        storage(7, true),
+    ];
+    e.extend_from_slice(extra);
+    e
 }
 
 impl GpuGather {
@@ -253,17 +293,7 @@ impl GpuGather {
             "rsm_gi gather",
             GATHER_WGSL,
             "gather",
-            &[
-                uniform(0),
-                tex(1),
-                tex(2),
-                tex(3),
-                tex(4),
-                tex(5),
-                storage(6, true),
-                storage(7, true),
-                storage(8, false),
-            ],
+            &gather_layout(&[storage(8, false)]),
         );
         let blur = pipeline(
             device,
@@ -272,15 +302,14 @@ impl GpuGather {
             "blur",
             &[uniform(0), tex(1), tex(2), storage(3, true), storage(4, false)],
         );
-        let cells = s.pattern.cells();
-        let radius = s.r_max * rsm_width as f32;
-        let (mut flat, mut ranges) = (Vec::<[f32; 4]>::new(), Vec::<[u32; 2]>::new());
-        for c in 0..cells {
-            let set = subset(gi.samples(), c, cells, radius);
-            ranges.push([flat.len() as u32, set.len() as u32]);
-            flat.extend(set.iter().map(|(o, w)| [o.x, o.y, *w, 0.0]));
-        }
-        flat.push([0.0; 4]);
+        let upsample = pipeline(
+            device,
+            "rsm_gi upsample",
+            UPSAMPLE_WGSL,
+            "upsample",
+            &gather_layout(&[storage(8, false), storage(9, true)]),
+        );
+        let (flat, ranges) = pattern_sets(gi, s.r_max * rsm_width as f32);
         let init = |label: &str, contents: &[u8], usage| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(label),
@@ -300,35 +329,45 @@ impl GpuGather {
                 mapped_at_creation: false,
             })
         };
-        let bytes = (width as u64 * height as u64 * 16).max(16);
-        let img = |label| {
+        let low = (width.div_ceil(s.low_res), height.div_ceil(s.low_res));
+        let img = |label, w: u32, h: u32| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
-                size: bytes,
+                size: (w as u64 * h as u64 * 16).max(16),
                 usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
                 mapped_at_creation: false,
             })
         };
+        let bytes = (width as u64 * height as u64 * 16).max(16);
         let readback = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("rsm_gi readback"),
             size: bytes,
             usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
+        let full = if s.low_res > 1 { (width, height) } else { (1, 1) };
         let me = Self {
             gi: gi.clone(),
             width,
             height,
+            low,
             gather,
             blur,
+            upsample,
             samples,
             ranges,
             views: [
                 uni("rsm_gi gather view"),
                 uni("rsm_gi blur x view"),
                 uni("rsm_gi blur y view"),
+                uni("rsm_gi upsample view"),
             ],
-            images: [img("rsm_gi gathered"), img("rsm_gi blurred x"), img("rsm_gi indirect")],
+            images: [
+                img("rsm_gi gathered", low.0, low.1),
+                img("rsm_gi blurred x", low.0, low.1),
+                img("rsm_gi blurred", low.0, low.1),
+                img("rsm_gi upsampled", full.0, full.1),
+            ],
             readback,
         };
         if let Some(err) = pollster::block_on(scope.pop()) {
@@ -338,8 +377,9 @@ impl GpuGather {
     }
 
     /// Writes this frame's uniforms and records the gather, then (when the pattern
-    /// interleaves and `blur` is set) the x and y blur passes. Returns the buffer holding
-    /// the result (`vec4<f32>` per pixel, row-major, rgb = irradiance).
+    /// interleaves and `blur` is set) the x and y blur passes, then (at `low_res` > 1) the
+    /// upsampling. Returns the buffer holding the result (`vec4<f32>` per pixel of the full
+    /// image, row-major, rgb = irradiance).
     pub fn record(
         &self,
         device: &wgpu::Device,
@@ -358,27 +398,32 @@ impl GpuGather {
             });
         }
         let s = self.gi.settings();
-        let (nx, ny) = (s.pattern.nx, s.pattern.ny);
-        let view = |radius: u32, vertical: u32| GpuView {
+        let (nx, ny, f) = (s.pattern.nx, s.pattern.ny, s.low_res);
+        let (lw, lh) = self.low;
+        let view = |size: (u32, u32), pattern: [u32; 4]| GpuView {
             world_to_texel: rsm.world_to_texel.to_cols_array(),
             view_proj: g.view_proj.to_cols_array(),
-            sizes: [g.width, g.height, rsm.width, rsm.height],
-            pattern: [nx, ny, radius, vertical],
-            knobs: [s.vpl_offset, s.depth_tolerance, s.normal_power, 0.0],
+            sizes: [size.0, size.1, rsm.width, rsm.height],
+            pattern,
+            knobs: [s.vpl_offset, s.depth_tolerance, s.normal_power, f as f32],
         };
-        for (buf, v) in self.views.iter().zip([view(0, 0), view(nx, 0), view(ny, 1)]) {
+        let blocks = [
+            view(self.low, [nx, ny, 0, 0]),
+            view(self.low, [nx, ny, nx, 0]),
+            view(self.low, [nx, ny, ny, 1]),
+            view((self.width, self.height), [nx, ny, lw, lh]),
+        ];
+        for (buf, v) in self.views.iter().zip(blocks) {
             queue.write_buffer(buf, 0, bytemuck::bytes_of(&v));
         }
-        let groups = (g.width.div_ceil(WORKGROUP), g.height.div_ceil(WORKGROUP));
+        let groups = |(w, h): (u32, u32)| (w.div_ceil(WORKGROUP), h.div_ceil(WORKGROUP));
         fn res(b: &wgpu::Buffer) -> wgpu::BindingResource<'_> {
             b.as_entire_binding()
         }
         let tv = wgpu::BindingResource::TextureView;
-        let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("rsm_gi gather"),
-            layout: &self.gather.1,
-            entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: res(&self.views[0]) },
+        let gather_group = |layout, view: &wgpu::Buffer, extra: &[(u32, &wgpu::Buffer)]| {
+            let mut entries = vec![
+                wgpu::BindGroupEntry { binding: 0, resource: res(view) },
                 wgpu::BindGroupEntry { binding: 1, resource: tv(&rsm.flux) },
                 wgpu::BindGroupEntry { binding: 2, resource: tv(&rsm.normal) },
                 wgpu::BindGroupEntry { binding: 3, resource: tv(&rsm.position) },
@@ -386,33 +431,54 @@ impl GpuGather {
                 wgpu::BindGroupEntry { binding: 5, resource: tv(&g.normal) },
                 wgpu::BindGroupEntry { binding: 6, resource: res(&self.samples) },
                 wgpu::BindGroupEntry { binding: 7, resource: res(&self.ranges) },
-                wgpu::BindGroupEntry { binding: 8, resource: res(&self.images[0]) },
-            ],
-        });
+            ];
+            entries.extend(
+                extra
+                    .iter()
+                    .map(|&(binding, b)| wgpu::BindGroupEntry { binding, resource: res(b) }),
+            );
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("rsm_gi gather"),
+                layout,
+                entries: &entries,
+            })
+        };
+        let bind = gather_group(&self.gather.1, &self.views[0], &[(8, &self.images[0])]);
         let mut pass = encoder.begin_compute_pass(&Default::default());
         pass.set_pipeline(&self.gather.0);
         pass.set_bind_group(0, &bind, &[]);
-        pass.dispatch_workgroups(groups.0, groups.1, 1);
-        if !blur || s.pattern.cells() == 1 {
-            return Ok(&self.images[0]);
+        let (gx, gy) = groups(self.low);
+        pass.dispatch_workgroups(gx, gy, 1);
+        let mut result = 0;
+        if blur && s.pattern.cells() > 1 {
+            for (k, (src, dst)) in [(0usize, 1usize), (1, 2)].into_iter().enumerate() {
+                let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("rsm_gi blur"),
+                    layout: &self.blur.1,
+                    entries: &[
+                        wgpu::BindGroupEntry { binding: 0, resource: res(&self.views[k + 1]) },
+                        wgpu::BindGroupEntry { binding: 1, resource: tv(&g.position) },
+                        wgpu::BindGroupEntry { binding: 2, resource: tv(&g.normal) },
+                        wgpu::BindGroupEntry { binding: 3, resource: res(&self.images[src]) },
+                        wgpu::BindGroupEntry { binding: 4, resource: res(&self.images[dst]) },
+                    ],
+                });
+                pass.set_pipeline(&self.blur.0);
+                pass.set_bind_group(0, &bind, &[]);
+                pass.dispatch_workgroups(gx, gy, 1);
+            }
+            result = 2;
         }
-        for (k, (src, dst)) in [(0usize, 1usize), (1, 2)].into_iter().enumerate() {
-            let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("rsm_gi blur"),
-                layout: &self.blur.1,
-                entries: &[
-                    wgpu::BindGroupEntry { binding: 0, resource: res(&self.views[k + 1]) },
-                    wgpu::BindGroupEntry { binding: 1, resource: tv(&g.position) },
-                    wgpu::BindGroupEntry { binding: 2, resource: tv(&g.normal) },
-                    wgpu::BindGroupEntry { binding: 3, resource: res(&self.images[src]) },
-                    wgpu::BindGroupEntry { binding: 4, resource: res(&self.images[dst]) },
-                ],
-            });
-            pass.set_pipeline(&self.blur.0);
-            pass.set_bind_group(0, &bind, &[]);
-            pass.dispatch_workgroups(groups.0, groups.1, 1);
+        if f == 1 {
+            return Ok(&self.images[result]);
         }
-        Ok(&self.images[2])
+        let extra = [(8, &self.images[3]), (9, &self.images[result])];
+        let bind = gather_group(&self.upsample.1, &self.views[3], &extra);
+        pass.set_pipeline(&self.upsample.0);
+        pass.set_bind_group(0, &bind, &[]);
+        let (ux, uy) = groups((self.width, self.height));
+        pass.dispatch_workgroups(ux, uy, 1);
+        Ok(&self.images[3])
     }
 
     /// Copies `result` (one of this struct's images, as [`GpuGather::record`] returned it)

@@ -1,4 +1,5 @@
-//! GPU parity: the interleaved gather kernel and the blur passes match the CPU path
+//! GPU parity: the interleaved gather kernel, the blur passes and the low-resolution
+//! upsampling (with its full-resolution fallback at the depth step) match the CPU path
 //! (lavapipe/llvmpipe in CI), and every shader validates with naga.
 #![cfg(feature = "gpu")]
 
@@ -6,7 +7,7 @@
 mod fixtures;
 
 use glam::{Mat4, Vec3};
-use rsm_gi::gpu::{BLUR_WGSL, GATHER_WGSL, GpuGBuffer, GpuGather, GpuRsm};
+use rsm_gi::gpu::{BLUR_WGSL, GATHER_WGSL, GpuGBuffer, GpuGather, GpuRsm, UPSAMPLE_WGSL};
 use rsm_gi::{GBuffer, Interleave, RsmGi, RsmInput, Sampling, Settings};
 
 fn validate(src: &str) {
@@ -21,7 +22,7 @@ fn validate(src: &str) {
 
 #[test]
 fn shaders_validate_with_naga() {
-    for s in [GATHER_WGSL, BLUR_WGSL] {
+    for s in [GATHER_WGSL, BLUR_WGSL, UPSAMPLE_WGSL] {
         validate(s);
     }
 }
@@ -62,18 +63,25 @@ fn gpu_gather_and_blur_match_the_cpu() {
     let mut gn: Vec<Vec3> =
         (0..w * h).map(|i| Vec3::new(0.1 * (i % 3) as f32, -0.6, 1.0).normalize()).collect();
     gn[3] = Vec3::ZERO;
+    // Lone pixels facing away from their neighbours: no coarse pixel fits them.
+    for (x, y) in [(8, 8), (10, 10), (17, 13)] {
+        gn[(y * w + x) as usize] = Vec3::new(1.0, 0.2, 0.0).normalize();
+    }
     gp[9] = Vec3::INFINITY;
     let g = GBuffer { width: w, height: h, position: &gp, normal: &gn, view_proj };
     let gpu_rsm = GpuRsm::upload(&ctx.device, &ctx.queue, &rsm).unwrap();
     let gpu_g = GpuGBuffer::upload(&ctx.device, &ctx.queue, &g).unwrap();
-    for (pattern, sampling) in [
-        (Interleave::NONE, Sampling::Poisson),
-        (Interleave::P2X2, Sampling::Polar),
-        (Interleave::P2X4, Sampling::Poisson),
-        (Interleave::P4X4, Sampling::Poisson),
-        (Interleave::P8X8, Sampling::Polar),
+    for (pattern, sampling, low_res) in [
+        (Interleave::NONE, Sampling::Poisson, 1),
+        (Interleave::P2X2, Sampling::Polar, 1),
+        (Interleave::P2X4, Sampling::Poisson, 1),
+        (Interleave::P4X4, Sampling::Poisson, 1),
+        (Interleave::P8X8, Sampling::Polar, 1),
+        (Interleave::NONE, Sampling::Poisson, 2),
+        (Interleave::P4X4, Sampling::Poisson, 2),
+        (Interleave::P2X4, Sampling::Polar, 4),
     ] {
-        let s = Settings { vpls: 256, pattern, sampling, r_max: 0.4, ..Settings::DEFAULT };
+        let s = Settings { vpls: 256, pattern, sampling, r_max: 0.4, low_res, ..Settings::DEFAULT };
         let gi = RsmGi::new(s).unwrap();
         let gather = GpuGather::new(&ctx.device, &gi, w, h, 64).unwrap();
         for blur in [false, true] {
@@ -83,15 +91,17 @@ fn gpu_gather_and_blur_match_the_cpu() {
                 .unwrap();
             ctx.queue.submit([encoder.finish()]);
             let on_gpu = gather.read_back(&ctx.device, &ctx.queue, out).unwrap();
-            let cpu = if blur { gi.gather(&rsm, &g) } else { gi.without_blur().gather(&rsm, &g) }
-                .unwrap()
-                .irradiance;
+            let out = if blur { gi.gather(&rsm, &g) } else { gi.without_blur().gather(&rsm, &g) }
+                .unwrap();
+            // The depth step leaves pixels no coarse neighbour fits: the fallback is covered.
+            assert!(low_res == 1 || out.stats.fallback_pixels > 0, "no fallback at 1/{low_res}");
+            let cpu = out.irradiance;
             let d = rel_l2(&on_gpu, &cpu);
             eprintln!(
-                "{} {pattern:?} {sampling:?} blur={blur}: rel L2 |gpu - cpu| = {d:e}",
+                "{} {pattern:?} {sampling:?} 1/{low_res} blur={blur}: rel L2 |gpu - cpu| = {d:e}",
                 ctx.describe()
             );
-            assert!(d < 1e-5, "{pattern:?} blur={blur}: {d}");
+            assert!(d < 1e-5, "{pattern:?} 1/{low_res} blur={blur}: {d}");
             assert!(cpu.iter().any(|e| e.x > 0.0));
             assert_eq!(on_gpu[3], Vec3::ZERO);
             assert_eq!(on_gpu[9], Vec3::ZERO);

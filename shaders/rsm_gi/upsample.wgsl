@@ -1,0 +1,59 @@
+// include: rsm_gi/common.inc.wgsl
+// include: rsm_gi/gather.inc.wgsl
+// rsm_gi upsampling of the low-resolution result to the full G-buffer (CPU twin: filter.rs
+// `upsample`): the four nearest low-resolution pixels, bilinear weights (+ 1e-3) times the
+// geometry weight; a pixel none of them fits is gathered at full resolution with the whole
+// pattern. Workgroup 8 x 8, one invocation per full-resolution pixel.
+
+@group(0) @binding(8) var<storage, read_write> irradiance: array<vec4<f32>>;
+@group(0) @binding(9) var<storage, read> low: array<vec4<f32>>;
+
+// Low-resolution neighbours of full-resolution coordinate x: (x0, x1) and the weight of x1.
+fn rsm_gi_coarse(x: u32, f: u32, n: u32) -> vec3<f32> {
+    let fx = max((f32(x) + 0.5) / f32(f) - 0.5, 0.0);
+    let x0 = min(u32(fx), n - 1u);
+    let x1 = min(x0 + 1u, n - 1u);
+    return vec3<f32>(f32(x0), f32(x1), fx - f32(x0));
+}
+
+@compute @workgroup_size(8, 8)
+fn upsample(@builtin(global_invocation_id) id: vec3<u32>) {
+    let w = view.sizes.x;
+    let h = view.sizes.y;
+    if (id.x >= w || id.y >= h) {
+        return;
+    }
+    let i = id.y * w + id.x;
+    let c = rsm_gi_pixel_at(vec2<i32>(id.xy));
+    if (c.position.w <= 0.0) {
+        irradiance[i] = vec4<f32>(0.0);
+        return;
+    }
+    let f = u32(view.knobs.w);
+    let lw = view.pattern.z;
+    let lh = view.pattern.w;
+    let full = vec2<i32>(i32(w), i32(h));
+    let cx = rsm_gi_coarse(id.x, f, lw);
+    let cy = rsm_gi_coarse(id.y, f, lh);
+    var sum = vec3<f32>(0.0);
+    var wsum = 0.0;
+    for (var k = 0u; k < 4u; k = k + 1u) {
+        let bx = k & 1u;
+        let by = k >> 1u;
+        let u = u32(select(cx.x, cx.y, bx == 1u));
+        let v = u32(select(cy.x, cy.y, by == 1u));
+        let b = select(1.0 - cx.z, cx.z, bx == 1u) * select(1.0 - cy.z, cy.z, by == 1u);
+        let q = rsm_gi_pixel_at(rsm_gi_texel(vec2<i32>(i32(u), i32(v)), i32(f), full));
+        let gw = rsm_gi_geometry_weight(c, q, view.knobs.y, view.knobs.z);
+        if (gw >= 0.0) {
+            let wt = (b + 1e-3) * gw;
+            sum = sum + low[v * lw + u].xyz * wt;
+            wsum = wsum + wt;
+        }
+    }
+    if (wsum > 1e-6) {
+        irradiance[i] = vec4<f32>(sum / wsum, 0.0);
+    } else {
+        irradiance[i] = vec4<f32>(rsm_gi_gather(c, ranges[view.pattern.x * view.pattern.y]), 0.0);
+    }
+}
