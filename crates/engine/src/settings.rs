@@ -45,14 +45,15 @@ impl FromStr for Preset {
 ///
 /// The presets gather the bounce from the RSM instead of propagating it through the LPV,
 /// because the component ledger says so (`cargo xtask render --reference 16 --components
-/// --indirect lpv|rsm`, 320x180, 2 cores, lavapipe, load ~1.3): one-bounce image rel RMS
-/// against the reference, LPV -> RSM: city default 8.97 -> 3.04 (luminance ratio 13.3 ->
-/// 3.0; its passes 179 -> 104 ms), city low 7.13 -> 3.63 (117 -> 98 ms), `cornell_window`
-/// default 3.08 -> 1.43 (ratio 5.3 -> 2.9, most of it the sunlit ground lighting the green
-/// wall through the wall: the RSM has no occlusion); whole frame (clamped rel RMS) city
-/// 0.452 -> 0.350, `cornell_window` 0.310 -> 0.219; `two_rooms`' closed room (black truth)
-/// gets 0.0073 -> 0.0002 mean luminance of leaked bounce. The
-/// price: traced hits get no bounce (the city's reflections ratio 0.71 -> 0.54).
+/// --indirect lpv|rsm`, 320x180, 2 cores, lavapipe, load ~1.5), one-bounce image rel RMS
+/// against the reference, LPV -> RSM: city default 8.97 -> 2.77 (luminance ratio 13.3 ->
+/// 2.9), city low 7.13 -> 3.44, `cornell_window` default 3.08 -> 1.42 (ratio 5.3 -> 2.9,
+/// most of it the sunlit ground lighting the green wall through the wall: the RSM has no
+/// occlusion); whole frame (clamped rel RMS) city 0.452 -> 0.348 (low 0.417 -> 0.354),
+/// `cornell_window` 0.310 -> 0.218; `two_rooms`' closed room (black truth) gets 0.0073 ->
+/// 0.0002 mean luminance of leaked bounce. At the same cost: the component's passes took
+/// 128-167 ms with either on the city (two interleaved runs each). The price: traced hits
+/// get no bounce (the city's reflections ratio 0.71 -> 0.54).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Indirect {
@@ -180,7 +181,9 @@ impl Settings {
             rsm_resolution: 256,
             // The RSM gather beat the LPV on the component ledger ([`Indirect`]).
             indirect: Indirect::Rsm,
-            rsm_gi: rsm_gi::Settings::DEFAULT,
+            // Gathered at half resolution and upsampled (the seed's smaller indirect buffer):
+            // the same error on the ledger, a third less lighting time at 1600x900.
+            rsm_gi: rsm_gi::Settings { low_res: 2, ..rsm_gi::Settings::DEFAULT },
             rsm_gather_radius: 30.0,
             lpv_on_gpu: None,
             ssao_samples: 8,
