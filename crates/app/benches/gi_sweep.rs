@@ -41,7 +41,7 @@ use app::compare::{
     ReferenceErrors, ReferenceRender, errors, reference_component, reference_image,
 };
 use engine::components::{COMPONENTS, passes, passes_ms, render_components};
-use engine::{Frame, Preset, Renderer, Settings};
+use engine::{Component, Frame, Preset, Renderer, Settings};
 use gi_report::{Entry, Sweep};
 use glam::Vec3;
 use reference::Image;
@@ -395,8 +395,14 @@ fn flythrough(sweep: &mut Sweep, city: &scene::Scene, w: u32, h: u32, frames: us
 }
 
 /// The component ledger of `which` at `w x h`: references once, then per preset the engine's
-/// components.
-fn components(sweep: &mut Sweep, which: Generated, w: u32, h: u32, spp: u32) {
+/// components. Returns the references (in `COMPONENTS` order, with their entry names).
+fn components(
+    sweep: &mut Sweep,
+    which: Generated,
+    w: u32,
+    h: u32,
+    spp: u32,
+) -> Vec<(ReferenceRender, String)> {
     let name = which.name();
     let scene = which.build(1);
     let mut camera = scene.camera;
@@ -450,6 +456,70 @@ fn components(sweep: &mut Sweep, which: Generated, w: u32, h: u32, spp: u32) {
                     .note(timing_note(software, "the passes that produce the component, in a frame where every per-frame pass ran")),
             );
         }
+    }
+    refs
+}
+
+/// The one-bounce techniques raced on the same truth (`reference`, the scene's
+/// `sun_indirect_diffuse` image): the LPV and the RSM gather at each preset, and the gather
+/// with each interleaving pattern at the default preset. Entries
+/// `engine/indirect_race_<scene>_<w>x<h>_{lpv,rsm}_<preset>` and `..._rsm_default_<NxM>`,
+/// technique `indirect race <scene>` (one chart per scene): time = ms of the passes that
+/// produce the bounce (`passes_ms`), error = the bounce image's rel RMS.
+fn indirect_race(
+    sweep: &mut Sweep,
+    which: Generated,
+    (w, h): (u32, u32),
+    (reference, rname): &(ReferenceRender, String),
+) {
+    use engine::{Component, Indirect};
+    use rsm_gi::Interleave;
+    let name = which.name();
+    let scene = which.build(1);
+    let mut camera = scene.camera;
+    camera.aspect = w as f32 / h as f32;
+    let mut runs: Vec<(String, Settings)> = Vec::new();
+    for preset in Preset::ALL {
+        for indirect in [Indirect::Lpv, Indirect::Rsm] {
+            let s = Settings { indirect, ..Settings::preset(preset, w, h) };
+            runs.push((format!("{indirect}_{preset}"), s));
+        }
+    }
+    for pattern in [Interleave::NONE, Interleave::P2X2, Interleave::P4X4, Interleave::P8X8] {
+        let base = Settings::preset(Preset::Default, w, h);
+        let s = Settings { rsm_gi: rsm_gi::Settings { pattern, ..base.rsm_gi }, ..base };
+        runs.push((format!("rsm_default_{}x{}", pattern.nx, pattern.ny), s));
+    }
+    for (tag, settings) in runs {
+        sweep.stage(&format!("indirect race {name}: {tag}"));
+        let g = settings.rsm_gi;
+        let mut r = renderer(&scene, settings);
+        r.set_camera(camera).expect("camera");
+        warm_up(&mut r);
+        r.set_component(Some(Component::SunIndirectDiffuse));
+        r.set_camera(nudged(&camera, 1)).expect("camera");
+        let frame = render(&mut r);
+        let image = app::image_of(&frame.hdr);
+        let f = app::ledger::figures("all", &image, reference, 0..image.pixels.len(), 1.0);
+        let software = r.is_software();
+        let ms = passes_ms(&frame.report, Component::SunIndirectDiffuse);
+        sweep.entry(
+            Entry::new(
+                format!("engine/indirect_race_{name}_{w}x{h}_{tag}"),
+                format!("indirect race {name}"),
+                ms,
+            )
+            .setting("scene", name)
+            .setting("technique", r.indirect().name())
+            .setting("rsm_vpls", g.vpls)
+            .setting("rsm_pattern", format!("{}x{}", g.pattern.nx, g.pattern.ny))
+            .setting("rsm_low_res", g.low_res)
+            .setting("luminance_ratio", f.luminance_ratio)
+            .setting("software_adapter", software)
+            .error("rel_rms", f.rel_rms, rname)
+            .threads(rayon::current_num_threads())
+            .note(timing_note(software, "the passes that produce the one-bounce image")),
+        );
     }
 }
 
@@ -576,7 +646,11 @@ fn main() {
         if w == 320 {
             let spp = if sweep.quick() { 16 } else { 64 };
             for which in [Generated::City, Generated::CornellWindow, Generated::TwoRooms] {
-                components(&mut sweep, which, w, h, spp);
+                let refs = components(&mut sweep, which, w, h, spp);
+                let bounce = COMPONENTS.iter().position(|&c| c == Component::SunIndirectDiffuse);
+                if let Some(k) = bounce {
+                    indirect_race(&mut sweep, which, (w, h), &refs[k]);
+                }
             }
         }
     }

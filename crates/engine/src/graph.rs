@@ -13,7 +13,7 @@ use crate::passes::raycast::RayBatch;
 use crate::settings::{Indirect, Specular};
 use crate::state::{FrameCtx, poisoned};
 use crate::trace::{TraceLighting, TraceSettings, trace_rays};
-use frame_scheduler::{Budget, FrameGraph, PassId, PassResult, Res, quantise_dir};
+use frame_scheduler::{Budget, FrameGraph, PassBuilder, PassId, PassResult, Res, quantise_dir};
 use glam::Vec3;
 use std::sync::atomic::Ordering;
 
@@ -88,31 +88,92 @@ fn write_frame_uniform(c: &FrameCtx) {
     s.gpu.write(&s.frame, 0, bytemuck::bytes_of(&u));
 }
 
+/// The graph's resources: what each pass writes and the passes after it read.
+#[derive(Clone, Copy)]
+struct Resources {
+    sky_map: Res<u64>,
+    sky_vol: Res<u64>,
+    shadow: Res<u64>,
+    gbuf: Res<u64>,
+    cubes: Res<u64>,
+    lpv: Res<u64>,
+    sun_rsm: Res<u64>,
+    batch: Res<RayBatch>,
+    traced: Res<Traced>,
+    lit: Res<u64>,
+    combined: Res<u64>,
+    shown: Res<Shown>,
+}
+
+impl Resources {
+    fn declare(g: &mut FrameGraph<FrameCtx>) -> Self {
+        Self {
+            sky_map: g.resource("sky map"),
+            sky_vol: g.resource("sky volume"),
+            shadow: g.resource("sun shadow maps"),
+            gbuf: g.resource("g-buffer"),
+            cubes: g.resource("point-light cube maps"),
+            lpv: g.resource("lpv"),
+            sun_rsm: g.resource("sun rsm (gather)"),
+            batch: g.resource("ray batch"),
+            traced: g.resource("traced radiance"),
+            lit: g.resource("lit view"),
+            combined: g.resource("combined view"),
+            shown: g.resource("display image"),
+        }
+    }
+}
+
+/// A pass that an application switch turns off.
+trait Switched {
+    fn switched(self, effect: Effect) -> Self;
+}
+
+impl Switched for PassBuilder<'_, FrameCtx> {
+    fn switched(self, effect: Effect) -> Self {
+        self.run_if(effect.switch_label(), move |c: &FrameCtx| c.effects.is_on(effect))
+    }
+}
+
+const SKY_NEEDED: &str = "the scene shows the sky and the sun is up";
+fn sky_needed(c: &FrameCtx) -> bool {
+    c.state.sky.is_some() && c.needs.sky_lighting.needed
+}
+
+const BOUNCE_NEEDED: &str = "the sun lights diffuse surfaces (one indirect bounce)";
+fn bounce_needed(c: &FrameCtx) -> bool {
+    c.needs.indirect_lpv.needed && c.sun.is_some()
+}
+
+const RAYS_NEEDED: &str = "a mirror or glass surface is in view";
+
 /// Declares the pipeline.
 pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, Outputs) {
     let mut g = FrameGraph::<FrameCtx>::new();
-    let sky_map = g.resource::<u64>("sky map");
-    let sky_vol = g.resource::<u64>("sky volume");
-    let shadow = g.resource::<u64>("sun shadow maps");
-    let gbuf = g.resource::<u64>("g-buffer");
-    let cubes = g.resource::<u64>("point-light cube maps");
-    let lpv = g.resource::<u64>("lpv");
-    let sun_rsm = g.resource::<u64>("sun rsm (gather)");
-    let batch = g.resource::<RayBatch>("ray batch");
-    let traced = g.resource::<Traced>("traced radiance");
-    let lit = g.resource::<u64>("lit view");
-    let combined = g.resource::<u64>("combined view");
-    let shown = g.resource::<Shown>("display image");
-    g.output(shown);
+    let r = Resources::declare(&mut g);
+    g.output(r.shown);
+    let sky_volume = sky_passes(&mut g, r, sky_layers, layers_per_frame);
+    shadow_passes(&mut g, r);
+    gbuffer_pass(&mut g, r);
+    bounce_passes(&mut g, r);
+    trace_passes(&mut g, r);
+    lighting_pass(&mut g, r);
+    combine_pass(&mut g, r);
+    tone_mapping_pass(&mut g, r);
+    (g, Outputs { shown: r.shown, sky_volume })
+}
 
+/// The sky map (when the sun moved) and the sky volume filled over frames.
+fn sky_passes(
+    g: &mut FrameGraph<FrameCtx>,
+    r: Resources,
+    sky_layers: u32,
+    layers_per_frame: u32,
+) -> PassId {
     g.sync_point(pass::SKY_MAP)
-        .writes(sky_map)
-        .run_if(Effect::SkyLighting.switch_label(), |c: &FrameCtx| {
-            c.effects.is_on(Effect::SkyLighting)
-        })
-        .run_if("the scene shows the sky and the sun is up", |c: &FrameCtx| {
-            c.state.sky.is_some() && c.needs.sky_lighting.needed
-        })
+        .writes(r.sky_map)
+        .switched(Effect::SkyLighting)
+        .run_if(SKY_NEEDED, sky_needed)
         .key("sun direction (0.06 deg)", sun_key)
         .run(move |io| -> PassResult {
             let c = io.ctx();
@@ -121,20 +182,15 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
                 sky.write().map_err(poisoned)?.build_map(&c.state.gpu, dir)?;
             }
             io.ctx().state.gpu.take_error()?;
-            io.put(sky_map, c.frame)?;
+            io.put(r.sky_map, c.frame)?;
             Ok(())
         });
 
-    let sky_volume = g
-        .gpu_pass(pass::SKY_VOLUME)
-        .reads(sky_map)
-        .writes(sky_vol)
-        .run_if(Effect::SkyLighting.switch_label(), |c: &FrameCtx| {
-            c.effects.is_on(Effect::SkyLighting)
-        })
-        .run_if("the scene shows the sky and the sun is up", |c: &FrameCtx| {
-            c.state.sky.is_some() && c.needs.sky_lighting.needed
-        })
+    g.gpu_pass(pass::SKY_VOLUME)
+        .reads(r.sky_map)
+        .writes(r.sky_vol)
+        .switched(Effect::SkyLighting)
+        .run_if(SKY_NEEDED, sky_needed)
         .cached()
         .amortised(sky_layers, Budget::Units(layers_per_frame))
         .run(move |io| -> PassResult {
@@ -144,15 +200,16 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
                 sky.write().map_err(poisoned)?.fill_layers(&c.state.gpu, layer..layer + 1)?;
             }
             io.ctx().state.gpu.take_error()?;
-            io.put(sky_vol, c.frame)?;
+            io.put(r.sky_vol, c.frame)?;
             Ok(())
-        });
-
-    g.gpu_pass(pass::SHADOW_MAPS)
-        .writes(shadow)
-        .run_if(Effect::SunShadows.switch_label(), |c: &FrameCtx| {
-            c.effects.is_on(Effect::SunShadows)
         })
+}
+
+/// The sun's cascades and the point lights' cube maps.
+fn shadow_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
+    g.gpu_pass(pass::SHADOW_MAPS)
+        .writes(r.shadow)
+        .switched(Effect::SunShadows)
         .run_if("the sun casts shadows in view", |c: &FrameCtx| {
             c.needs.sun_shadows.needed && c.sun.is_some()
         })
@@ -172,15 +229,13 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
             )?;
             *s.shadow_maps.lock().map_err(poisoned)? = Some(maps);
             io.ctx().state.gpu.take_error()?;
-            io.put(shadow, c.frame)?;
+            io.put(r.shadow, c.frame)?;
             Ok(())
         });
 
     g.gpu_pass(pass::POINT_SHADOWS)
-        .writes(cubes)
-        .run_if(Effect::PointLightShadows.switch_label(), |c: &FrameCtx| {
-            c.effects.is_on(Effect::PointLightShadows)
-        })
+        .writes(r.cubes)
+        .switched(Effect::PointLightShadows)
         .run_if("a shadow-casting point light reaches geometry in view", |c: &FrameCtx| {
             c.needs.point_light_shadows.needed
         })
@@ -191,30 +246,34 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
             s.point_shadow.render(&s.gpu, &s.scene)?;
             s.point_shadows_ready.store(true, Ordering::Release);
             io.ctx().state.gpu.take_error()?;
-            io.put(cubes, c.frame)?;
+            io.put(r.cubes, c.frame)?;
             Ok(())
         });
+}
 
-    g.gpu_pass(pass::GBUFFER).writes(gbuf).key("camera", camera_key).run(move |io| -> PassResult {
-        let c = io.ctx();
-        let s = &c.state;
-        write_frame_uniform(c);
-        let mut enc = s.gpu.device.create_command_encoder(&Default::default());
-        s.gbuffer.record(&s.gpu.device, &mut enc, &s.targets, &s.frame, &s.scene);
-        s.gpu.queue.submit([enc.finish()]);
-        io.ctx().state.gpu.take_error()?;
-        io.put(gbuf, c.frame)?;
-        Ok(())
-    });
+/// The G-buffer of the camera.
+fn gbuffer_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
+    g.gpu_pass(pass::GBUFFER).writes(r.gbuf).key("camera", camera_key).run(
+        move |io| -> PassResult {
+            let c = io.ctx();
+            let s = &c.state;
+            write_frame_uniform(c);
+            let mut enc = s.gpu.device.create_command_encoder(&Default::default());
+            s.gbuffer.record(&s.gpu.device, &mut enc, &s.targets, &s.frame, &s.scene);
+            s.gpu.queue.submit([enc.finish()]);
+            io.ctx().state.gpu.take_error()?;
+            io.put(r.gbuf, c.frame)?;
+            Ok(())
+        },
+    );
+}
 
+/// One bounce of sunlight: the LPV, or the RSM the lighting pass gathers from.
+fn bounce_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
     g.gpu_pass(pass::LPV)
-        .writes(lpv)
-        .run_if(Effect::IndirectLight.switch_label(), |c: &FrameCtx| {
-            c.effects.is_on(Effect::IndirectLight)
-        })
-        .run_if("the sun lights diffuse surfaces (one indirect bounce)", |c: &FrameCtx| {
-            c.needs.indirect_lpv.needed && c.sun.is_some()
-        })
+        .writes(r.lpv)
+        .switched(Effect::IndirectLight)
+        .run_if(BOUNCE_NEEDED, bounce_needed)
         .run_if("the indirect technique is the LPV", |c: &FrameCtx| c.indirect == Indirect::Lpv)
         .key("camera cell (1 m)", |c: &FrameCtx| quantise_dir(c.camera.position.to_array(), 1.0))
         .key("sun direction", sun_key)
@@ -224,18 +283,14 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
             let mut l = c.state.lpv.write().map_err(poisoned)?;
             l.update(&c.state.gpu, &c.state.scene, c.camera.position, sun.dir, sun.irradiance)?;
             io.ctx().state.gpu.take_error()?;
-            io.put(lpv, c.frame)?;
+            io.put(r.lpv, c.frame)?;
             Ok(())
         });
 
     g.gpu_pass(pass::SUN_RSM)
-        .writes(sun_rsm)
-        .run_if(Effect::IndirectLight.switch_label(), |c: &FrameCtx| {
-            c.effects.is_on(Effect::IndirectLight)
-        })
-        .run_if("the sun lights diffuse surfaces (one indirect bounce)", |c: &FrameCtx| {
-            c.needs.indirect_lpv.needed && c.sun.is_some()
-        })
+        .writes(r.sun_rsm)
+        .switched(Effect::IndirectLight)
+        .run_if(BOUNCE_NEEDED, bounce_needed)
         .run_if("the indirect technique is the RSM gather", |c: &FrameCtx| {
             c.indirect == Indirect::Rsm
         })
@@ -244,22 +299,24 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
         .run(move |io| -> PassResult {
             let c = io.ctx();
             let sun = c.sun.ok_or_else(|| crate::EngineError::Settings("no sun".into()))?;
-            let mut r = c.state.rsm_gather.write().map_err(poisoned)?;
-            r.update(&c.state.gpu, &c.state.scene, c.camera.position, sun.dir, sun.irradiance)?;
+            let mut gather = c.state.rsm_gather.write().map_err(poisoned)?;
+            let (eye, s) = (c.camera.position, &c.state);
+            gather.update(&s.gpu, &s.scene, eye, sun.dir, sun.irradiance)?;
             io.ctx().state.gpu.take_error()?;
-            io.put(sun_rsm, c.frame)?;
+            io.put(r.sun_rsm, c.frame)?;
             Ok(())
         });
+}
 
+/// The ray-casting buffer read back and traced on a CPU worker.
+fn trace_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
     g.sync_point(pass::RAY_CASTING)
-        .reads(gbuf)
-        .reads(sky_vol)
-        .reads(lpv)
-        .writes(batch)
-        .run_if(Effect::RayTracing.switch_label(), |c: &FrameCtx| {
-            c.effects.is_on(Effect::RayTracing)
-        })
-        .run_if("a mirror or glass surface is in view", |c: &FrameCtx| c.needs.ray_tracing())
+        .reads(r.gbuf)
+        .reads(r.sky_vol)
+        .reads(r.lpv)
+        .writes(r.batch)
+        .switched(Effect::RayTracing)
+        .run_if(RAYS_NEEDED, |c: &FrameCtx| c.needs.ray_tracing())
         .cached()
         .run(move |io| -> PassResult {
             let c = io.ctx();
@@ -267,22 +324,20 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
             write_frame_uniform(c);
             let b = s.raycast.run(&s.gpu, &s.targets, &s.frame, &s.scene.materials)?;
             io.ctx().state.gpu.take_error()?;
-            io.put(batch, b)?;
+            io.put(r.batch, b)?;
             Ok(())
         });
 
     g.cpu_job(pass::RAY_TRACING)
-        .reads(batch)
-        .writes(traced)
-        .run_if(Effect::RayTracing.switch_label(), |c: &FrameCtx| {
-            c.effects.is_on(Effect::RayTracing)
-        })
-        .run_if("a mirror or glass surface is in view", |c: &FrameCtx| c.needs.ray_tracing())
+        .reads(r.batch)
+        .writes(r.traced)
+        .switched(Effect::RayTracing)
+        .run_if(RAYS_NEEDED, |c: &FrameCtx| c.needs.ray_tracing())
         .cached()
         .run(move |io| -> PassResult {
             let c = io.ctx();
             let s = &c.state;
-            let b = io.read(batch)?;
+            let b = io.read(r.batch)?;
             let sky_guard = match &s.sky {
                 Some(k) => Some(k.read().map_err(poisoned)?),
                 None => None,
@@ -312,18 +367,21 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
             };
             let settings = TraceSettings { max_depth: s.settings.trace_depth, alpha_test: true };
             let radiance = trace_rays(&s.trace, &lighting, &b.rays, &settings);
-            io.put(traced, Traced(radiance))?;
+            io.put(r.traced, Traced(radiance))?;
             Ok(())
         });
+}
 
+/// The deferred lighting of the view.
+fn lighting_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
     g.gpu_pass(pass::LIGHTING)
-        .reads(gbuf)
-        .reads(shadow)
-        .reads(cubes)
-        .reads(sky_vol)
-        .reads(lpv)
-        .reads(sun_rsm)
-        .writes(lit)
+        .reads(r.gbuf)
+        .reads(r.shadow)
+        .reads(r.cubes)
+        .reads(r.sky_vol)
+        .reads(r.lpv)
+        .reads(r.sun_rsm)
+        .writes(r.lit)
         .cached()
         .key("view shown", |c: &FrameCtx| c.component)
         .run(move |io| -> PassResult {
@@ -359,25 +417,26 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
             s.lighting.record(&s.gpu, &mut enc, &s.targets, &inputs)?;
             s.gpu.queue.submit([enc.finish()]);
             io.ctx().state.gpu.take_error()?;
-            io.put(lit, c.frame)?;
+            io.put(r.lit, c.frame)?;
             Ok(())
         });
+}
 
+/// The traced radiance uploaded and combined with the lit view.
+fn combine_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
     g.sync_point(pass::COMBINE)
-        .reads(lit)
-        .reads(batch)
-        .reads(traced)
-        .writes(combined)
-        .run_if(Effect::RayTracing.switch_label(), |c: &FrameCtx| {
-            c.effects.is_on(Effect::RayTracing)
-        })
-        .run_if("a mirror or glass surface is in view", |c: &FrameCtx| c.needs.ray_tracing())
+        .reads(r.lit)
+        .reads(r.batch)
+        .reads(r.traced)
+        .writes(r.combined)
+        .switched(Effect::RayTracing)
+        .run_if(RAYS_NEEDED, |c: &FrameCtx| c.needs.ray_tracing())
         .cached()
         .key("view shown", |c: &FrameCtx| c.component)
         .run(move |io| -> PassResult {
             let c = io.ctx();
             let s = &c.state;
-            let (b, t) = (io.read(batch)?, io.read(traced)?);
+            let (b, t) = (io.read(r.batch)?, io.read(r.traced)?);
             s.combine.upload(&s.gpu, b, &t.0);
             let mut enc = s.gpu.device.create_command_encoder(&Default::default());
             s.combine.record(
@@ -390,16 +449,19 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
             );
             s.gpu.queue.submit([enc.finish()]);
             io.ctx().state.gpu.take_error()?;
-            io.put(combined, c.frame)?;
+            io.put(r.combined, c.frame)?;
             Ok(())
         });
+}
 
+/// Tone mapping and eye adaptation, every frame.
+fn tone_mapping_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
     // Every frame: eye adaptation moves on even when the view is unchanged.
-    g.gpu_pass(pass::TONE_MAPPING).reads(lit).reads(combined).writes(shown).run(
+    g.gpu_pass(pass::TONE_MAPPING).reads(r.lit).reads(r.combined).writes(r.shown).run(
         move |io| -> PassResult {
             let c = io.ctx();
             let s = &c.state;
-            let combined = io.try_read(combined).is_some() && c.needs.ray_tracing();
+            let combined = io.try_read(r.combined).is_some() && c.needs.ray_tracing();
             let which = if combined { Shown::Combined } else { Shown::Lit };
             let set = &s.settings;
             let mut enc = s.gpu.device.create_command_encoder(&Default::default());
@@ -413,9 +475,8 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
             s.display.record(&s.gpu, &mut enc, which, exposure);
             s.gpu.queue.submit([enc.finish()]);
             s.gpu.take_error()?;
-            io.put(shown, which)?;
+            io.put(r.shown, which)?;
             Ok(())
         },
     );
-    (g, Outputs { shown, sky_volume })
 }

@@ -72,140 +72,146 @@ pub struct SceneBuffers {
     pub material_ranges: Vec<shadows::gpu::DrawRange>,
 }
 
-impl SceneBuffers {
-    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, scene: &scene::Scene) -> Self {
-        let mut order: Vec<usize> = (0..scene.meshes.len()).collect();
-        order.sort_by_key(|&i| scene.meshes[i].material.0);
-        let mut vertices = Vec::new();
-        let mut indices: Vec<u32> = Vec::new();
-        let mut draws: Vec<Draw> = Vec::new();
-        for &i in &order {
-            let m = &scene.meshes[i];
-            let base = vertices.len() as u32;
-            let nm = m.normal_matrix();
-            for (k, p) in m.positions.iter().enumerate() {
-                let n = m.normals.get(k).map_or(Vec3::Y, |&n| (nm * n).normalize_or(Vec3::Y));
-                let uv = m.uvs.get(k).copied().unwrap_or_default();
-                vertices.push(Vertex {
-                    position: m.transform.transform_point3(*p).to_array(),
-                    normal: n.to_array(),
-                    uv: uv.to_array(),
-                    material: m.material.0,
-                });
-            }
-            let first = indices.len() as u32;
-            indices.extend(m.indices.iter().flatten().map(|&j| base + j));
-            let count = indices.len() as u32 - first;
-            match draws.last_mut() {
-                Some(d) if d.material == m.material.0 => d.index_count += count,
-                _ => draws.push(Draw {
-                    first_index: first,
-                    index_count: count,
-                    material: m.material.0,
-                }),
+/// The scene's meshes in world space, sorted by material: vertices, indices, and one draw per
+/// material.
+fn flatten(scene: &scene::Scene) -> (Vec<Vertex>, Vec<u32>, Vec<Draw>) {
+    let mut order: Vec<usize> = (0..scene.meshes.len()).collect();
+    order.sort_by_key(|&i| scene.meshes[i].material.0);
+    let mut vertices = Vec::new();
+    let mut indices: Vec<u32> = Vec::new();
+    let mut draws: Vec<Draw> = Vec::new();
+    for &i in &order {
+        let m = &scene.meshes[i];
+        let base = vertices.len() as u32;
+        let nm = m.normal_matrix();
+        for (k, p) in m.positions.iter().enumerate() {
+            let n = m.normals.get(k).map_or(Vec3::Y, |&n| (nm * n).normalize_or(Vec3::Y));
+            let uv = m.uvs.get(k).copied().unwrap_or_default();
+            vertices.push(Vertex {
+                position: m.transform.transform_point3(*p).to_array(),
+                normal: n.to_array(),
+                uv: uv.to_array(),
+                material: m.material.0,
+            });
+        }
+        let first = indices.len() as u32;
+        indices.extend(m.indices.iter().flatten().map(|&j| base + j));
+        let count = indices.len() as u32 - first;
+        match draws.last_mut() {
+            Some(d) if d.material == m.material.0 => d.index_count += count,
+            _ => {
+                draws.push(Draw { first_index: first, index_count: count, material: m.material.0 })
             }
         }
+    }
+    (vertices, indices, draws)
+}
+
+/// The layout of a material's textures (albedo, alpha mask, sampler): group 1 of the
+/// G-buffer pipeline.
+fn material_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let tex_entry = |binding| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable: true },
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    };
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("material textures"),
+        entries: &[
+            tex_entry(0),
+            tex_entry(1),
+            wgpu::BindGroupLayoutEntry {
+                binding: 2,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                count: None,
+            },
+        ],
+    })
+}
+
+/// The scene's textures uploaded and one bind group per material (a missing texture binds
+/// white).
+fn material_groups(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    scene: &scene::Scene,
+    layout: &wgpu::BindGroupLayout,
+) -> Vec<wgpu::BindGroup> {
+    let textures: Vec<wgpu::TextureView> =
+        scene.textures.iter().map(|t| upload_texture(device, queue, t)).collect();
+    let solid = scene::Texture::solid("white", glam::Vec4::ONE).expect("a solid texture is valid");
+    let white = upload_texture(device, queue, &solid);
+    let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some("material sampler"),
+        address_mode_u: wgpu::AddressMode::Repeat,
+        address_mode_v: wgpu::AddressMode::Repeat,
+        mag_filter: wgpu::FilterMode::Linear,
+        min_filter: wgpu::FilterMode::Linear,
+        mipmap_filter: wgpu::MipmapFilterMode::Linear,
+        anisotropy_clamp: 4,
+        ..Default::default()
+    });
+    let view_of =
+        |id: Option<scene::TextureId>| id.and_then(|t| textures.get(t.index())).unwrap_or(&white);
+    let tv = wgpu::BindingResource::TextureView;
+    scene
+        .materials
+        .iter()
+        .map(|m| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("material"),
+                layout,
+                entries: &[
+                    wgpu::BindGroupEntry { binding: 0, resource: tv(view_of(m.albedo_texture)) },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: tv(view_of(m.alpha_mask.map(|a| a.texture))),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: wgpu::BindingResource::Sampler(&sampler),
+                    },
+                ],
+            })
+        })
+        .collect()
+}
+
+impl SceneBuffers {
+    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, scene: &scene::Scene) -> Self {
+        let (vertices, indices, draws) = flatten(scene);
         let material_table: Vec<GpuMaterial> =
             scene.materials.iter().map(GpuMaterial::new).collect();
-        let textures: Vec<wgpu::TextureView> =
-            scene.textures.iter().map(|t| upload_texture(device, queue, t)).collect();
-        let white = upload_texture(
-            device,
-            queue,
-            &scene::Texture::solid("white", glam::Vec4::ONE).expect("a solid texture is valid"),
-        );
-        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("material sampler"),
-            address_mode_u: wgpu::AddressMode::Repeat,
-            address_mode_v: wgpu::AddressMode::Repeat,
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            mipmap_filter: wgpu::MipmapFilterMode::Linear,
-            anisotropy_clamp: 4,
-            ..Default::default()
-        });
-        let tex_entry = |binding| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::FRAGMENT,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            },
-            count: None,
-        };
-        let material_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("material textures"),
-            entries: &[
-                tex_entry(0),
-                tex_entry(1),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 2,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                    count: None,
-                },
-            ],
-        });
-        let view_of = |id: Option<scene::TextureId>| {
-            id.and_then(|t| textures.get(t.index())).unwrap_or(&white)
-        };
-        let material_groups = scene
-            .materials
-            .iter()
-            .map(|m| {
-                device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("material"),
-                    layout: &material_layout,
-                    entries: &[
-                        wgpu::BindGroupEntry {
-                            binding: 0,
-                            resource: wgpu::BindingResource::TextureView(view_of(m.albedo_texture)),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 1,
-                            resource: wgpu::BindingResource::TextureView(view_of(
-                                m.alpha_mask.map(|a| a.texture),
-                            )),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 2,
-                            resource: wgpu::BindingResource::Sampler(&sampler),
-                        },
-                    ],
-                })
-            })
-            .collect();
+        let material_layout = material_layout(device);
+        let material_groups = material_groups(device, queue, scene, &material_layout);
         let range = |first: u32, count: u32| shadows::gpu::DrawRange {
             indices: first..first + count,
             base_vertex: 0,
         };
         let material_ranges = draws.iter().map(|d| range(d.first_index, d.index_count)).collect();
+        let bytes = |v: &[u8], label, usage| buffer_init(device, label, v, usage);
+        // A shader's storage array binds at least one element: a scene without materials (an
+        // empty scene) binds one zeroed material nothing refers to.
+        let table = if material_table.is_empty() {
+            bytemuck::bytes_of(&ZERO_MATERIAL)
+        } else {
+            bytemuck::cast_slice(&material_table)
+        };
         Self {
-            vertices: buffer_init(
-                device,
-                "vertices",
+            vertices: bytes(
                 bytemuck::cast_slice(&vertices),
+                "vertices",
                 wgpu::BufferUsages::VERTEX,
             ),
-            indices: buffer_init(
-                device,
-                "indices",
-                bytemuck::cast_slice(&indices),
-                wgpu::BufferUsages::INDEX,
-            ),
+            indices: bytes(bytemuck::cast_slice(&indices), "indices", wgpu::BufferUsages::INDEX),
             draws,
-            // A shader's storage array binds at least one element: a scene without
-            // materials (an empty scene) binds one zeroed material nothing refers to.
-            materials: storage(
-                device,
-                "materials",
-                if material_table.is_empty() {
-                    bytemuck::bytes_of(&ZERO_MATERIAL)
-                } else {
-                    bytemuck::cast_slice(&material_table)
-                },
-            ),
+            materials: storage(device, "materials", table),
             material_table,
             material_groups,
             material_layout,
