@@ -80,6 +80,7 @@ fn gpu_gather_and_blur_match_the_cpu() {
         (Interleave::NONE, Sampling::Poisson, 2),
         (Interleave::P4X4, Sampling::Poisson, 2),
         (Interleave::P2X4, Sampling::Polar, 4),
+        (Interleave::P2X2, Sampling::Poisson, 1),
     ] {
         let s = Settings { vpls: 256, pattern, sampling, r_max: 0.4, low_res, ..Settings::DEFAULT };
         let gi = RsmGi::new(s).unwrap();
