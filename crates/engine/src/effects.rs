@@ -13,7 +13,7 @@ pub enum Effect {
     SunShadows,
     /// The sky map and sky-light volume.
     SkyLighting,
-    /// One bounce of sunlight through the LPV.
+    /// One bounce of sunlight (the LPV or the RSM gather, `Settings::indirect`).
     IndirectLight,
     /// Traced mirror reflections and glass refractions (one ray-casting pass serves both).
     RayTracing,
@@ -39,7 +39,7 @@ impl Effect {
             Self::SunLighting => "sun lighting",
             Self::SunShadows => "sun shadows",
             Self::SkyLighting => "sky lighting",
-            Self::IndirectLight => "indirect light (LPV)",
+            Self::IndirectLight => "indirect light",
             Self::RayTracing => "reflections and refractions",
             Self::PointLightShadows => "point-light shadows",
             Self::AmbientOcclusion => "ambient occlusion",

@@ -35,6 +35,18 @@ fn view_label(v: View) -> String {
     }
 }
 
+/// The overlay's egui context: no window shadow (a software rasteriser pays for every
+/// blended pixel of its soft edge: on lavapipe at 1280x720 the overlay's span fell from 26 to
+/// 17 ms without it).
+pub fn context() -> egui::Context {
+    let ctx = egui::Context::default();
+    ctx.all_styles_mut(|s| {
+        s.visuals.window_shadow = egui::epaint::Shadow::NONE;
+        s.visuals.popup_shadow = egui::epaint::Shadow::NONE;
+    });
+    ctx
+}
+
 pub fn draw(
     ctx: &egui::Context,
     controls: &mut Controls,

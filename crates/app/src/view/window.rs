@@ -363,7 +363,7 @@ impl ApplicationHandler for Viewer {
                 Err(e) => return self.fail(event_loop, e),
             };
         let egui_state = egui_winit::State::new(
-            egui::Context::default(),
+            overlay::context(),
             egui::ViewportId::ROOT,
             &window,
             Some(window.scale_factor() as f32),
