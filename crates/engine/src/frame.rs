@@ -41,3 +41,23 @@ impl FrameUniform {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The flags the renderer sets are the ones the shaders test.
+    #[test]
+    fn flags_match_the_shaders() {
+        let src = crate::shaders::lighting();
+        for (name, value) in [
+            ("FLAG_SKY", FLAG_SKY),
+            ("FLAG_BLINN", FLAG_BLINN),
+            ("FLAG_INDIRECT", FLAG_INDIRECT),
+            ("FLAG_SKY_VOLUME", FLAG_SKY_VOLUME),
+            ("FLAG_SHADOWS", FLAG_SHADOWS),
+        ] {
+            assert_eq!(crate::shaders::u32_constant(&src, name), Some(value), "{name}");
+        }
+    }
+}

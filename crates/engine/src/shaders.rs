@@ -45,3 +45,11 @@ pub fn combine() -> String {
 pub fn tonemap() -> String {
     TONEMAP.to_owned()
 }
+
+/// The value of `const NAME: u32 = Nu;` in `source` (`None`: not declared so). The tests
+/// check Rust's copies of the shaders' constants with it.
+pub fn u32_constant(source: &str, name: &str) -> Option<u32> {
+    let prefix = format!("const {name}: u32 =");
+    let line = source.lines().map(str::trim_start).find(|l| l.starts_with(&prefix))?;
+    line[prefix.len()..].trim().trim_end_matches(';').trim_end_matches('u').parse().ok()
+}

@@ -15,14 +15,9 @@ fn engine_shaders_validate_with_naga() {
     }
 }
 
-/// The value of `const NAME: u32 = Nu;` in `source`.
 fn wgsl_u32(source: &str, name: &str) -> u32 {
-    let line = source
-        .lines()
-        .find(|l| l.trim_start().starts_with(&format!("const {name}: u32 =")))
-        .unwrap_or_else(|| panic!("{name} not in the shader"));
-    let value = line.split('=').nth(1).unwrap().trim().trim_end_matches(';').trim_end_matches('u');
-    value.parse().unwrap_or_else(|_| panic!("{line}"))
+    engine::shaders::u32_constant(source, name)
+        .unwrap_or_else(|| panic!("{name} not in the shader"))
 }
 
 /// The view codes the shaders switch on are the ones `engine::views` writes.
