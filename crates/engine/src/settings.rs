@@ -32,12 +32,23 @@ impl fmt::Display for Preset {
     }
 }
 
+/// The member of `all` whose `name` is `s`, or a settings error that lists the names.
+fn parse_named<T: Copy>(
+    all: &[T],
+    name: fn(T) -> &'static str,
+    s: &str,
+    what: &str,
+) -> Result<T, EngineError> {
+    all.iter().copied().find(|&v| name(v) == s).ok_or_else(|| {
+        let names: Vec<&str> = all.iter().map(|&v| name(v)).collect();
+        EngineError::Settings(format!("unknown {what} {s:?} ({})", names.join(", ")))
+    })
+}
+
 impl FromStr for Preset {
     type Err = EngineError;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Preset::ALL.into_iter().find(|p| p.name() == s).ok_or_else(|| {
-            EngineError::Settings(format!("unknown preset {s:?} (low, default, high)"))
-        })
+        parse_named(&Preset::ALL, Preset::name, s, "preset")
     }
 }
 
@@ -89,9 +100,7 @@ impl fmt::Display for Indirect {
 impl FromStr for Indirect {
     type Err = EngineError;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Indirect::ALL.into_iter().find(|p| p.name() == s).ok_or_else(|| {
-            EngineError::Settings(format!("unknown indirect technique {s:?} (lpv, rsm, none)"))
-        })
+        parse_named(&Indirect::ALL, Indirect::name, s, "indirect technique")
     }
 }
 
