@@ -48,8 +48,12 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             t = vec3<f32>(0.0);
             wt = 0.0;
         }
+        // A switched-off kind of ray gets no weight, so it is not traced.
+        let flags = frame.size.w;
+        let wr = select(0.0, refl + trans * f, (flags & FLAG_REFLECTIONS) != 0u);
+        wt = select(0.0, wt, (flags & FLAG_REFRACTIONS) != 0u);
         out.origin = vec4<f32>(p, depth);
-        out.reflect = vec4<f32>(r, refl + trans * f);
+        out.reflect = vec4<f32>(r, wr);
         out.refract = vec4<f32>(normalize(t + vec3<f32>(1e-20)), wt);
         break;
     }

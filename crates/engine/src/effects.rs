@@ -15,8 +15,10 @@ pub enum Effect {
     SkyLighting,
     /// One bounce of sunlight (the LPV or the RSM gather, `Settings::indirect`).
     IndirectLight,
-    /// Traced mirror reflections and glass refractions (one ray-casting pass serves both).
-    RayTracing,
+    /// Traced mirror reflections (and the reflected part of glass).
+    Reflections,
+    /// Traced glass refractions (one ray-casting pass serves both kinds of rays).
+    Refractions,
     /// Point-light cube shadows.
     PointLightShadows,
     /// Screen-space ambient occlusion.
@@ -24,12 +26,13 @@ pub enum Effect {
 }
 
 impl Effect {
-    pub const ALL: [Self; 7] = [
+    pub const ALL: [Self; 8] = [
         Self::SunLighting,
         Self::SunShadows,
         Self::SkyLighting,
         Self::IndirectLight,
-        Self::RayTracing,
+        Self::Reflections,
+        Self::Refractions,
         Self::PointLightShadows,
         Self::AmbientOcclusion,
     ];
@@ -40,7 +43,8 @@ impl Effect {
             Self::SunShadows => "sun shadows",
             Self::SkyLighting => "sky lighting",
             Self::IndirectLight => "indirect light",
-            Self::RayTracing => "reflections and refractions",
+            Self::Reflections => "reflections",
+            Self::Refractions => "refractions",
             Self::PointLightShadows => "point-light shadows",
             Self::AmbientOcclusion => "ambient occlusion",
         }
@@ -57,7 +61,8 @@ impl Effect {
             Self::SunShadows => vec![&mut needs.sun_shadows],
             Self::SkyLighting => vec![&mut needs.sky_lighting],
             Self::IndirectLight => vec![&mut needs.indirect_lpv],
-            Self::RayTracing => vec![&mut needs.reflections, &mut needs.refractions],
+            Self::Reflections => vec![&mut needs.reflections],
+            Self::Refractions => vec![&mut needs.refractions],
             Self::PointLightShadows => vec![&mut needs.point_light_shadows],
             Self::AmbientOcclusion => Vec::new(),
         }

@@ -9,6 +9,9 @@ pub(crate) const FLAG_BLINN: u32 = 2;
 pub(crate) const FLAG_INDIRECT: u32 = 4;
 pub(crate) const FLAG_SKY_VOLUME: u32 = 8;
 pub(crate) const FLAG_SHADOWS: u32 = 16;
+/// The ray casting writes reflection rays (refraction rays) where materials ask for them.
+pub(crate) const FLAG_REFLECTIONS: u32 = 32;
+pub(crate) const FLAG_REFRACTIONS: u32 = 64;
 
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
@@ -56,6 +59,8 @@ mod tests {
             ("FLAG_INDIRECT", FLAG_INDIRECT),
             ("FLAG_SKY_VOLUME", FLAG_SKY_VOLUME),
             ("FLAG_SHADOWS", FLAG_SHADOWS),
+            ("FLAG_REFLECTIONS", FLAG_REFLECTIONS),
+            ("FLAG_REFRACTIONS", FLAG_REFRACTIONS),
         ] {
             assert_eq!(crate::shaders::u32_constant(&src, name), Some(value), "{name}");
         }

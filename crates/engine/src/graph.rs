@@ -5,7 +5,8 @@
 
 use crate::effects::Effect;
 use crate::frame::{
-    FLAG_BLINN, FLAG_INDIRECT, FLAG_SHADOWS, FLAG_SKY, FLAG_SKY_VOLUME, FrameUniform,
+    FLAG_BLINN, FLAG_INDIRECT, FLAG_REFLECTIONS, FLAG_REFRACTIONS, FLAG_SHADOWS, FLAG_SKY,
+    FLAG_SKY_VOLUME, FrameUniform,
 };
 use crate::passes::display::{Exposure, Shown};
 use crate::passes::lighting::{IndirectSource, LightingInputs};
@@ -68,6 +69,12 @@ fn write_frame_uniform(c: &FrameCtx) {
     }
     if c.needs.indirect_lpv.needed && c.indirect != Indirect::None {
         flags |= FLAG_INDIRECT;
+    }
+    if c.needs.reflections.needed {
+        flags |= FLAG_REFLECTIONS;
+    }
+    if c.needs.refractions.needed {
+        flags |= FLAG_REFRACTIONS;
     }
     if set.specular == Specular::BlinnPhong {
         flags |= FLAG_BLINN;
@@ -146,6 +153,11 @@ fn bounce_needed(c: &FrameCtx) -> bool {
 }
 
 const RAYS_NEEDED: &str = "a mirror or glass surface is in view";
+
+const RAYS_SWITCHED: &str = "reflections or refractions switched on";
+fn rays_switched(c: &FrameCtx) -> bool {
+    c.effects.is_on(Effect::Reflections) || c.effects.is_on(Effect::Refractions)
+}
 
 /// Declares the pipeline.
 pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, Outputs) {
@@ -315,9 +327,12 @@ fn trace_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
         .reads(r.sky_vol)
         .reads(r.lpv)
         .writes(r.batch)
-        .switched(Effect::RayTracing)
+        .run_if(RAYS_SWITCHED, rays_switched)
         .run_if(RAYS_NEEDED, |c: &FrameCtx| c.needs.ray_tracing())
         .cached()
+        .key("kinds of rays (reflection, refraction)", |c: &FrameCtx| {
+            (c.needs.reflections.needed, c.needs.refractions.needed)
+        })
         .run(move |io| -> PassResult {
             let c = io.ctx();
             let s = &c.state;
@@ -331,7 +346,7 @@ fn trace_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
     g.cpu_job(pass::RAY_TRACING)
         .reads(r.batch)
         .writes(r.traced)
-        .switched(Effect::RayTracing)
+        .run_if(RAYS_SWITCHED, rays_switched)
         .run_if(RAYS_NEEDED, |c: &FrameCtx| c.needs.ray_tracing())
         .cached()
         .run(move |io| -> PassResult {
@@ -429,7 +444,7 @@ fn combine_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
         .reads(r.batch)
         .reads(r.traced)
         .writes(r.combined)
-        .switched(Effect::RayTracing)
+        .run_if(RAYS_SWITCHED, rays_switched)
         .run_if(RAYS_NEEDED, |c: &FrameCtx| c.needs.ray_tracing())
         .cached()
         .key("view shown", |c: &FrameCtx| c.component)

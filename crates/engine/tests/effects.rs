@@ -59,3 +59,30 @@ fn switched_off_effects_skip_their_passes_and_come_back() {
     let (lum_back, _) = common::hdr_stats(&back);
     assert!((lum_back - lum_on).abs() < 1e-3 * lum_on, "back {lum_back} vs {lum_on}");
 }
+
+/// Reflections and refractions switch separately: without refractions the rays still run
+/// (reflections need them) and the glass loses its transmitted light; without both, the
+/// ray passes are skipped with the switches as the reason.
+#[test]
+fn reflections_and_refractions_switch_separately() {
+    let Some(mut r) = common::generated(scene::Generated::City, 96, 54) else { return };
+    r.set_fixed_frame_time(Some(0.0));
+    let both = r.render_frame().expect("frame");
+    assert!(both.ray_traced, "the city's glass and mirror need rays");
+    r.set_effect(Effect::Refractions, false);
+    let reflections = r.render_frame().expect("frame");
+    let rc = reflections.report.pass(pass::RAY_CASTING).expect("ray casting");
+    assert_eq!(rc.outcome, Outcome::Ran, "{}", common::describe(&reflections, pass::RAY_CASTING));
+    let (lum_both, _) = common::hdr_stats(&both);
+    let (lum_reflections, finite) = common::hdr_stats(&reflections);
+    assert!(finite && lum_reflections < lum_both, "{lum_reflections} vs {lum_both}");
+    r.set_effect(Effect::Reflections, false);
+    let none = r.render_frame().expect("frame");
+    for p in [pass::RAY_CASTING, pass::RAY_TRACING, pass::COMBINE] {
+        let rec = none.report.pass(p).expect("pass");
+        assert_eq!(rec.outcome, Outcome::Skipped, "{}", common::describe(&none, p));
+        let why = rec.reason.to_string();
+        assert!(why.contains("reflections or refractions switched on"), "{p}: {why}");
+    }
+    assert!(!none.ray_traced);
+}

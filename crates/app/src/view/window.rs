@@ -117,7 +117,8 @@ impl Viewer {
             | KeyCode::Digit4
             | KeyCode::Digit5
             | KeyCode::Digit6
-            | KeyCode::Digit7 => {
+            | KeyCode::Digit7
+            | KeyCode::Digit8 => {
                 let i = code as usize - KeyCode::Digit1 as usize;
                 if let Some(&e) = Effect::ALL.get(i) {
                     self.controls.toggle(e);
