@@ -1,7 +1,8 @@
 // include: rsm_gi/common.inc.wgsl
 // rsm_gi geometry-aware blur of the (low-resolution) image, one direction of the separable
-// Gaussian (pattern.w = 0: along x with radius pattern.z, 1: along y), sigma = radius / 2 +
-// 1/2; walks outwards from the centre and stops at the first discontinuity. Workgroup 8 x 8, one invocation per pixel.
+// tent (pattern.w = 0: along x with half-width pattern.z, 1: along y; weight 1 - d / r, which
+// cancels a pattern of period r exactly); walks outwards from the centre and stops at the
+// first discontinuity. Workgroup 8 x 8, one invocation per pixel.
 
 @group(0) @binding(0) var<uniform> view: RsmGiView;
 @group(0) @binding(1) var g_position: texture_2d<f32>;
@@ -32,7 +33,6 @@ fn blur(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let r = i32(view.pattern.z);
     let step = select(vec2<i32>(1, 0), vec2<i32>(0, 1), view.pattern.w == 1u);
-    let sigma = 0.5 * f32(r) + 0.5;
     var sum = src[i].xyz;
     var wsum = 1.0;
     for (var side = -1; side <= 1; side = side + 2) {
@@ -45,7 +45,7 @@ fn blur(@builtin(global_invocation_id) id: vec3<u32>) {
             if (gw < 0.0) {
                 break;
             }
-            let wt = exp(-f32(d * d) / (2.0 * sigma * sigma)) * gw;
+            let wt = (1.0 - f32(d) / f32(r)) * gw;
             sum = sum + src[q.y * w + q.x].xyz * wt;
             wsum = wsum + wt;
         }

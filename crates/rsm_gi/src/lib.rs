@@ -28,8 +28,11 @@
 //! 4. **Interleaving** ([`Interleave`]: 2x2, 2x4, 4x4, 8x8): pixel `(x, y)` uses only
 //!    sub-buffer `(x mod N, y mod M)`'s share of the VPLs; the gather swizzles the
 //!    G-buffer into the `N M` sub-buffer tiles, shades each with its subset and swizzles
-//!    back; a separable geometry-aware Gaussian (depth and normal, radius `N` along x and
-//!    `M` along y, stopping at a discontinuity) spreads the result over the pattern.
+//!    back; a separable geometry-aware tent (depth and normal, half-width `N` along x and
+//!    `M` along y, weights `1 - d / N`, stopping at a discontinuity) spreads the result over
+//!    the pattern: on a flat surface every sub-buffer gets the same total weight, so the
+//!    pattern cancels exactly (a Gaussian left a residue; the sweep figures below were taken
+//!    with it).
 //! 5. **Low resolution** (`low_res` 2 or 4, the seed's smaller indirect buffer): evaluate
 //!    every `f`-th pixel, upsample with geometry-aware bilinear weights, and evaluate the
 //!    pixels no coarse neighbour fits at full resolution.

@@ -146,6 +146,29 @@ proptest! {
     }
 
     #[test]
+    fn blur_cancels_the_interleaving_pattern(
+        w in 20u32..40, h in 20u32..40, pat in pattern(), cells in prop::collection::vec(0.0f32..10.0, 64),
+    ) {
+        // A flat surface (one depth, one normal) whose sub-buffers got different estimates:
+        // away from the borders the blur over the pattern leaves their mean everywhere.
+        let (gp, _, vp) = fixtures::gbuffer(Vec3::ZERO, w, h, |_, _| 3.0);
+        let gn = vec![Vec3::new(0.0, 0.0, 1.0); (w * h) as usize];
+        let g = GBuffer { width: w, height: h, position: &gp, normal: &gn, view_proj: vp };
+        let gi = RsmGi::new(Settings { pattern: pat, ..Settings::DEFAULT }).unwrap();
+        let (nx, ny) = (pat.nx, pat.ny);
+        let cell = |x: u32, y: u32| cells[((x % nx) + nx * (y % ny)) as usize];
+        let img: Vec<Vec3> = (0..w * h).map(|i| Vec3::splat(cell(i % w, i / w))).collect();
+        let mean = (0..nx * ny).map(|c| cells[c as usize]).sum::<f32>() / (nx * ny) as f32;
+        let out = gi.blur(&img, &g, nx, ny).unwrap();
+        for y in ny..h.saturating_sub(ny) {
+            for x in nx..w.saturating_sub(nx) {
+                let v = out[(y * w + x) as usize].x;
+                prop_assert!((v - mean).abs() <= 1e-4 * mean.max(1.0), "({x}, {y}): {v} vs {mean}");
+            }
+        }
+    }
+
+    #[test]
     fn blur_never_crosses_a_depth_discontinuity(
         w in 2u32..32, h in 1u32..16, split in 1u32..31, rx in 1u32..9, ry in 0u32..9, near in 1.0f32..5.0,
     ) {
