@@ -22,10 +22,10 @@
 //! | `traced upload + combine` | traced radiance added with Fresnel weights, depth-aware 3x3 gather | 6.3.4-6.3.5 | - |
 //! | `tone mapping` | on the GPU, every frame: log-average luminance, eye adaptation, Reinhard, sRGB | 3.7 | - |
 //!
-//! Nothing is read back for the frame itself but the ray-casting buffer (and, until `lpv`
-//! injects from the RSM on the GPU, the RSM): [`Renderer::advance_frame`] renders,
-//! [`Renderer::read_frame`] reads the HDR and display images when a caller wants them, and
-//! [`Renderer::render_frame`] does both. The report counts the bytes each frame moved.
+//! Nothing is read back for the frame itself but the ray-casting buffer (with the LPV as the
+//! one-bounce technique also the RSM, until `lpv` injects from it on the GPU):
+//! [`Renderer::advance_frame`] renders, [`Renderer::read_frame`] reads the HDR and display
+//! images when a caller wants them, and [`Renderer::render_frame`] does both. The report counts the bytes each frame moved.
 //!
 //! The ray tracing runs on a rayon worker while the main thread submits the GPU lighting
 //! (`frame_scheduler`'s overlapped mode, thesis Fig. 6.14). Every pass's outcome (ran,
