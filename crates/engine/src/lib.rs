@@ -25,7 +25,8 @@
 //! Nothing is read back for the frame itself but the ray-casting buffer (with the LPV as the
 //! one-bounce technique also the RSM, until `lpv` injects from it on the GPU):
 //! [`Renderer::advance_frame`] renders, [`Renderer::read_frame`] reads the HDR and display
-//! images when a caller wants them, and [`Renderer::render_frame`] does both. The report counts the bytes each frame moved.
+//! images when a caller wants them, and [`Renderer::render_frame`] does both. The report
+//! counts the bytes each frame moved.
 //!
 //! The ray tracing runs on a rayon worker while the main thread submits the GPU lighting
 //! (`frame_scheduler`'s overlapped mode, thesis Fig. 6.14). Every pass's outcome (ran,
