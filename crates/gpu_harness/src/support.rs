@@ -20,7 +20,7 @@ pub fn skip_requested() -> bool {
 }
 
 /// For tests: a [`GpuContext`], or `None` when the developer explicitly skips GPU tests.
-/// Panics with the [`GpuError`] message (naming `mesa-vulkan-drivers`) when no adapter
+/// Panics with the [`GpuError`](crate::GpuError) message (naming `mesa-vulkan-drivers`) when no adapter
 /// exists and no skip was requested, so GPU tests never pass silently.
 pub fn gpu_test_context() -> Option<GpuContext> {
     if skip_requested() {
