@@ -18,17 +18,26 @@ use glam::Vec3;
 use std::borrow::Cow;
 use wgpu::util::DeviceExt;
 
+mod resident;
+
+pub use resident::{ResidentLpv, RsmFrame, RsmTextures};
+
 macro_rules! shader {
-    ($file:literal) => {
+    ($($file:literal),+) => {
         concat!(
-            include_str!("../../../shaders/lpv/common.inc.wgsl"),
-            include_str!(concat!("../../../shaders/lpv/", $file))
+            include_str!("../../../../shaders/lpv/common.inc.wgsl"),
+            $(include_str!(concat!("../../../../shaders/lpv/", $file))),+
         )
     };
 }
 
 /// Injection shader source (common snippet + `inject.wgsl`), entry point `inject`.
-pub const INJECT_WGSL: &str = shader!("inject.wgsl");
+pub const INJECT_WGSL: &str = shader!("inject.inc.wgsl", "inject.wgsl");
+/// Injection from an RSM's textures (and the geometry volume's surfels), entry point
+/// `inject_rsm`.
+pub const INJECT_RSM_WGSL: &str = shader!("inject.inc.wgsl", "inject_rsm.wgsl");
+/// The geometry volume's face blocking from its fixed-point corners, entry point `faces_of`.
+pub const FACES_WGSL: &str = shader!("faces.wgsl");
 /// Fixed point to float, entry point `resolve`.
 pub const RESOLVE_WGSL: &str = shader!("resolve.wgsl");
 /// One propagation step, entry point `propagate`.

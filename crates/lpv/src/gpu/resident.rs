@@ -1,0 +1,383 @@
+//! The resident LPV: created once from a `wgpu::Device`, the settings and the caller's
+//! reflective shadow map (its flux, normal and position textures), it owns every buffer the
+//! update needs and records into the caller's encoder: injection straight from the RSM's
+//! texels (and, with the geometry volume, their surfels), propagation, and the volumes of all
+//! cascades in one buffer that the lookup kernel (`LOOKUP_WGSL`, [`ResidentLpv::record_lookup`])
+//! or the caller's shader reads. Nothing goes through the CPU; [`ResidentLpv::read_back`] is
+//! for tests and CPU consumers.
+//!
+//! Injection accumulates in fixed point with a scale from a bound the caller gives (the
+//! largest flux one texel can carry, [`RsmFrame::max_texel_flux`]; texels are clamped to it),
+//! so that no cell can overflow whatever the RSM holds.
+
+use super::{GpuGrid, GpuLookupParams, dispatch, pipeline, read_back};
+use crate::error::LpvError;
+use crate::grid::{COEFFS, Grid};
+use crate::lpv::Lpv;
+use crate::settings::LpvSettings;
+use bytemuck::{Pod, Zeroable};
+use glam::Vec3;
+
+/// Fixed-point units per unit of geometry-volume blocking.
+const BLOCKING_SCALE: f32 = 65536.0;
+
+/// The caller's RSM targets (any float formats; xyz used; a zero normal is an empty texel).
+pub struct RsmTextures<'a> {
+    pub flux: &'a wgpu::TextureView,
+    pub normal: &'a wgpu::TextureView,
+    pub position: &'a wgpu::TextureView,
+    pub width: u32,
+    pub height: u32,
+}
+
+/// What one update needs to know of the RSM it injects.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RsmFrame {
+    /// Unit direction towards the light.
+    pub to_light: Vec3,
+    /// A texel's area across the light (world units²).
+    pub texel_area: f32,
+    /// The largest flux one texel can carry in any channel (light colour times the largest
+    /// albedo times the texel area); the fixed-point bound.
+    pub max_texel_flux: f32,
+}
+
+/// `RsmInject` in `inject_rsm.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+struct GpuRsmInject {
+    to_light: [f32; 4],
+    size: [u32; 4],
+    limits: [f32; 4],
+}
+
+fn buffer(
+    device: &wgpu::Device,
+    label: &str,
+    size: u64,
+    usage: wgpu::BufferUsages,
+) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: size.max(16),
+        usage,
+        mapped_at_creation: false,
+    })
+}
+
+fn b(x: &wgpu::Buffer) -> wgpu::BindingResource<'_> {
+    x.as_entire_binding()
+}
+
+fn entry(binding: u32, ty: wgpu::BindingType) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry { binding, visibility: wgpu::ShaderStages::COMPUTE, ty, count: None }
+}
+
+/// The injection pipeline with an explicit layout (the position target is `Rgba32Float`,
+/// which only binds as unfilterable).
+fn inject_pipeline(device: &wgpu::Device) -> wgpu::ComputePipeline {
+    let uniform = wgpu::BindingType::Buffer {
+        ty: wgpu::BufferBindingType::Uniform,
+        has_dynamic_offset: false,
+        min_binding_size: None,
+    };
+    let texture = wgpu::BindingType::Texture {
+        sample_type: wgpu::TextureSampleType::Float { filterable: false },
+        view_dimension: wgpu::TextureViewDimension::D2,
+        multisampled: false,
+    };
+    let storage = wgpu::BindingType::Buffer {
+        ty: wgpu::BufferBindingType::Storage { read_only: false },
+        has_dynamic_offset: false,
+        min_binding_size: None,
+    };
+    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("lpv inject_rsm"),
+        entries: &[
+            entry(0, uniform),
+            entry(1, uniform),
+            entry(2, texture),
+            entry(3, texture),
+            entry(4, texture),
+            entry(5, storage),
+            entry(6, storage),
+        ],
+    });
+    let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some("lpv inject_rsm"),
+        bind_group_layouts: &[Some(&layout)],
+        immediate_size: 0,
+    });
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("lpv inject_rsm"),
+        source: wgpu::ShaderSource::Wgsl(super::INJECT_RSM_WGSL.into()),
+    });
+    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some("lpv inject_rsm"),
+        layout: Some(&pl),
+        module: &module,
+        entry_point: Some("inject_rsm"),
+        compilation_options: Default::default(),
+        cache: None,
+    })
+}
+
+/// One cascade's uniforms and bind groups.
+struct CascadeGroups {
+    /// The grid as the injection sees it (fixed-point scale, texel count).
+    inject_grid: wgpu::Buffer,
+    /// The grid as resolve and propagation see it (float count).
+    cells_grid: wgpu::Buffer,
+    inject: wgpu::BindGroup,
+    faces: wgpu::BindGroup,
+    resolve: wgpu::BindGroup,
+    propagate: [wgpu::BindGroup; 2],
+}
+
+/// A cascaded LPV that lives on the GPU.
+pub struct ResidentLpv {
+    settings: LpvSettings,
+    rsm_size: (u32, u32),
+    inject: wgpu::ComputePipeline,
+    faces: wgpu::ComputePipeline,
+    resolve: wgpu::ComputePipeline,
+    propagate: wgpu::ComputePipeline,
+    lookup: wgpu::ComputePipeline,
+    rsm_uniform: wgpu::Buffer,
+    faces_scale: wgpu::Buffer,
+    /// Scratch shared by the cascades (updated one after the other): fixed-point cells,
+    /// fixed-point corner blocking, face blocking, the two propagation buffers, the sum.
+    fixed: wgpu::Buffer,
+    blocking: wgpu::Buffer,
+    accum: wgpu::Buffer,
+    cascades: Vec<CascadeGroups>,
+    /// Every cascade's summed volume, one after the other (the lookup's layout).
+    volumes: wgpu::Buffer,
+    lookup_params: wgpu::Buffer,
+}
+
+impl ResidentLpv {
+    /// Everything an LPV of `settings` needs to be updated from `rsm`.
+    pub fn new(
+        device: &wgpu::Device,
+        settings: LpvSettings,
+        rsm: &RsmTextures<'_>,
+    ) -> Result<Self, LpvError> {
+        settings.validate()?;
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let n = settings.resolution as u64;
+        let floats = n * n * n * COEFFS as u64;
+        let corners = (n + 1).pow(3) * 4;
+        let storage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
+        let uni = wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST;
+        let copy = wgpu::BufferUsages::COPY_SRC;
+        let fixed = buffer(device, "lpv fixed", floats * 4, storage);
+        let blocking = buffer(device, "lpv blocking corners", corners * 4, storage);
+        let faces_buf = buffer(device, "lpv face blocking", floats * 4, storage);
+        let ab = [
+            buffer(device, "lpv propagation a", floats * 4, storage),
+            buffer(device, "lpv propagation b", floats * 4, storage),
+        ];
+        let accum = buffer(device, "lpv accum", floats * 4, storage | copy);
+        let cascades_n = settings.cascades as u64;
+        let volumes = buffer(device, "lpv volumes", floats * 4 * cascades_n, storage | copy);
+        let rsm_uniform =
+            buffer(device, "lpv rsm", std::mem::size_of::<GpuRsmInject>() as u64, uni);
+        let faces_scale = buffer(device, "lpv blocking scale", 16, uni);
+        let lookup_params =
+            buffer(device, "lpv lookup", std::mem::size_of::<GpuLookupParams>() as u64, uni);
+        let inject = inject_pipeline(device);
+        let faces = pipeline(device, super::FACES_WGSL, "faces_of");
+        let resolve = pipeline(device, super::RESOLVE_WGSL, "resolve");
+        let propagate = pipeline(device, super::PROPAGATE_WGSL, "propagate");
+        let lookup = pipeline(device, super::LOOKUP_WGSL, "lookup");
+        let tv = wgpu::BindingResource::TextureView;
+        let group = |p: &wgpu::ComputePipeline, r: Vec<wgpu::BindingResource<'_>>| {
+            let entries: Vec<wgpu::BindGroupEntry> = r
+                .into_iter()
+                .enumerate()
+                .map(|(i, resource)| wgpu::BindGroupEntry { binding: i as u32, resource })
+                .collect();
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("lpv resident"),
+                layout: &p.get_bind_group_layout(0),
+                entries: &entries,
+            })
+        };
+        let cascades = (0..settings.cascades)
+            .map(|_| {
+                let inject_grid = buffer(device, "lpv inject grid", 32, uni);
+                let cells_grid = buffer(device, "lpv cells grid", 32, uni);
+                CascadeGroups {
+                    inject: group(
+                        &inject,
+                        vec![
+                            b(&inject_grid),
+                            b(&rsm_uniform),
+                            tv(rsm.flux),
+                            tv(rsm.normal),
+                            tv(rsm.position),
+                            b(&fixed),
+                            b(&blocking),
+                        ],
+                    ),
+                    faces: group(
+                        &faces,
+                        vec![b(&cells_grid), b(&faces_scale), b(&blocking), b(&faces_buf)],
+                    ),
+                    resolve: group(&resolve, vec![b(&cells_grid), b(&fixed), b(&ab[0]), b(&accum)]),
+                    propagate: [0, 1].map(|k| {
+                        let (src, dst) = (&ab[k], &ab[1 - k]);
+                        group(
+                            &propagate,
+                            vec![b(&cells_grid), b(src), b(&faces_buf), b(dst), b(&accum)],
+                        )
+                    }),
+                    inject_grid,
+                    cells_grid,
+                }
+            })
+            .collect();
+        let me = Self {
+            settings,
+            rsm_size: (rsm.width, rsm.height),
+            inject,
+            faces,
+            resolve,
+            propagate,
+            lookup,
+            rsm_uniform,
+            faces_scale,
+            fixed,
+            blocking,
+            accum,
+            cascades,
+            volumes,
+            lookup_params,
+        };
+        if let Some(err) = pollster::block_on(scope.pop()) {
+            return Err(LpvError::Gpu(err.to_string()));
+        }
+        Ok(me)
+    }
+
+    /// Every cascade's summed volume, one after the other, in the CPU path's cell layout.
+    pub fn volumes(&self) -> &wgpu::Buffer {
+        &self.volumes
+    }
+
+    /// Records the update of the cascades `grids` (an [`Lpv`]'s, after it followed the
+    /// camera) from the RSM as it is when the encoder runs: per cascade the injection of
+    /// every texel (and its surfel), the face blocking, the propagation, and the copy into
+    /// [`Self::volumes`].
+    pub fn record_update(
+        &self,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        grids: &[Grid],
+        frame: RsmFrame,
+    ) -> Result<(), LpvError> {
+        if grids.len() != self.cascades.len()
+            || grids.iter().any(|g| g.res != self.settings.resolution)
+            || !(frame.max_texel_flux.is_finite() && frame.texel_area.is_finite())
+            || !frame.to_light.is_finite()
+        {
+            return Err(LpvError::Gpu(format!(
+                "{} grids (of {}³) and a finite RSM frame expected, got {} and {frame:?}",
+                self.cascades.len(),
+                self.settings.resolution,
+                grids.len()
+            )));
+        }
+        let (w, h) = self.rsm_size;
+        let gv = self.settings.geometry_volume;
+        let head = GpuRsmInject {
+            to_light: frame.to_light.extend(frame.texel_area).to_array(),
+            size: [w, h, u32::from(gv), 0],
+            limits: [frame.max_texel_flux.max(0.0), BLOCKING_SCALE, 0.0, 0.0],
+        };
+        queue.write_buffer(&self.rsm_uniform, 0, bytemuck::bytes_of(&head));
+        queue.write_buffer(
+            &self.faces_scale,
+            0,
+            bytemuck::bytes_of(&[BLOCKING_SCALE, 0.0, 0.0, 0.0]),
+        );
+        // No cell can exceed 2^30: every texel at the bound, all in one cell.
+        let bound = frame.max_texel_flux.max(1e-30) as f64 * (w as f64 * h as f64) * 0.2821;
+        let scale = ((1u64 << 30) as f64 / bound).min(1e30) as f32;
+        let n = self.settings.resolution;
+        let floats = n * n * n * COEFFS as u32;
+        let bytes = floats as u64 * 4;
+        let flags = u32::from(gv);
+        for (k, (grid, c)) in grids.iter().zip(&self.cascades).enumerate() {
+            let texels = w * h;
+            queue.write_buffer(
+                &c.inject_grid,
+                0,
+                bytemuck::bytes_of(&GpuGrid::new(grid, flags, scale, texels)),
+            );
+            queue.write_buffer(
+                &c.cells_grid,
+                0,
+                bytemuck::bytes_of(&GpuGrid::new(grid, flags, scale, floats)),
+            );
+            encoder.clear_buffer(&self.fixed, 0, None);
+            encoder.clear_buffer(&self.blocking, 0, None);
+            dispatch(encoder, &self.inject, &c.inject, [w.div_ceil(8), h.div_ceil(8), 1]);
+            let wg = n.div_ceil(4);
+            if gv {
+                dispatch(encoder, &self.faces, &c.faces, [wg, wg, (3 * n).div_ceil(4)]);
+            }
+            dispatch(encoder, &self.resolve, &c.resolve, [floats.div_ceil(64), 1, 1]);
+            for it in 0..self.settings.iterations {
+                dispatch(encoder, &self.propagate, &c.propagate[it as usize % 2], [wg, wg, wg]);
+            }
+            encoder.copy_buffer_to_buffer(&self.accum, 0, &self.volumes, k as u64 * bytes, bytes);
+        }
+        Ok(())
+    }
+
+    /// Records the irradiance lookup at `count` queries (`GpuQuery` each: position, normal)
+    /// into `out` (`vec4` per query, rgb) over the cascades `grids`.
+    pub fn record_lookup(
+        &self,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        device: &wgpu::Device,
+        grids: &[Grid],
+        (queries, out, count): (&wgpu::Buffer, &wgpu::Buffer, u32),
+    ) {
+        let mut params = GpuLookupParams {
+            cascades: grids.len().min(4) as u32,
+            blend_cells: self.settings.blend_cells,
+            offset_cells: self.settings.lookup_offset_cells,
+            count,
+            ..Default::default()
+        };
+        for (i, g) in grids.iter().enumerate().take(4) {
+            params.grids[i] = GpuGrid::new(g, 0, 1.0, 0);
+        }
+        queue.write_buffer(&self.lookup_params, 0, bytemuck::bytes_of(&params));
+        let group =
+            super::bind(device, &self.lookup, &[&self.lookup_params, &self.volumes, queries, out]);
+        dispatch(encoder, &self.lookup, &group, [count.div_ceil(64), 1, 1]);
+    }
+
+    /// Reads the volumes back into `lpv`'s cascades (whose grids the last update used).
+    pub fn read_back(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        lpv: &mut Lpv,
+    ) -> Result<(), LpvError> {
+        let encoder = device.create_command_encoder(&Default::default());
+        let data = read_back(device, queue, encoder, &self.volumes, self.volumes.size())?;
+        let all: Vec<f32> = bytemuck::pod_collect_to_vec(&data);
+        let per = lpv.cascades().first().map_or(0, |c| c.volume.data.len());
+        for (c, chunk) in lpv.cascades_mut().iter_mut().zip(all.chunks(per.max(1))) {
+            c.volume.data.copy_from_slice(&chunk[..per]);
+        }
+        lpv.refresh_tables();
+        Ok(())
+    }
+}
