@@ -3,9 +3,15 @@
 //! the 3D volume directly, so the thesis's 2D unwrapping (a workaround for rendering into
 //! 3D textures) is not needed.
 //!
-//! Injection accumulates in fixed point (`i32` atomics, scale [`fixed_point_scale`]) so it is
-//! deterministic; the geometry volume is built on the CPU ([`GeometryVolume::build`]) and
-//! uploaded as face blocking. Non-finite VPLs are filtered on the CPU before upload.
+//! Two ways in:
+//! - [`ResidentLpv`] (for renderers): built once over the caller's RSM textures, records the
+//!   whole update into the caller's encoder, keeps the volumes on the GPU; the geometry volume
+//!   is built on the GPU from the RSM's texels.
+//! - [`GpuLpv`] (one call per update, for tests and tools): injects a VPL list, builds the
+//!   geometry volume on the CPU ([`GeometryVolume::build`]) and uploads it as face blocking,
+//!   and reads the volume back. Non-finite VPLs are filtered on the CPU before upload.
+//!
+//! Injection accumulates in fixed point (`i32` atomics) so it is deterministic.
 
 use crate::error::LpvError;
 use crate::geometry::{FaceBlocking, GeometryVolume};
