@@ -337,6 +337,10 @@ fn trace_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
             let c = io.ctx();
             let s = &c.state;
             write_frame_uniform(c);
+            if c.needs.indirect_lpv.needed && c.indirect == Indirect::Lpv {
+                // The traced hits look the LPV up on the CPU.
+                s.lpv.write().map_err(poisoned)?.sync_cpu(&s.gpu)?;
+            }
             let b = s.raycast.run(&s.gpu, &s.targets, &s.frame, &s.scene.materials)?;
             io.ctx().state.gpu.take_error()?;
             io.put(r.batch, b)?;

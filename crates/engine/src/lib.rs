@@ -14,7 +14,7 @@
 //! | `shadow maps` | stabilised cascades fitted to the camera, PCSS parameters (resident pass) | 4.2 | `shadows` |
 //! | `point shadows` | one depth cube array for the shadow-casting point lights (resident pass) | 4.2 | `shadows` |
 //! | `g-buffer` | albedo + gloss, normal + power, geometry normal + material, depth | Table 3.1 | - |
-//! | `rsm + lpv` | sun RSM → VPLs → injection + propagation in 3 cascades (indirect `lpv`) | 5.2, 5.3.7 | `shadows`, `lpv` |
+//! | `rsm + lpv` | sun RSM → injection (from its textures on a GPU) + propagation in 3 cascades (indirect `lpv`) | 5.2, 5.3.7 | `shadows`, `lpv` |
 //! | `rsm (gather)` | the same sun RSM, kept on the GPU for the lighting pass's interleaved gather (indirect `rsm`) | seed 2 | `shadows`, `rsm_gi` |
 //! | `ray casting buffer` | quarter-res origins + reflection/refraction rays, read back | 6.2.1 | - |
 //! | `ray tracing` | CPU kd-tree tracing and shading of those rays, on a worker thread | 6.2-6.3 | `kdtree_tracer` |
@@ -23,10 +23,10 @@
 //! | `tone mapping` | on the GPU, every frame: log-average luminance, eye adaptation, Reinhard, sRGB | 3.7 | - |
 //!
 //! Nothing is read back for the frame itself but the ray-casting buffer (with the LPV as the
-//! one-bounce technique also the RSM, until `lpv` injects from it on the GPU):
-//! [`Renderer::advance_frame`] renders, [`Renderer::read_frame`] reads the HDR and display
-//! images when a caller wants them, and [`Renderer::render_frame`] does both. The report
-//! counts the bytes each frame moved.
+//! one-bounce technique also its volumes for the traced rays on a GPU, the RSM on the CPU
+//! path): [`Renderer::advance_frame`] renders, [`Renderer::read_frame`] reads the HDR and
+//! display images when a caller wants them, and [`Renderer::render_frame`] does both. The
+//! report counts the bytes each frame moved.
 //!
 //! The ray tracing runs on a rayon worker while the main thread submits the GPU lighting
 //! (`frame_scheduler`'s overlapped mode, thesis Fig. 6.14). Every pass's outcome (ran,
@@ -64,8 +64,9 @@
 //! - The LPV is looked up 1.5 cells along the normal at the default and high presets (half a
 //!   cell in the thesis and the `lpv` crate): a surface sees less of its own injected bounce
 //!   ([`settings::ENGINE_LPV_LOOKUP_OFFSET`] has the ledger's figures).
-//! - The LPV is diffuse only (the glossy LPV lookup and sky-bounce VPLs are not wired), and on
-//!   a software adapter it is injected and propagated by the crate's CPU path.
+//! - The LPV is diffuse only (the glossy LPV lookup and sky-bounce VPLs are not wired); on a
+//!   hardware adapter it is injected from the RSM's textures and propagated on the GPU
+//!   (resident), on a software adapter by the crate's CPU path (faster there).
 //! - Glass is handled by the combine pass (reflection + refraction rays weighted by Fresnel),
 //!   not by a forward pass for transparent surfaces; normal maps are not applied.
 

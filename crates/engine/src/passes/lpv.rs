@@ -1,26 +1,34 @@
-//! Indirect sunlight through light propagation volumes (thesis 5.2, 5.3.7): a reflective
-//! shadow map of the sun over the cascades (`shadows`' resident RSM over the scene's
-//! buffers), its texels as VPLs, injection and propagation on the GPU (`lpv::gpu::GpuLpv`),
-//! and a per-pixel lookup by the crate's own kernel. The RSM is still read back: `lpv`
-//! injects from a VPL list until it takes the RSM textures itself.
+//! Indirect sunlight through light propagation volumes (thesis 5.2, 5.3.7): the sun's
+//! reflective shadow map over the cascades (`sun_rsm`), then one of two paths:
+//! - on the GPU (`lpv::gpu::ResidentLpv`; the default on a hardware adapter): injection
+//!   straight from the RSM's textures, propagation, and the volumes stay on the GPU; they are
+//!   read back only when traced rays need the LPV on the CPU ([`LpvState::sync_cpu`]);
+//! - on the CPU (the default on a software adapter, where the crate's multi-threaded CPU path
+//!   beats Mesa's emulation of the kernels): the RSM is read back, its texels become VPLs,
+//!   and the volumes are uploaded for the lookup.
+//!
+//! The per-pixel lookup is the crate's own kernel either way.
 
 use super::sun_rsm::SunRsm;
 use crate::gpu::{Gpu, SceneBuffers, compute_pipeline, dispatch_lookup, storage_empty, uniform};
 use crate::{EngineError, Settings};
 use glam::Vec3;
-use lpv::gpu::{GpuGrid, GpuLookupParams};
-use lpv::{Lpv, Surfel, Vpl};
+use lpv::gpu::{GpuGrid, GpuLookupParams, ResidentLpv, RsmFrame, RsmTextures};
+use lpv::{Grid, Lpv, Surfel, Vpl};
 
 pub struct LpvState {
+    /// The cascades' grids, and on the CPU path (or after [`LpvState::sync_cpu`]) their
+    /// volumes.
     pub lpv: Lpv,
-    gpu_lpv: lpv::gpu::GpuLpv,
     rsm: SunRsm,
-    pub volumes: wgpu::Buffer,
+    /// The GPU path (`None`: the CPU path).
+    resident: Option<ResidentLpv>,
+    /// The CPU path's volumes, uploaded for the lookup.
+    volumes: wgpu::Buffer,
     lookup: wgpu::ComputePipeline,
     lookup_params: wgpu::Buffer,
-    pub vpl_count: usize,
-    /// Inject and propagate with the GPU kernels (else the crate's CPU path).
-    pub on_gpu: bool,
+    /// The GPU path updated the volumes since `lpv` last read them back.
+    cpu_stale: bool,
 }
 
 /// Bytes of all cascades' volumes (their size is fixed by the settings).
@@ -29,12 +37,16 @@ fn volume_bytes(lpv: &Lpv) -> u64 {
 }
 
 /// The sphere around `lpv`'s coarsest cascade (after it followed the camera): what the sun's
-/// RSM covers for both one-bounce techniques.
+/// RSM covers for the LPV.
 pub fn bounce_region(lpv: &Lpv) -> Option<(glam::DVec3, f64)> {
     let grid = lpv.cascades().last()?.grid;
     let half = grid.extent() as f64 * 0.5;
     let center = grid.origin.as_dvec3() + glam::DVec3::splat(half);
     Some((center, half * 3f64.sqrt()))
+}
+
+fn lpv_err(e: lpv::LpvError) -> EngineError {
+    EngineError::technique("lpv", e)
 }
 
 impl LpvState {
@@ -43,26 +55,33 @@ impl LpvState {
         buffers: &SceneBuffers,
         settings: &Settings,
     ) -> Result<Self, EngineError> {
-        let lpv = Lpv::new(settings.lpv).map_err(|e| EngineError::technique("lpv", e))?;
-        let volumes = storage_empty(&gpu.device, "lpv volumes", volume_bytes(&lpv));
+        let lpv = Lpv::new(settings.lpv).map_err(lpv_err)?;
+        let rsm = SunRsm::new(gpu, buffers, settings)?;
+        let resident = if settings.lpv_on_gpu.unwrap_or(!gpu.software) {
+            let [flux, normal, position] = rsm.views();
+            let (width, height) = (rsm.resolution(), rsm.resolution());
+            let textures = RsmTextures { flux, normal, position, width, height };
+            Some(ResidentLpv::new(&gpu.device, settings.lpv, &textures).map_err(lpv_err)?)
+        } else {
+            None
+        };
         Ok(Self {
+            volumes: storage_empty(&gpu.device, "lpv volumes", volume_bytes(&lpv)),
             lpv,
-            gpu_lpv: lpv::gpu::GpuLpv::new(&gpu.device),
-            rsm: SunRsm::new(gpu, buffers, settings)?,
-            volumes,
+            rsm,
+            resident,
             lookup: compute_pipeline(&gpu.device, "lpv lookup", lpv::gpu::LOOKUP_WGSL, "lookup")?,
             lookup_params: uniform(
                 &gpu.device,
                 "lpv lookup",
                 bytemuck::bytes_of(&GpuLookupParams::default()),
             ),
-            vpl_count: 0,
-            on_gpu: settings.lpv_on_gpu.unwrap_or(!gpu.software),
+            cpu_stale: false,
         })
     }
 
     /// Re-centres the cascades on `eye`, renders the sun's RSM over them, injects and
-    /// propagates, and uploads the volumes for the lookup.
+    /// propagates.
     pub fn update(
         &mut self,
         gpu: &Gpu,
@@ -74,6 +93,17 @@ impl LpvState {
         self.lpv.follow(eye);
         let Some(region) = bounce_region(&self.lpv) else { return Ok(()) };
         let view = self.rsm.render(gpu, scene, region, sun_dir, sun_irradiance)?;
+        let texel_area = (view.texel_size * view.texel_size) as f32;
+        if let Some(resident) = &self.resident {
+            let grids: Vec<Grid> = self.lpv.cascades().iter().map(|c| c.grid).collect();
+            let max_texel_flux = self.rsm.max_texel_flux(sun_irradiance, texel_area);
+            let frame = RsmFrame { to_light: sun_dir, texel_area, max_texel_flux };
+            let mut enc = gpu.device.create_command_encoder(&Default::default());
+            resident.record_update(&gpu.queue, &mut enc, &grids, frame).map_err(lpv_err)?;
+            gpu.queue.submit([enc.finish()]);
+            self.cpu_stale = true;
+            return Ok(());
+        }
         let rsm = self.rsm.read_back(gpu)?;
         let vpls: Vec<Vpl> = rsm
             .extract_vpls(1)
@@ -81,7 +111,6 @@ impl LpvState {
             .into_iter()
             .map(|v| Vpl::new(v.position, v.normal, v.flux))
             .collect();
-        let texel_area = (view.texel_size * view.texel_size) as f32;
         let surfels: Vec<Surfel> = if self.lpv.settings().geometry_volume {
             rsm.position
                 .iter()
@@ -92,17 +121,21 @@ impl LpvState {
         } else {
             Vec::new()
         };
-        self.vpl_count = vpls.len();
-        if self.on_gpu {
-            self.gpu_lpv
-                .update(&gpu.device, &gpu.queue, &mut self.lpv, &vpls, &surfels)
-                .map_err(|e| EngineError::technique("lpv", e))?;
-        } else {
-            self.lpv.update(&vpls, &surfels);
-        }
+        self.lpv.update(&vpls, &surfels);
         let data: Vec<f32> =
             self.lpv.cascades().iter().flat_map(|c| c.volume.data.iter().copied()).collect();
         gpu.write(&self.volumes, 0, bytemuck::cast_slice(&data));
+        Ok(())
+    }
+
+    /// Brings the CPU copy of the volumes up to date (a read-back on the GPU path after an
+    /// update; nothing otherwise), for the traced rays' lookups.
+    pub fn sync_cpu(&mut self, gpu: &Gpu) -> Result<(), EngineError> {
+        if let (true, Some(resident)) = (self.cpu_stale, &self.resident) {
+            resident.read_back(&gpu.device, &gpu.queue, &mut self.lpv).map_err(lpv_err)?;
+            gpu.transfers.read_back(volume_bytes(&self.lpv));
+            self.cpu_stale = false;
+        }
         Ok(())
     }
 
@@ -127,7 +160,8 @@ impl LpvState {
             params.grids[i] = GpuGrid::new(&c.grid, 0, 1.0, 0);
         }
         gpu.write(&self.lookup_params, 0, bytemuck::bytes_of(&params));
-        let buffers = [&self.lookup_params, &self.volumes, queries, out];
+        let volumes = self.resident.as_ref().map_or(&self.volumes, ResidentLpv::volumes);
+        let buffers = [&self.lookup_params, volumes, queries, out];
         dispatch_lookup(&gpu.device, enc, &self.lookup, buffers, count);
     }
 }

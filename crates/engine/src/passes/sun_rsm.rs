@@ -55,6 +55,13 @@ impl SunRsm {
         &self.views
     }
 
+    /// The largest flux one texel can carry under `irradiance` at `texel_area` (the brightest
+    /// albedo's).
+    pub fn max_texel_flux(&self, irradiance: Vec3, texel_area: f32) -> f32 {
+        let albedo = self.albedo.iter().fold(0.0f32, |m, a| m.max(a.max_element()));
+        irradiance.max_element() * albedo * texel_area
+    }
+
     /// Renders the map of the sphere of `radius` around `center` lit by the sun (`sun_dir`
     /// towards it) and returns the light's view of it.
     pub fn render(
