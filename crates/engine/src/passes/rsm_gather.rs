@@ -1,10 +1,11 @@
 //! Indirect sunlight gathered straight from the sun's RSM (`rsm_gi`: Dachsbacher & Stamminger
-//! 2005 with interleaved sampling and a geometry-aware blur), the alternative to the LPV
-//! (`Settings::indirect`). The RSM covers the scene, or the region around the camera when
-//! the scene is larger ([`Settings::rsm_gather_radius`]), and is never read back; the crate's GPU gather runs over the engine's world positions (from
-//! the lookup queries pass) and shading normals, and writes irradiance per pixel where the
-//! lighting pass reads the LPV's. The RSM has no occlusion: its bounce leaks through walls
-//! (the `rsm_gi` crate doc has the figures).
+//! 2005 with interleaved sampling and a geometry-aware blur), the presets' one-bounce
+//! technique (`Settings::indirect`). The RSM covers the scene, or the region around the
+//! camera when the scene is larger ([`Settings::rsm_gather_radius`]), and is never read back;
+//! the crate's GPU gather runs over the engine's world positions (from the lookup queries
+//! pass) and shading normals, and writes irradiance per pixel where the lighting pass reads
+//! the LPV's. The RSM has no occlusion: its bounce leaks through walls (the `rsm_gi` crate
+//! doc has the figures).
 
 use super::sun_rsm::SunRsm;
 use crate::gpu::{GBufferTargets, Gpu, SceneBuffers};
