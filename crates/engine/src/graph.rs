@@ -293,7 +293,7 @@ fn bounce_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
             let c = io.ctx();
             let sun = c.sun.ok_or_else(|| crate::EngineError::Settings("no sun".into()))?;
             let mut l = c.state.lpv.write().map_err(poisoned)?;
-            l.update(&c.state.gpu, &c.state.scene, c.camera.position, sun.dir, sun.irradiance)?;
+            l.update(&c.state.gpu, &c.state.scene, c.camera.position, &sun)?;
             io.ctx().state.gpu.take_error()?;
             io.put(r.lpv, c.frame)?;
             Ok(())
@@ -313,7 +313,7 @@ fn bounce_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
             let sun = c.sun.ok_or_else(|| crate::EngineError::Settings("no sun".into()))?;
             let mut gather = c.state.rsm_gather.write().map_err(poisoned)?;
             let (eye, s) = (c.camera.position, &c.state);
-            gather.update(&s.gpu, &s.scene, eye, sun.dir, sun.irradiance)?;
+            gather.update(&s.gpu, &s.scene, eye, &sun)?;
             io.ctx().state.gpu.take_error()?;
             io.put(r.sun_rsm, c.frame)?;
             Ok(())

@@ -29,6 +29,23 @@ fn rel_diff(a: &[f32], b: &[f32]) -> f32 {
     a.iter().zip(b).fold(0.0f32, |m, (x, y)| m.max((x - y).abs())) / scale
 }
 
+/// The parity tests' LPV (16³, 2 cascades around the two rooms, 6 iterations): its settings,
+/// the CPU path's update of `vpls` and `surfels`, and a copy not updated yet for the GPU.
+fn updated_on_cpu(gv: bool, vpls: &[lpv::Vpl], surfels: &[lpv::Surfel]) -> (LpvSettings, Lpv, Lpv) {
+    let s = LpvSettings {
+        resolution: 16,
+        cascades: 2,
+        iterations: 6,
+        geometry_volume: gv,
+        ..LpvSettings::DEFAULT
+    };
+    let mut cpu = Lpv::new(s).unwrap();
+    cpu.follow(Vec3::new(4.0, 1.5, 2.0));
+    let on_gpu = cpu.clone();
+    cpu.update(vpls, surfels);
+    (s, cpu, on_gpu)
+}
+
 #[test]
 fn gpu_update_and_lookup_match_the_cpu() {
     let Some(ctx) = gpu_harness::gpu_test_context() else { return };
@@ -42,17 +59,7 @@ fn gpu_update_and_lookup_match_the_cpu() {
     vpls.push(lpv::Vpl::new(Vec3::splat(1e4), Vec3::Y, Vec3::ONE));
     let gpu = GpuLpv::new(&ctx.device);
     for gv in [false, true] {
-        let s = LpvSettings {
-            resolution: 16,
-            cascades: 2,
-            iterations: 6,
-            geometry_volume: gv,
-            ..LpvSettings::DEFAULT
-        };
-        let mut cpu = Lpv::new(s).unwrap();
-        cpu.follow(Vec3::new(4.0, 1.5, 2.0));
-        let mut on_gpu = cpu.clone();
-        cpu.update(&vpls, &surfels);
+        let (_, cpu, mut on_gpu) = updated_on_cpu(gv, &vpls, &surfels);
         gpu.update(&ctx.device, &ctx.queue, &mut on_gpu, &vpls, &surfels).expect("gpu update");
         on_gpu.validate().unwrap();
         for (a, b) in on_gpu.cascades().iter().zip(cpu.cascades()) {
@@ -139,17 +146,7 @@ fn resident_update_from_rsm_textures_matches_the_cpu() {
     let rsm =
         RsmTextures { flux: &views[0], normal: &views[1], position: &views[2], width: 32, height };
     for gv in [false, true] {
-        let s = LpvSettings {
-            resolution: 16,
-            cascades: 2,
-            iterations: 6,
-            geometry_volume: gv,
-            ..LpvSettings::DEFAULT
-        };
-        let mut cpu = Lpv::new(s).unwrap();
-        cpu.follow(Vec3::new(4.0, 1.5, 2.0));
-        let mut on_gpu = cpu.clone();
-        cpu.update(&vpls, &surfels);
+        let (s, cpu, mut on_gpu) = updated_on_cpu(gv, &vpls, &surfels);
         let resident = ResidentLpv::new(&ctx.device, s, &rsm).expect("resident lpv");
         let grids: Vec<lpv::Grid> = on_gpu.cascades().iter().map(|c| c.grid).collect();
         let record = || {

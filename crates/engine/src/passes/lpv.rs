@@ -11,6 +11,7 @@
 
 use super::sun_rsm::SunRsm;
 use crate::gpu::{Gpu, SceneBuffers, compute_pipeline, dispatch_lookup, storage_empty, uniform};
+use crate::state::SunLight;
 use crate::{EngineError, Settings};
 use glam::Vec3;
 use lpv::gpu::{GpuGrid, GpuLookupParams, ResidentLpv, RsmFrame, RsmTextures};
@@ -87,17 +88,16 @@ impl LpvState {
         gpu: &Gpu,
         scene: &SceneBuffers,
         eye: Vec3,
-        sun_dir: Vec3,
-        sun_irradiance: Vec3,
+        sun: &SunLight,
     ) -> Result<(), EngineError> {
         self.lpv.follow(eye);
         let Some(region) = bounce_region(&self.lpv) else { return Ok(()) };
-        let view = self.rsm.render(gpu, scene, region, sun_dir, sun_irradiance)?;
+        let view = self.rsm.render(gpu, scene, region, sun)?;
         let texel_area = (view.texel_size * view.texel_size) as f32;
         if let Some(resident) = &self.resident {
             let grids: Vec<Grid> = self.lpv.cascades().iter().map(|c| c.grid).collect();
-            let max_texel_flux = self.rsm.max_texel_flux(sun_irradiance, texel_area);
-            let frame = RsmFrame { to_light: sun_dir, texel_area, max_texel_flux };
+            let max_texel_flux = self.rsm.max_texel_flux(sun.irradiance, texel_area);
+            let frame = RsmFrame { to_light: sun.dir, texel_area, max_texel_flux };
             let mut enc = gpu.device.create_command_encoder(&Default::default());
             resident.record_update(&gpu.queue, &mut enc, &grids, frame).map_err(lpv_err)?;
             gpu.queue.submit([enc.finish()]);
@@ -116,7 +116,7 @@ impl LpvState {
                 .iter()
                 .zip(&rsm.normal)
                 .filter(|(_, n)| n.length_squared() > 0.0)
-                .map(|(&p, &n)| Surfel::new(p, n, texel_area / n.dot(-sun_dir).abs().max(0.2)))
+                .map(|(&p, &n)| Surfel::new(p, n, texel_area / n.dot(sun.dir).abs().max(0.2)))
                 .collect()
         } else {
             Vec::new()

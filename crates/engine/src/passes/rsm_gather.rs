@@ -9,6 +9,7 @@
 
 use super::sun_rsm::SunRsm;
 use crate::gpu::{GBufferTargets, Gpu, SceneBuffers};
+use crate::state::SunLight;
 use crate::{EngineError, Settings};
 use glam::{DVec3, Vec3};
 use rsm_gi::gpu::{GpuGBuffer, GpuGather, GpuRsm};
@@ -90,10 +91,9 @@ impl RsmGatherState {
         gpu: &Gpu,
         scene: &SceneBuffers,
         eye: Vec3,
-        sun_dir: Vec3,
-        sun_irradiance: Vec3,
+        sun: &SunLight,
     ) -> Result<(), EngineError> {
-        let view = self.rsm.render(gpu, scene, self.region.sphere(eye), sun_dir, sun_irradiance)?;
+        let view = self.rsm.render(gpu, scene, self.region.sphere(eye), sun)?;
         let res = self.rsm.resolution();
         let projection = rsm_gi::RsmProjection::from_view_proj(view.view_proj(), res, res);
         self.maps.world_to_texel = projection.world_to_texel;

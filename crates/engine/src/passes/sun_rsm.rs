@@ -4,6 +4,7 @@
 //! RSM gather (`rsm_gi`).
 
 use crate::gpu::{Gpu, SceneBuffers};
+use crate::state::SunLight;
 use crate::{EngineError, Settings};
 use glam::{DVec3, Vec3};
 use shadows::{LightBasis, ShadowView};
@@ -62,22 +63,21 @@ impl SunRsm {
         irradiance.max_element() * albedo * texel_area
     }
 
-    /// Renders the map of the sphere of `radius` around `center` lit by the sun (`sun_dir`
-    /// towards it) and returns the light's view of it.
+    /// Renders the map of the sphere of `radius` around `center` lit by `sun` and returns the
+    /// light's view of it.
     pub fn render(
         &self,
         gpu: &Gpu,
         scene: &SceneBuffers,
         (center, radius): (DVec3, f64),
-        sun_dir: Vec3,
-        sun_irradiance: Vec3,
+        sun: &SunLight,
     ) -> Result<ShadowView, EngineError> {
-        let basis = LightBasis::new(-sun_dir).map_err(tech)?;
+        let basis = LightBasis::new(-sun.dir).map_err(tech)?;
         let view = ShadowView::fit_sphere(basis, center, radius, self.resolution(), 200.0, true);
         let mut enc = gpu.device.create_command_encoder(&Default::default());
         let geometry = scene.shadow_geometry(true);
         self.rsm
-            .record(&gpu.queue, &mut enc, &geometry, &self.albedo, &view, sun_irradiance)
+            .record(&gpu.queue, &mut enc, &geometry, &self.albedo, &view, sun.irradiance)
             .map_err(tech)?;
         gpu.queue.submit([enc.finish()]);
         Ok(view)
