@@ -14,4 +14,8 @@ pub enum CacheError {
     /// GPU path: no adapter, or a device call failed.
     #[error("gpu: {0}")]
     Gpu(String),
+    /// GPU path: a lookup binding made before the cache data it binds recreated a buffer
+    /// (make it again with `GpuLookup::bind`).
+    #[error("gpu: the lookup binding is older than the cache data's buffers; bind again")]
+    StaleBinding,
 }

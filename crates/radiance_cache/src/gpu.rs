@@ -1,9 +1,10 @@
 //! The lookup as a resident WGSL compute pass (`shaders/radiance_cache/lookup.wgsl`).
 //!
 //! [`GpuLookup`] is built once from a device (it owns the pipeline); [`GpuCacheData`] owns
-//! the cache's GPU copy (tables, light, moments), rewritten from the CPU cache after each
-//! update; [`GpuLookup::record`] records one dispatch over the caller's query buffer into
-//! the caller's output buffer. [`read_back`] is separate, for parity tests.
+//! the cache's GPU copy (tables, light, moments), rewritten in place from the CPU cache after
+//! each update; [`GpuLookup::bind`] binds it once to the caller's query and output buffers,
+//! and [`GpuLookup::record_bound`] records one dispatch into the caller's encoder, creating
+//! nothing. [`read_back`] is separate, for parity tests.
 
 use crate::cache::RadianceCache;
 use crate::error::CacheError;
@@ -58,57 +59,134 @@ impl GpuQuery {
 }
 
 /// The GPU copy of a [`RadianceCache`]: its lattices (in the params), slot tables (unlit
-/// caches as `NONE`), light and moments.
+/// caches as `NONE`), light and moments. Resident: [`GpuCacheData::write`] rewrites it in
+/// place after each update and recreates a buffer only when the allocated caches outgrow it
+/// (then [`GpuCacheData::generation`] changes and bindings made before are stale).
 pub struct GpuCacheData {
     params: LookupParams,
     tables: wgpu::Buffer,
     irradiance: wgpu::Buffer,
     moments: wgpu::Buffer,
+    generation: u64,
+}
+
+/// The lookup parameters and the slot tables of `cache` as the kernel reads them.
+fn contents(cache: &RadianceCache) -> (LookupParams, Vec<u32>) {
+    let s = cache.settings();
+    let mut params = LookupParams {
+        cascades: cache.lattices.len() as u32,
+        coefficients: s.coefficients() as u32,
+        moment_res: s.moment_resolution,
+        blend: s.blend_cells,
+        normal_bias: s.normal_bias,
+        ..LookupParams::default()
+    };
+    let mut tables = Vec::new();
+    for (i, (l, t)) in cache.lattices.iter().zip(&cache.tables).enumerate() {
+        params.lattices[i] = GpuLattice {
+            origin_key: l.origin_key.to_array(),
+            res: l.res,
+            spacing: l.spacing(),
+            table_offset: tables.len() as u32,
+            _pad: [0; 2],
+        };
+        tables.extend(t.iter().map(|&slot| {
+            if slot != NONE && cache.pool.last_lit[slot as usize] > 0 { slot } else { NONE }
+        }));
+    }
+    (params, tables)
+}
+
+/// A storage buffer of at least `size` bytes (at least 16: bindings need something).
+fn storage(device: &wgpu::Device, label: &str, size: u64) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: size.max(16).next_multiple_of(4),
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
 }
 
 impl GpuCacheData {
-    /// Uploads `cache` (call again after each update; buffers are recreated when sizes change).
-    pub fn new(device: &wgpu::Device, cache: &RadianceCache) -> Self {
-        let s = cache.settings();
-        let mut params = LookupParams {
-            cascades: cache.lattices.len() as u32,
-            coefficients: s.coefficients() as u32,
-            moment_res: s.moment_resolution,
-            blend: s.blend_cells,
-            normal_bias: s.normal_bias,
-            ..LookupParams::default()
-        };
-        let mut tables = Vec::new();
-        for (i, (l, t)) in cache.lattices.iter().zip(&cache.tables).enumerate() {
-            params.lattices[i] = GpuLattice {
-                origin_key: l.origin_key.to_array(),
-                res: l.res,
-                spacing: l.spacing(),
-                table_offset: tables.len() as u32,
-                _pad: [0; 2],
-            };
-            tables.extend(t.iter().map(|&slot| {
-                if slot != NONE && cache.pool.last_lit[slot as usize] > 0 { slot } else { NONE }
-            }));
-        }
-        let storage = |label: &str, bytes: &[u8]| {
-            let pad = [0u8; 16];
-            let contents = if bytes.is_empty() { &pad[..] } else { bytes };
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-            })
-        };
+    /// Buffers for `cache` as it is now (fill them with [`GpuCacheData::write`]).
+    pub fn with_capacity_of(device: &wgpu::Device, cache: &RadianceCache) -> Self {
+        let (params, tables) = contents(cache);
+        let slots = cache.pool.len() as u64;
         Self {
             params,
-            tables: storage("radiance_cache tables", bytemuck::cast_slice(&tables)),
-            irradiance: storage(
-                "radiance_cache irradiance",
-                bytemuck::cast_slice(&cache.pool.irradiance),
-            ),
-            moments: storage("radiance_cache moments", bytemuck::cast_slice(&cache.pool.moments)),
+            tables: storage(device, "radiance_cache tables", tables.len() as u64 * 4),
+            irradiance: storage(device, "radiance_cache irradiance", slots * IRRADIANCE_BYTES),
+            moments: storage(device, "radiance_cache moments", cache.pool.moments.len() as u64 * 8),
+            generation: 0,
         }
+    }
+
+    /// Uploads `cache` (tests, tools: a fresh copy).
+    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, cache: &RadianceCache) -> Self {
+        let mut data = Self::with_capacity_of(device, cache);
+        data.write(device, queue, cache);
+        data
+    }
+
+    /// Rewrites the copy from `cache` (call after each allocation or update). A buffer the
+    /// allocated caches outgrew is recreated with room for twice as many; returns whether
+    /// that happened (bindings must then be remade).
+    pub fn write(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        cache: &RadianceCache,
+    ) -> bool {
+        let (params, tables) = contents(cache);
+        self.params = params;
+        let mut grown = false;
+        for (buffer, bytes, label) in [
+            (&mut self.tables, bytemuck::cast_slice::<u32, u8>(&tables), "radiance_cache tables"),
+            (
+                &mut self.irradiance,
+                bytemuck::cast_slice(&cache.pool.irradiance),
+                "radiance_cache irradiance",
+            ),
+            (
+                &mut self.moments,
+                bytemuck::cast_slice(&cache.pool.moments),
+                "radiance_cache moments",
+            ),
+        ] {
+            if bytes.len() as u64 > buffer.size() {
+                *buffer = storage(device, label, 2 * bytes.len() as u64);
+                grown = true;
+            }
+            if !bytes.is_empty() {
+                queue.write_buffer(buffer, 0, bytes);
+            }
+        }
+        self.generation += u64::from(grown);
+        grown
+    }
+
+    /// Changes whenever [`GpuCacheData::write`] recreated a buffer.
+    pub fn generation(&self) -> u64 {
+        self.generation
+    }
+}
+
+/// Bytes of one slot's light.
+const IRRADIANCE_BYTES: u64 = (crate::light::IRRADIANCE_FLOATS * 4) as u64;
+
+/// The lookup bound to a [`GpuCacheData`], a query buffer and an output buffer: made once,
+/// recorded every frame with [`GpuLookup::record_bound`] (no buffer, no bind group per call).
+pub struct LookupBinding {
+    uniform: wgpu::Buffer,
+    group: wgpu::BindGroup,
+    count: u32,
+    generation: u64,
+}
+
+impl LookupBinding {
+    /// False once `data` recreated a buffer since this binding was made.
+    pub fn is_current(&self, data: &GpuCacheData) -> bool {
+        self.generation == data.generation
     }
 }
 
@@ -139,22 +217,21 @@ impl GpuLookup {
         Ok(Self { pipeline })
     }
 
-    /// Records the lookup of `count` [`GpuQuery`]s in `queries` into `output` (one
-    /// `vec4<f32>` per query, RGB irradiance).
-    pub fn record(
+    /// Binds the lookup of `count` [`GpuQuery`]s in `queries` into `output` (one
+    /// `vec4<f32>` per query, RGB irradiance) over `data`'s buffers.
+    pub fn bind(
         &self,
         device: &wgpu::Device,
-        encoder: &mut wgpu::CommandEncoder,
         data: &GpuCacheData,
         queries: &wgpu::Buffer,
-        count: u32,
         output: &wgpu::Buffer,
-    ) {
-        let params = LookupParams { count, ..data.params };
-        let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        count: u32,
+    ) -> LookupBinding {
+        let uniform = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("radiance_cache lookup params"),
-            contents: bytemuck::bytes_of(&params),
-            usage: wgpu::BufferUsages::UNIFORM,
+            size: std::mem::size_of::<LookupParams>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
         });
         let entries = [&uniform, &data.tables, &data.irradiance, &data.moments, queries, output];
         let entries: Vec<wgpu::BindGroupEntry> = entries
@@ -165,15 +242,34 @@ impl GpuLookup {
                 resource: b.as_entire_binding(),
             })
             .collect();
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("radiance_cache lookup"),
             layout: &self.pipeline.get_bind_group_layout(0),
             entries: &entries,
         });
+        LookupBinding { uniform, group, count, generation: data.generation }
+    }
+
+    /// Records the bound lookup with `data`'s current lattices (written to the binding's
+    /// uniform through `queue`). A binding made before `data` grew is
+    /// [`CacheError::StaleBinding`].
+    pub fn record_bound(
+        &self,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        data: &GpuCacheData,
+        binding: &LookupBinding,
+    ) -> Result<(), CacheError> {
+        if !binding.is_current(data) {
+            return Err(CacheError::StaleBinding);
+        }
+        let params = LookupParams { count: binding.count, ..data.params };
+        queue.write_buffer(&binding.uniform, 0, bytemuck::bytes_of(&params));
         let mut pass = encoder.begin_compute_pass(&Default::default());
         pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &bind_group, &[]);
-        pass.dispatch_workgroups(count.div_ceil(WORKGROUP).max(1), 1, 1);
+        pass.set_bind_group(0, &binding.group, &[]);
+        pass.dispatch_workgroups(binding.count.div_ceil(WORKGROUP).max(1), 1, 1);
+        Ok(())
     }
 
     /// Uploads `points`, records, submits and reads the result back (tests, tools).
@@ -199,7 +295,8 @@ impl GpuLookup {
         });
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let mut encoder = device.create_command_encoder(&Default::default());
-        self.record(device, &mut encoder, data, &queries, points.len() as u32, &output);
+        let binding = self.bind(device, data, &queries, &output, points.len() as u32);
+        self.record_bound(queue, &mut encoder, data, &binding)?;
         queue.submit([encoder.finish()]);
         if let Some(err) = pollster::block_on(scope.pop()) {
             return Err(CacheError::Gpu(err.to_string()));

@@ -39,7 +39,11 @@
 //! caches x octahedral depth-moment fetch) costs about 260 ns per pixel on 2 threads.
 //!
 //! The CPU path is rayon-parallel and deterministic whatever the thread count. Feature
-//! `gpu` adds the lookup as a WGSL compute kernel (`shaders/radiance_cache/lookup.wgsl`).
+//! `gpu` adds the lookup as a resident WGSL compute pass (`shaders/radiance_cache/lookup.wgsl`):
+//! [`gpu::GpuCacheData`] is the cache's GPU copy, rewritten in place after each update;
+//! [`gpu::GpuLookup::bind`] binds it once to the caller's query and output buffers and
+//! [`gpu::GpuLookup::record_bound`] records into the caller's encoder, creating nothing. The
+//! `engine` crate uses it for `--indirect cache`.
 //!
 //! ```
 //! use glam::Vec3;

@@ -3,14 +3,14 @@
 
 use glam::Vec3;
 use kdtree_tracer::{KdTree, Mesh, Settings as TreeSettings};
-use radiance_cache::gpu::{GpuCacheData, GpuLookup, GpuQuery};
+use radiance_cache::gpu::{GpuCacheData, GpuLookup, GpuQuery, read_back};
 use radiance_cache::{RadianceCache, Settings, SurfacePoint};
 use shadows::Vpl;
+use wgpu::util::DeviceExt;
 
-#[test]
-fn gpu_lookup_matches_the_cpu() {
-    let Some(ctx) = gpu_harness::gpu_test_context() else { return };
-    // A wall at x = 0 and a floor at y = 0; VPLs on the floor's sunlit side of the wall.
+/// A wall at x = 0 and a floor at y = 0; VPLs on the floor's sunlit side of the wall; query
+/// points around them (one far outside, one with a zero normal).
+fn wall_scene() -> (KdTree, Vec<Vpl>, Vec<SurfacePoint>) {
     let q = |o: Vec3, u: Vec3, v: Vec3| [[o, o + u, o + u + v], [o, o + u + v, o + v]];
     let tris: Vec<[Vec3; 3]> =
         q(Vec3::new(0.0, 0.0, -4.0), Vec3::new(0.0, 3.0, 0.0), Vec3::new(0.0, 0.0, 8.0))
@@ -40,22 +40,103 @@ fn gpu_lookup_matches_the_cpu() {
         .collect();
     pts.push(SurfacePoint::new(Vec3::splat(1e3), Vec3::X));
     pts.push(SurfacePoint::new(Vec3::new(1.0, 1.0, 1.0), Vec3::ZERO));
+    (tree, vpls, pts)
+}
+
+/// max |gpu - cpu| / max |cpu| (and max |cpu|).
+fn parity(e_gpu: &[Vec3], cache: &RadianceCache, pts: &[SurfacePoint]) -> (f32, f32) {
+    let e_cpu: Vec<Vec3> = pts.iter().map(|p| cache.irradiance(p.position, p.normal)).collect();
+    let scale = e_cpu.iter().fold(0.0f32, |m, v| m.max(v.max_element())).max(1e-30);
+    let d = e_gpu.iter().zip(&e_cpu).fold(0.0f32, |m, (a, b)| m.max((*a - *b).abs().max_element()));
+    (d / scale, scale)
+}
+
+#[test]
+fn gpu_lookup_matches_the_cpu() {
+    let Some(ctx) = gpu_harness::gpu_test_context() else { return };
+    let (tree, vpls, pts) = wall_scene();
     let gpu = GpuLookup::new(&ctx.device).expect("pipeline");
     for bands in [2, 3, 4] {
         let s = Settings { resolution: 12, cascades: 2, bands, budget: 200, ..Settings::DEFAULT };
         let mut cache = RadianceCache::new(s).unwrap();
         cache.allocate(Vec3::new(0.5, 1.0, 0.0), &pts);
         cache.update(&vpls, &tree); // budget 200: some caches stay unlit (skipped on both sides)
-        let data = GpuCacheData::new(&ctx.device, &cache);
+        let data = GpuCacheData::new(&ctx.device, &ctx.queue, &cache);
         let queries: Vec<GpuQuery> =
             pts.iter().map(|p| GpuQuery::new(p.position, p.normal)).collect();
         let e_gpu =
             gpu.lookup_blocking(&ctx.device, &ctx.queue, &data, &queries).expect("gpu lookup");
-        let e_cpu: Vec<Vec3> = pts.iter().map(|p| cache.irradiance(p.position, p.normal)).collect();
-        let scale = e_cpu.iter().fold(0.0f32, |m, v| m.max(v.max_element())).max(1e-30);
-        let d =
-            e_gpu.iter().zip(&e_cpu).fold(0.0f32, |m, (a, b)| m.max((*a - *b).abs().max_element()));
-        eprintln!("{} bands {bands}: max |gpu - cpu| / max cpu = {:e}", ctx.describe(), d / scale);
-        assert!(scale > 0.0 && d / scale < 1e-4, "lookup parity {}", d / scale);
+        let (d, scale) = parity(&e_gpu, &cache, &pts);
+        eprintln!("{} bands {bands}: max |gpu - cpu| / max cpu = {d:e}", ctx.describe());
+        assert!(scale > 0.0 && d < 1e-4, "lookup parity {d}");
     }
+}
+
+/// The resident path: one binding recorded frame after frame while the cache moves with the
+/// camera and is relit; the copy is rewritten in place (a buffer is recreated only when the
+/// allocated caches outgrow it, and then the old binding is refused), recording makes no
+/// buffer and no bind group, and every frame matches the CPU lookup.
+#[test]
+fn resident_lookup_follows_the_cache_without_allocating() {
+    let Some(ctx) = gpu_harness::gpu_test_context() else { return };
+    let (tree, vpls, pts) = wall_scene();
+    let gpu = GpuLookup::new(&ctx.device).expect("pipeline");
+    let s = Settings { resolution: 12, cascades: 2, budget: 150, ..Settings::DEFAULT };
+    let mut cache = RadianceCache::new(s).unwrap();
+    // Few points first: the second frame's allocation outgrows the first's buffers.
+    cache.allocate(Vec3::new(0.5, 1.0, 0.0), &pts[..40]);
+    cache.update(&vpls, &tree);
+    let mut data = GpuCacheData::new(&ctx.device, &ctx.queue, &cache);
+    let queries: Vec<GpuQuery> = pts.iter().map(|p| GpuQuery::new(p.position, p.normal)).collect();
+    let queries = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("queries"),
+        contents: bytemuck::cast_slice(&queries),
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    let output = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("output"),
+        size: pts.len() as u64 * 16,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let n = pts.len() as u32;
+    let mut binding = gpu.bind(&ctx.device, &data, &queries, &output, n);
+    let live = || {
+        ctx.device.poll(wgpu::PollType::wait_indefinitely()).unwrap();
+        let c = ctx.device.get_internal_counters().hal;
+        [c.buffers.read(), c.bind_groups.read()]
+    };
+    let mut grew = 0;
+    for (frame, eye) in
+        [Vec3::new(0.5, 1.0, 0.0), Vec3::new(1.7, 1.2, -0.4), Vec3::new(2.9, 1.0, 0.8)]
+            .into_iter()
+            .enumerate()
+    {
+        if frame > 0 {
+            cache.allocate(eye, &pts);
+            cache.update(&vpls, &tree);
+            if data.write(&ctx.device, &ctx.queue, &cache) {
+                grew += 1;
+                let mut enc = ctx.device.create_command_encoder(&Default::default());
+                let stale = gpu.record_bound(&ctx.queue, &mut enc, &data, &binding);
+                assert_eq!(stale, Err(radiance_cache::CacheError::StaleBinding));
+                binding = gpu.bind(&ctx.device, &data, &queries, &output, n);
+            }
+        }
+        let record = || {
+            let mut enc = ctx.device.create_command_encoder(&Default::default());
+            gpu.record_bound(&ctx.queue, &mut enc, &data, &binding).expect("record");
+            ctx.queue.submit([enc.finish()]);
+        };
+        record();
+        let before = live();
+        record();
+        assert_eq!(before, live(), "recording makes no buffer and no bind group");
+        let out: Vec<[f32; 4]> = read_back(&ctx.device, &ctx.queue, &output).expect("read back");
+        let e_gpu: Vec<Vec3> = out.iter().map(|c| Vec3::new(c[0], c[1], c[2])).collect();
+        let (d, scale) = parity(&e_gpu, &cache, &pts);
+        eprintln!("{} resident frame {frame}: max |gpu - cpu| / max cpu = {d:e}", ctx.describe());
+        assert!(scale > 0.0 && d < 1e-4, "frame {frame}: lookup parity {d}");
+    }
+    assert!(grew >= 1, "the test should exercise a regrowth");
 }
