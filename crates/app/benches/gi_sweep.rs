@@ -461,11 +461,13 @@ fn components(
 }
 
 /// The one-bounce techniques raced on the same truth (`reference`, the scene's
-/// `sun_indirect_diffuse` image): the LPV and the RSM gather at each preset, and the gather
-/// with each interleaving pattern at the default preset. Entries
-/// `engine/indirect_race_<scene>_<w>x<h>_{lpv,rsm}_<preset>` and `..._rsm_default_<NxM>`,
-/// technique `indirect race <scene>` (one chart per scene): time = ms of the passes that
-/// produce the bounce (`passes_ms`), error = the bounce image's rel RMS.
+/// `sun_indirect_diffuse` image): the LPV, the RSM gather and the radiance cache at each
+/// preset, and the gather with each interleaving pattern at the default preset. Entries
+/// `engine/indirect_race_<scene>_<w>x<h>_{lpv,rsm,cache}_<preset>` and
+/// `..._rsm_default_<NxM>`, technique `indirect race <scene>` (one chart per scene): time =
+/// ms of the passes that produce the bounce (`passes_ms`), error = the bounce image's rel RMS.
+/// The cache is amortised: its image is the one after `cache_frames` frames of the nudged
+/// camera (converged), its time the mean per frame while it converges (0 once it has).
 fn indirect_race(
     sweep: &mut Sweep,
     which: Generated,
@@ -480,7 +482,7 @@ fn indirect_race(
     camera.aspect = w as f32 / h as f32;
     let mut runs: Vec<(String, Settings)> = Vec::new();
     for preset in Preset::ALL {
-        for indirect in [Indirect::Lpv, Indirect::Rsm] {
+        for indirect in [Indirect::Lpv, Indirect::Rsm, Indirect::Cache] {
             let s = Settings { indirect, ..Settings::preset(preset, w, h) };
             runs.push((format!("{indirect}_{preset}"), s));
         }
@@ -493,16 +495,20 @@ fn indirect_race(
     for (tag, settings) in runs {
         sweep.stage(&format!("indirect race {name}: {tag}"));
         let g = settings.rsm_gi;
+        let frames = if settings.indirect == Indirect::Cache { settings.cache_frames } else { 1 };
         let mut r = renderer(&scene, settings);
         r.set_camera(camera).expect("camera");
         warm_up(&mut r);
         r.set_component(Some(Component::SunIndirectDiffuse));
         r.set_camera(nudged(&camera, 1)).expect("camera");
-        let frame = render(&mut r);
+        let frames: Vec<Frame> = (0..frames).map(|_| render(&mut r)).collect();
+        let frame = frames.last().expect("a frame");
         let image = app::image_of(&frame.hdr);
         let f = app::ledger::figures("all", &image, reference, 0..image.pixels.len(), 1.0);
         let software = r.is_software();
-        let ms = passes_ms(&frame.report, Component::SunIndirectDiffuse);
+        let ms =
+            frames.iter().map(|f| passes_ms(&f.report, Component::SunIndirectDiffuse)).sum::<f64>()
+                / frames.len() as f64;
         sweep.entry(
             Entry::new(
                 format!("engine/indirect_race_{name}_{w}x{h}_{tag}"),
@@ -514,6 +520,7 @@ fn indirect_race(
             .setting("rsm_vpls", g.vpls)
             .setting("rsm_pattern", format!("{}x{}", g.pattern.nx, g.pattern.ny))
             .setting("rsm_low_res", g.low_res)
+            .setting("frames", frames.len())
             .setting("luminance_ratio", f.luminance_ratio)
             .setting("software_adapter", software)
             .error("rel_rms", f.rel_rms, rname)

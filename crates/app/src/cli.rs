@@ -95,7 +95,8 @@ pub struct EngineArgs {
     #[arg(long, default_value = "default")]
     pub preset: Preset,
     /// One-bounce indirect sunlight: rsm (interleaved gather from the sun's reflective shadow
-    /// map, the presets' choice), lpv (light propagation volumes, the thesis's), none.
+    /// map, the presets' choice), lpv (light propagation volumes, the thesis's), cache
+    /// (dynamic radiance volumes with ray-traced indirect shadows), none.
     #[arg(long, default_value = "rsm")]
     pub indirect: Indirect,
 }

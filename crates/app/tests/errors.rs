@@ -161,6 +161,9 @@ fn bad_time_date_and_preset_strings_are_settings_errors() {
     assert!(e.to_string().contains("ultra") && e.to_string().contains("low"), "{e}");
     assert_eq!("low".parse::<Preset>().unwrap(), Preset::Low);
     let e = "lvp".parse::<engine::Indirect>().expect_err("unknown technique");
-    assert!(e.to_string().contains("lvp") && e.to_string().contains("lpv, rsm, none"), "{e}");
+    assert!(
+        e.to_string().contains("lvp") && e.to_string().contains("lpv, rsm, cache, none"),
+        "{e}"
+    );
     assert_eq!("rsm".parse::<engine::Indirect>().unwrap(), engine::Indirect::Rsm);
 }

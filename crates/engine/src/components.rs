@@ -87,7 +87,9 @@ pub fn code(component: Option<Component>) -> u32 {
 pub fn passes(component: Component) -> &'static [&'static str] {
     match component {
         Component::SunDirect => &[pass::SHADOW_MAPS, pass::GBUFFER, pass::LIGHTING],
-        Component::SunIndirectDiffuse => &[pass::LPV, pass::SUN_RSM, pass::GBUFFER, pass::LIGHTING],
+        Component::SunIndirectDiffuse => {
+            &[pass::LPV, pass::SUN_RSM, pass::RADIANCE_CACHE, pass::GBUFFER, pass::LIGHTING]
+        }
         Component::SkyIrradiance => {
             &[pass::SKY_MAP, pass::SKY_VOLUME, pass::GBUFFER, pass::LIGHTING]
         }
@@ -104,6 +106,7 @@ pub fn passes(component: Component) -> &'static [&'static str] {
             pass::GBUFFER,
             pass::LPV,
             pass::SUN_RSM,
+            pass::RADIANCE_CACHE,
             pass::RAY_CASTING,
             pass::RAY_TRACING,
             pass::LIGHTING,

@@ -37,6 +37,7 @@ pub mod pass {
     pub const GBUFFER: &str = "g-buffer";
     pub const LPV: &str = "rsm + lpv";
     pub const SUN_RSM: &str = "rsm (gather)";
+    pub const RADIANCE_CACHE: &str = "rsm + radiance cache";
     pub const RAY_CASTING: &str = "ray casting buffer";
     pub const RAY_TRACING: &str = "ray tracing";
     pub const LIGHTING: &str = "lighting";
@@ -105,6 +106,7 @@ struct Resources {
     cubes: Res<u64>,
     lpv: Res<u64>,
     sun_rsm: Res<u64>,
+    cache: Res<u64>,
     batch: Res<RayBatch>,
     traced: Res<Traced>,
     lit: Res<u64>,
@@ -122,6 +124,7 @@ impl Resources {
             cubes: g.resource("point-light cube maps"),
             lpv: g.resource("lpv"),
             sun_rsm: g.resource("sun rsm (gather)"),
+            cache: g.resource("radiance cache"),
             batch: g.resource("ray batch"),
             traced: g.resource("traced radiance"),
             lit: g.resource("lit view"),
@@ -160,7 +163,11 @@ fn rays_switched(c: &FrameCtx) -> bool {
 }
 
 /// Declares the pipeline.
-pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, Outputs) {
+pub fn build(
+    sky_layers: u32,
+    layers_per_frame: u32,
+    cache_frames: u32,
+) -> (FrameGraph<FrameCtx>, Outputs) {
     let mut g = FrameGraph::<FrameCtx>::new();
     let r = Resources::declare(&mut g);
     g.output(r.shown);
@@ -168,6 +175,7 @@ pub fn build(sky_layers: u32, layers_per_frame: u32) -> (FrameGraph<FrameCtx>, O
     shadow_passes(&mut g, r);
     gbuffer_pass(&mut g, r);
     bounce_passes(&mut g, r);
+    cache_pass(&mut g, r, cache_frames);
     trace_passes(&mut g, r);
     lighting_pass(&mut g, r);
     combine_pass(&mut g, r);
@@ -320,12 +328,39 @@ fn bounce_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
         });
 }
 
+/// The radiance cache: allocated from the view, lit on the CPU, written to its GPU copy;
+/// `cache_frames` frames after each camera or sun move (one unit per frame), then reused.
+fn cache_pass(g: &mut FrameGraph<FrameCtx>, r: Resources, cache_frames: u32) {
+    g.sync_point(pass::RADIANCE_CACHE)
+        .writes(r.cache)
+        .switched(Effect::IndirectLight)
+        .run_if(BOUNCE_NEEDED, bounce_needed)
+        .run_if("the indirect technique is the radiance cache", |c: &FrameCtx| {
+            c.indirect == Indirect::Cache
+        })
+        .key("camera", camera_key)
+        .key("sun direction", sun_key)
+        .amortised(cache_frames, Budget::Units(1))
+        .run(move |io| -> PassResult {
+            let c = io.ctx();
+            let s = &c.state;
+            let sun = c.sun.ok_or_else(|| crate::EngineError::Settings("no sun".into()))?;
+            let mut cache = s.cache.write().map_err(poisoned)?;
+            let lookup = s.lighting.lookup_io();
+            cache.update(&s.gpu, &s.scene, &s.trace, &c.camera, &sun, lookup)?;
+            io.ctx().state.gpu.take_error()?;
+            io.put(r.cache, c.frame)?;
+            Ok(())
+        });
+}
+
 /// The ray-casting buffer read back and traced on a CPU worker.
 fn trace_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
     g.sync_point(pass::RAY_CASTING)
         .reads(r.gbuf)
         .reads(r.sky_vol)
         .reads(r.lpv)
+        .reads(r.cache)
         .writes(r.batch)
         .run_if(RAYS_SWITCHED, rays_switched)
         .run_if(RAYS_NEEDED, |c: &FrameCtx| c.needs.ray_tracing())
@@ -362,8 +397,11 @@ fn trace_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
                 None => None,
             };
             let lpv_guard = s.lpv.read().map_err(poisoned)?;
+            let cache_guard = s.cache.read().map_err(poisoned)?;
             // The RSM gather is per pixel of the view: traced hits get no bounce from it.
-            let use_lpv = c.needs.indirect_lpv.needed && c.indirect == Indirect::Lpv;
+            let bounce = c.needs.indirect_lpv.needed;
+            let use_lpv = bounce && c.indirect == Indirect::Lpv;
+            let use_cache = bounce && c.indirect == Indirect::Cache;
             let use_sky = c.needs.sky_lighting.needed;
             let sky_fn = |d: Vec3| {
                 sky_guard.as_ref().filter(|_| use_sky).map_or(Vec3::ZERO, |k| k.radiance(d))
@@ -375,6 +413,9 @@ fn trace_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
                 }
                 if use_lpv {
                     e += lpv_guard.lpv.irradiance(p, n);
+                }
+                if use_cache {
+                    e += cache_guard.cache.irradiance(p, n);
                 }
                 e
             };
@@ -400,6 +441,7 @@ fn lighting_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
         .reads(r.sky_vol)
         .reads(r.lpv)
         .reads(r.sun_rsm)
+        .reads(r.cache)
         .writes(r.lit)
         .cached()
         .key("view shown", |c: &FrameCtx| c.component)
@@ -414,13 +456,15 @@ fn lighting_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
             };
             let lpv_state = s.lpv.read().map_err(poisoned)?;
             let rsm_state = s.rsm_gather.read().map_err(poisoned)?;
+            let cache_state = s.cache.read().map_err(poisoned)?;
             let indirect = match c.indirect {
                 _ if !c.needs.indirect_lpv.needed => IndirectSource::None,
                 Indirect::Lpv => IndirectSource::Lpv(&lpv_state),
                 Indirect::Rsm if rsm_state.ready => {
                     IndirectSource::Rsm(&rsm_state, c.camera.view_projection())
                 }
-                Indirect::Rsm | Indirect::None => IndirectSource::None,
+                Indirect::Cache if cache_state.ready() => IndirectSource::Cache(&cache_state),
+                Indirect::Rsm | Indirect::Cache | Indirect::None => IndirectSource::None,
             };
             let inputs = LightingInputs {
                 frame: &s.frame,

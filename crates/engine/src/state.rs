@@ -9,6 +9,7 @@ use crate::passes::{
     lighting::LightingPass,
     lpv::LpvState,
     point_shadows::{PointShadowPass, gpu_lights},
+    radiance_cache::CacheState,
     raycast::RayCastPass,
     rsm_gather::RsmGatherState,
     shadow::ShadowMaps,
@@ -36,6 +37,7 @@ pub struct State {
     pub sky: Option<RwLock<SkyState>>,
     pub lpv: RwLock<LpvState>,
     pub rsm_gather: RwLock<RsmGatherState>,
+    pub cache: RwLock<CacheState>,
     pub trace: TraceScene,
     pub frame: wgpu::Buffer,
     pub lights: wgpu::Buffer,
@@ -103,6 +105,7 @@ impl State {
             rsm_gather: RwLock::new(RsmGatherState::new(
                 &gpu, scene, &buffers, &targets, &settings,
             )?),
+            cache: RwLock::new(CacheState::new(&gpu, scene, &buffers, &settings)?),
             trace: TraceScene::new(scene)?,
             frame: uniform(
                 device,

@@ -33,7 +33,7 @@
 
 use crate::EngineError;
 use glam::{Vec2, Vec3};
-use kdtree_tracer::{Hit, KdTree, Mesh, Ray, Settings};
+use kdtree_tracer::{Hit, KdTree, Mesh, Ray, RayQuery, Settings};
 use rayon::prelude::*;
 use scene::{Material, Texture, TextureId};
 use std::f32::consts::PI;
@@ -168,8 +168,19 @@ impl TraceScene {
 
     /// Closest hit in `[0, t_max]`, skipping alpha-tested holes when `alpha`.
     fn intersect(&self, origin: Vec3, dir: Vec3, t_max: f32, alpha: bool) -> Option<Hit> {
+        self.intersect_from(origin, dir, 0.0, t_max, alpha)
+    }
+
+    /// Closest hit in `[t_min, t_max]`, skipping alpha-tested holes when `alpha`.
+    fn intersect_from(
+        &self,
+        origin: Vec3,
+        dir: Vec3,
+        mut t_min: f32,
+        t_max: f32,
+        alpha: bool,
+    ) -> Option<Hit> {
         let alpha = alpha && self.any_alpha;
-        let mut t_min = 0.0f32;
         loop {
             let h = self.tree.intersect(&Ray::new(origin, dir).with_t_min(t_min), t_max)?;
             if !alpha || self.opaque(&h) {
@@ -192,10 +203,32 @@ impl TraceScene {
         }
     }
 
+    /// The unit geometric normal of a hit triangle (zero for a degenerate one).
+    pub fn geometric_normal(&self, h: &Hit) -> Vec3 {
+        let [a, b, c] = self.mesh.triangle(h.triangle);
+        (b - a).cross(c - a).normalize_or_zero()
+    }
+
     /// A point just off the surface at `p` (geometric normal `ng`) on the side of `dir`.
     fn offset(&self, p: Vec3, ng: Vec3, dir: Vec3) -> Vec3 {
         let e = self.epsilon.max(p.abs().max_element() * 4e-6);
         if ng.dot(dir) >= 0.0 { p + ng * e } else { p - ng * e }
+    }
+}
+
+/// The scene as other techniques' rays see it (the radiance cache's shadow and moment rays):
+/// alpha-tested holes let rays through, as they do for the traced reflections.
+impl RayQuery for TraceScene {
+    fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        self.intersect_from(ray.origin, ray.dir, ray.t_min, t_max, true)
+    }
+
+    fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
+        if self.any_alpha {
+            RayQuery::intersect(self, ray, t_max).is_some()
+        } else {
+            self.tree.occluded(ray, t_max)
+        }
     }
 }
 

@@ -1,7 +1,9 @@
 //! The one-bounce technique is a per-frame switch: the LPV's pass or the RSM gather's runs
 //! (the other is skipped with the technique named as the reason), both give a finite bounce of
 //! the same order on the city, the RSM gather reads nothing back, and `none` adds no bounce.
-//! The LPV's resident GPU path gives the bounce its CPU path gives.
+//! The LPV's resident GPU path gives the bounce its CPU path gives. The radiance cache lights
+//! the sunlit room as the RSM gather does, stops the bounce leaking into a closed room, and
+//! is amortised: it runs for `cache_frames` frames after a move, then is reused.
 
 mod common;
 
@@ -66,7 +68,7 @@ fn the_indirect_technique_switches_per_frame() {
 
     r.set_indirect(Indirect::None);
     let none = r.render_frame().expect("frame without bounce");
-    for p in [pass::LPV, pass::SUN_RSM] {
+    for p in [pass::LPV, pass::SUN_RSM, pass::RADIANCE_CACHE] {
         assert_eq!(common::outcome(&none, p), Outcome::Skipped, "{}", common::describe(&none, p));
     }
     assert_eq!(mean_luminance(&none), 0.0, "no bounce without a technique");
@@ -108,5 +110,85 @@ fn the_lpv_on_the_gpu_matches_its_cpu_path() {
         "read back: GPU path {}, CPU path {}",
         gpu.transfers.read_back_bytes,
         cpu.transfers.read_back_bytes
+    );
+}
+
+/// `Indirect::Cache` on `which` at the low preset: the bounce image after `frames` frames
+/// of a still camera, and the last frame's report.
+fn cache_frames(
+    which: scene::Generated,
+    indirect: Indirect,
+    frames: usize,
+) -> Option<Vec<engine::Frame>> {
+    let s = engine::Settings { indirect, ..engine::Settings::preset(engine::Preset::Low, 96, 54) };
+    let mut r = common::renderer(which.build(common::SEED), s)?;
+    r.set_component(Some(Component::SunIndirectDiffuse));
+    Some((0..frames).map(|_| r.render_frame().expect("frame")).collect())
+}
+
+/// The camera of `two_rooms` stands in the closed east room: the truth's bounce there is 0.
+/// The RSM gather leaks light through the shared wall; the radiance cache's shadow rays and
+/// visibility-weighted lookup keep it out. On `cornell_window` (a sunlit room) it gives a
+/// bounce of the gather's order.
+#[test]
+fn the_radiance_cache_lights_the_lit_room_and_not_the_closed_one() {
+    use scene::Generated::{CornellWindow, TwoRooms};
+    let (Some(cache), Some(rsm)) = (
+        cache_frames(CornellWindow, Indirect::Cache, 4),
+        cache_frames(CornellWindow, Indirect::Rsm, 1),
+    ) else {
+        return;
+    };
+    let last = cache.last().unwrap();
+    assert!(common::hdr_stats(last).1, "finite");
+    let (a, b) = (mean_luminance(last), mean_luminance(&rsm[0]));
+    assert!(a > 0.0 && a / b > 0.1 && a / b < 10.0, "bounce: cache {a}, rsm gather {b}");
+
+    let (Some(cache), Some(rsm)) =
+        (cache_frames(TwoRooms, Indirect::Cache, 4), cache_frames(TwoRooms, Indirect::Rsm, 1))
+    else {
+        return;
+    };
+    let (leak, gathered) = (mean_luminance(cache.last().unwrap()), mean_luminance(&rsm[0]));
+    eprintln!(
+        "closed room, mean bounce luminance: cache {leak}, rsm gather {gathered}; lit room: cache {a}"
+    );
+    assert!(gathered > 0.0, "the gather leaks (the test needs a leak to stop)");
+    assert!(
+        leak < 0.1 * gathered && leak < 0.01 * a,
+        "closed room: cache {leak}, gather {gathered}, lit room {a}"
+    );
+}
+
+/// The cache pass runs for `cache_frames` frames of a still camera (relighting the oldest
+/// caches), then is reused; a camera move starts it again.
+#[test]
+fn the_radiance_cache_is_amortised_over_frames() {
+    let s = engine::Settings {
+        indirect: Indirect::Cache,
+        ..engine::Settings::preset(engine::Preset::Low, 64, 36)
+    };
+    let n = s.cache_frames as usize;
+    let Some(mut r) = common::renderer(scene::Generated::CornellWindow.build(common::SEED), s)
+    else {
+        return;
+    };
+    let outcomes: Vec<Outcome> = (0..n + 2)
+        .map(|_| common::outcome(&r.render_frame().expect("frame"), pass::RADIANCE_CACHE))
+        .collect();
+    let total = n as u32;
+    let mut expected: Vec<Outcome> =
+        (0..total).map(|i| Outcome::Amortised { from: i, to: i + 1, total }).collect();
+    expected.extend([Outcome::Reused, Outcome::Reused]);
+    assert_eq!(outcomes, expected);
+    let mut camera = *r.camera();
+    camera.position += glam::Vec3::new(0.05, 0.0, 0.0);
+    r.set_camera(camera).expect("camera");
+    let f = r.render_frame().expect("frame");
+    assert_eq!(
+        common::outcome(&f, pass::RADIANCE_CACHE),
+        Outcome::Amortised { from: 0, to: 1, total },
+        "{}",
+        common::describe(&f, pass::RADIANCE_CACHE)
     );
 }

@@ -204,8 +204,14 @@ fn static_camera_the_g_buffer_is_reused() {
     assert_outcome(&f, pass::GBUFFER, Outcome::Reused, "camera still again");
 }
 
-const SUN_PASSES: [&str; 5] =
-    [pass::SKY_MAP, pass::SKY_VOLUME, pass::SHADOW_MAPS, pass::LPV, pass::SUN_RSM];
+const SUN_PASSES: [&str; 6] = [
+    pass::SKY_MAP,
+    pass::SKY_VOLUME,
+    pass::SHADOW_MAPS,
+    pass::LPV,
+    pass::SUN_RSM,
+    pass::RADIANCE_CACHE,
+];
 
 #[test]
 fn night_skips_the_sun_and_sky_passes() {

@@ -192,7 +192,10 @@ mod tests {
             p = next_preset(p);
         }
         assert_eq!(p, Preset::Low);
-        let i = next_indirect(next_indirect(next_indirect(Indirect::Rsm)));
+        let mut i = Indirect::Rsm;
+        for _ in 0..Indirect::ALL.len() {
+            i = next_indirect(i);
+        }
         assert_eq!((next_indirect(Indirect::Lpv), i), (Indirect::Rsm, Indirect::Rsm));
     }
 

@@ -3,7 +3,7 @@
 //! or the RSM gather) by their crates' kernels, then one full-screen pass
 //! (`shaders/engine/lighting.wgsl`) into the HDR target.
 
-use super::{lpv::LpvState, rsm_gather::RsmGatherState, sky::SkyState};
+use super::{lpv::LpvState, radiance_cache::CacheState, rsm_gather::RsmGatherState, sky::SkyState};
 use crate::EngineError;
 use crate::gpu::{
     GBufferTargets, Gpu, bind_group, compute_pipeline, dispatch, draw_fullscreen,
@@ -42,6 +42,8 @@ pub enum IndirectSource<'a> {
     Lpv(&'a LpvState),
     /// The RSM gather over the view seen through the camera's `view_proj`.
     Rsm(&'a RsmGatherState, glam::Mat4),
+    /// The radiance cache's lookup (bound to [`LightingPass::lookup_io`]).
+    Cache(&'a CacheState),
 }
 
 impl LightingPass {
@@ -63,6 +65,13 @@ impl LightingPass {
             lpv_out: storage_empty(device, "lpv light", n * 16),
             pixels: n as u32,
         })
+    }
+
+    /// The per-pixel lookup queries (position, normal; what the queries pass writes for the
+    /// LPV), the buffer the lighting shader reads the bounce from, and the pixel count: what a
+    /// lookup kernel of a one-bounce technique binds to.
+    pub fn lookup_io(&self) -> (&wgpu::Buffer, &wgpu::Buffer, u32) {
+        (&self.lpv_q, &self.lpv_out, self.pixels)
     }
 
     /// Records the queries, the lookups that are needed, and the lighting.
@@ -104,6 +113,10 @@ impl LightingPass {
                 &self.lpv_out
             }
             IndirectSource::Rsm(rsm, view_proj) => rsm.record_gather(gpu, enc, view_proj)?,
+            IndirectSource::Cache(cache) => {
+                cache.record_lookup(gpu, enc)?;
+                &self.lpv_out
+            }
             IndirectSource::None => &self.lpv_out,
         };
         let skymap = inputs.sky.map(|s| &s.map_buffer).unwrap_or(inputs.lights);

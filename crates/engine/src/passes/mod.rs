@@ -7,6 +7,7 @@ pub mod gbuffer;
 pub mod lighting;
 pub mod lpv;
 pub mod point_shadows;
+pub mod radiance_cache;
 pub mod raycast;
 pub mod rsm_gather;
 pub mod shadow;

@@ -7,11 +7,11 @@
 //! the LPV's. The RSM has no occlusion: its bounce leaks through walls (the `rsm_gi` crate
 //! doc has the figures).
 
-use super::sun_rsm::SunRsm;
+use super::sun_rsm::{Region, SunRsm};
 use crate::gpu::{GBufferTargets, Gpu, SceneBuffers};
 use crate::state::SunLight;
 use crate::{EngineError, Settings};
-use glam::{DVec3, Vec3};
+use glam::Vec3;
 use rsm_gi::gpu::{GpuGBuffer, GpuGather, GpuRsm};
 
 pub struct RsmGatherState {
@@ -26,33 +26,6 @@ pub struct RsmGatherState {
     region: Region,
     /// The RSM has been rendered.
     pub ready: bool,
-}
-
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Region {
-    Fixed(DVec3, f64),
-    AroundCamera(f64),
-}
-
-impl Region {
-    /// The whole scene when it fits in `radius`, else `radius` around the camera: the gather
-    /// samples a disc that is a fraction of the map's width, so a map much larger than the
-    /// scene leaves a few huge texels (VPLs) per wall.
-    fn of(bounds: &scene::Aabb, radius: f64) -> Self {
-        let r = 0.5 * bounds.size().as_dvec3().length();
-        if !bounds.is_empty() && r <= radius {
-            Region::Fixed(bounds.center().as_dvec3(), r.max(0.5))
-        } else {
-            Region::AroundCamera(radius)
-        }
-    }
-
-    fn sphere(self, eye: Vec3) -> (DVec3, f64) {
-        match self {
-            Region::Fixed(c, r) => (c, r),
-            Region::AroundCamera(r) => (eye.as_dvec3(), r),
-        }
-    }
 }
 
 fn tech(e: rsm_gi::RsmGiError) -> EngineError {

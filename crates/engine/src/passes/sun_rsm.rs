@@ -9,6 +9,33 @@ use crate::{EngineError, Settings};
 use glam::{DVec3, Vec3};
 use shadows::{LightBasis, ShadowView};
 
+/// The sphere a sun RSM covers: fixed (centre, radius), or a radius around the camera.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Region {
+    Fixed(DVec3, f64),
+    AroundCamera(f64),
+}
+
+impl Region {
+    /// The whole scene when it fits in `radius`, else `radius` around the camera: a map much
+    /// larger than the scene leaves a few huge texels (VPLs) per wall.
+    pub fn of(bounds: &scene::Aabb, radius: f64) -> Self {
+        let r = 0.5 * bounds.size().as_dvec3().length();
+        if !bounds.is_empty() && r <= radius {
+            Region::Fixed(bounds.center().as_dvec3(), r.max(0.5))
+        } else {
+            Region::AroundCamera(radius)
+        }
+    }
+
+    pub fn sphere(self, eye: Vec3) -> (DVec3, f64) {
+        match self {
+            Region::Fixed(c, r) => (c, r),
+            Region::AroundCamera(r) => (eye.as_dvec3(), r),
+        }
+    }
+}
+
 pub struct SunRsm {
     rsm: shadows::gpu::ReflectiveShadowMap,
     /// Diffuse albedo of each material draw (the RSM's flux).
