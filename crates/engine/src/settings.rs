@@ -56,15 +56,17 @@ impl FromStr for Preset {
 ///
 /// The presets gather the bounce from the RSM instead of propagating it through the LPV,
 /// because the component ledger says so (`cargo xtask render --reference 16 --components
-/// --indirect lpv|rsm`, 320x180, 2 cores, lavapipe, load ~1.5), one-bounce image rel RMS
-/// against the reference, LPV -> RSM: city default 8.97 -> 2.77 (luminance ratio 13.3 ->
-/// 2.9), city low 7.13 -> 3.44, `cornell_window` default 3.08 -> 1.42 (ratio 5.3 -> 2.9,
-/// most of it the sunlit ground lighting the green wall through the wall: the RSM has no
-/// occlusion); whole frame (clamped rel RMS) city 0.452 -> 0.348 (low 0.417 -> 0.354),
-/// `cornell_window` 0.310 -> 0.218; `two_rooms`' closed room (black truth) gets 0.0073 ->
-/// 0.0002 mean luminance of leaked bounce. At the same cost: the component's passes took
-/// 128-167 ms with either on the city (two interleaved runs each). The price: traced hits
-/// get no bounce (the city's reflections ratio 0.71 -> 0.54).
+/// --indirect lpv|rsm|cache`, 320x180, 2 cores, lavapipe). One-bounce image rel RMS against
+/// the reference at the default preset, LPV / RSM gather / radiance cache: city 1.88 / 0.686
+/// / 0.688 (luminance ratio 2.5 / 0.57 / 0.57), `cornell_window` 3.08 / 1.43 / 0.925 (ratio
+/// 5.3 / 2.9 / 1.8: the gather has no occlusion, the sunlit ground lights the green wall
+/// through the wall); whole frame (clamped) city 0.349 / 0.346 / 0.345, `cornell_window`
+/// 0.310 / 0.219 / 0.204; `two_rooms`' closed room (black truth) gets 0.0073 / 0.0002 /
+/// 0.0000 mean luminance of leaked bounce. The city's figures are after the RSM's flux took
+/// the albedo textures' mean (`SceneBuffers::diffuse_albedo`; before, the asphalt reflected
+/// as if white and every technique was 3-13x too bright there: 8.97 / 2.81 / 3.61). The
+/// gather's price: traced hits get no bounce (the city's reflections ratio 0.71 -> 0.54);
+/// the cache's: CPU work and an RSM read back whenever the camera moves.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Indirect {

@@ -61,6 +61,11 @@ pub struct SceneBuffers {
     pub draws: Vec<Draw>,
     pub materials: wgpu::Buffer,
     pub material_table: Vec<GpuMaterial>,
+    /// Per material, the reflectance of the light it bounces diffusely (the sun RSM's flux):
+    /// albedo times the mean of its albedo texture (the texture's 1x1 mip, linear) times
+    /// `1 - reflectivity - transparency`. The RSM's texels (tens of centimetres) span many
+    /// texture texels, so the mean is what a texel reflects.
+    pub diffuse_albedo: Vec<Vec3>,
     /// One bind group per material (albedo texture, alpha texture, sampler), group 1 of the
     /// G-buffer pipeline.
     pub material_groups: Vec<wgpu::BindGroup>,
@@ -183,11 +188,22 @@ fn material_groups(
         .collect()
 }
 
+/// [`SceneBuffers::diffuse_albedo`] of one material.
+fn diffuse_albedo(scene: &scene::Scene, m: &scene::Material) -> Vec3 {
+    let texture = m.albedo_texture.and_then(|t| scene.textures.get(t.index()));
+    let mean = texture
+        .and_then(|t| t.levels.last())
+        .and_then(|l| l.texels.first())
+        .map_or(Vec3::ONE, |t| t.truncate().clamp(Vec3::ZERO, Vec3::ONE));
+    m.albedo * mean * (1.0 - m.reflectivity - m.transparency).max(0.0)
+}
+
 impl SceneBuffers {
     pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, scene: &scene::Scene) -> Self {
         let (vertices, indices, draws) = flatten(scene);
         let material_table: Vec<GpuMaterial> =
             scene.materials.iter().map(GpuMaterial::new).collect();
+        let diffuse_albedo = scene.materials.iter().map(|m| diffuse_albedo(scene, m)).collect();
         let material_layout = material_layout(device);
         let material_groups = material_groups(device, queue, scene, &material_layout);
         let range = |first: u32, count: u32| shadows::gpu::DrawRange {
@@ -213,6 +229,7 @@ impl SceneBuffers {
             draws,
             materials: storage(device, "materials", table),
             material_table,
+            diffuse_albedo,
             material_groups,
             material_layout,
             triangle_count: indices.len() / 3,

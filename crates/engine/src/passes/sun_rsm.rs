@@ -38,7 +38,7 @@ impl Region {
 
 pub struct SunRsm {
     rsm: shadows::gpu::ReflectiveShadowMap,
-    /// Diffuse albedo of each material draw (the RSM's flux).
+    /// Diffuse albedo of each material draw (the RSM's flux; `SceneBuffers::diffuse_albedo`).
     albedo: Vec<Vec3>,
     views: [wgpu::TextureView; 3],
 }
@@ -63,12 +63,7 @@ impl SunRsm {
         let albedo = buffers
             .draws
             .iter()
-            .map(|d| {
-                buffers.material_table.get(d.material as usize).map_or(Vec3::ZERO, |m| {
-                    let [r, g, b, _] = m.albedo;
-                    Vec3::new(r, g, b) * (1.0 - m.params[1] - m.params[2]).max(0.0)
-                })
-            })
+            .map(|d| buffers.diffuse_albedo.get(d.material as usize).copied().unwrap_or(Vec3::ZERO))
             .collect();
         let views = rsm.targets().each_ref().map(|t| t.create_view(&Default::default()));
         Ok(Self { rsm, albedo, views })
