@@ -21,16 +21,38 @@ struct RsmGiPixel {
     normal: vec3<f32>,
 }
 
-// Irradiance at (x, n) from a VPL at p facing np with flux `flux` (the point-to-point form
-// factor: flux max(0, np.(x - p)) max(0, n.(p - x)) / (pi |x - p|^4)).
-fn rsm_gi_vpl_irradiance(x: vec3<f32>, n: vec3<f32>, p: vec3<f32>, np: vec3<f32>, flux: vec3<f32>) -> vec3<f32> {
+// Irradiance at (x, n) from a VPL at p facing np with flux `flux` that is a disc of `area`
+// (CPU twin: input.rs vpl_irradiance_area): flux max(0, np.(x - p)) max(0, n.(p - x)) /
+// (|x - p|² (pi |x - p|² + area)); area 0 is the point-to-point form factor.
+fn rsm_gi_vpl_irradiance(x: vec3<f32>, n: vec3<f32>, p: vec3<f32>, np: vec3<f32>, flux: vec3<f32>, area: f32) -> vec3<f32> {
     let d = x - p;
     let r2 = dot(d, d);
     let c = max(dot(np, d), 0.0) * max(dot(n, -d), 0.0);
     if (r2 <= 1e-12 || c <= 0.0) {
         return vec3<f32>(0.0);
     }
-    return flux * (c / (RSM_GI_PI * r2 * r2));
+    return flux * (c / (r2 * (RSM_GI_PI * r2 + max(area, 0.0))));
+}
+
+const RSM_GI_MAX_TEXEL_STRETCH: f32 = 10.0;
+
+// An orthographic map's texel footprint on a plane facing the light (w) and the direction
+// the map looks along (xyz), from world_to_texel's x and y rows (CPU twin: input.rs
+// RsmProjection::texel_footprint); zero for a degenerate projection.
+fn rsm_gi_texel_footprint(m: mat4x4<f32>) -> vec4<f32> {
+    let rx = vec3<f32>(m[0].x, m[1].x, m[2].x);
+    let ry = vec3<f32>(m[0].y, m[1].y, m[2].y);
+    let c = cross(rx, ry);
+    let len = length(c);
+    if (!(len > 0.0) || len > 3.4e38) {
+        return vec4<f32>(0.0);
+    }
+    return vec4<f32>(c / len, 1.0 / len);
+}
+
+// The surface area of a texel with unit normal n (CPU twin: input.rs texel_area).
+fn rsm_gi_texel_area(footprint: vec4<f32>, n: vec3<f32>) -> f32 {
+    return footprint.w / max(abs(dot(n, footprint.xyz)), 1.0 / RSM_GI_MAX_TEXEL_STRETCH);
 }
 
 // The pixel as the passes see it: a zero normal or a point behind the camera is not shaded

@@ -23,6 +23,7 @@ fn rsm_gi_gather(px: RsmGiPixel, range: vec2<u32>) -> vec3<f32> {
     let centre = t4.xy / t4.w;
     let size = vec2<f32>(f32(view.sizes.z), f32(view.sizes.w));
     let offset = view.knobs.x;
+    let footprint = rsm_gi_texel_footprint(view.world_to_texel);
     var e = vec3<f32>(0.0);
     for (var k = range.x; k < range.x + range.y; k = k + 1u) {
         let s = samples[k];
@@ -39,7 +40,8 @@ fn rsm_gi_gather(px: RsmGiPixel, range: vec2<u32>) -> vec3<f32> {
         }
         let np = raw / len;
         let p = textureLoad(rsm_position, tc, 0).xyz - np * offset;
-        e = e + s.z * rsm_gi_vpl_irradiance(x, px.normal, p, np, flux);
+        let area = rsm_gi_texel_area(footprint, np);
+        e = e + s.z * rsm_gi_vpl_irradiance(x, px.normal, p, np, flux, area);
     }
     return e;
 }

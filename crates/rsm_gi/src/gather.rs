@@ -1,7 +1,7 @@
 //! The gather (Dachsbacher & Stamminger 2005): each shaded point sums the VPLs of the RSM
 //! texels at a pattern of offsets around its own projection into the RSM.
 
-use crate::input::{Pixel, RsmInput, RsmProjection, Texel, vpl_irradiance};
+use crate::input::{Pixel, RsmInput, RsmProjection, Texel, texel_area, vpl_irradiance_area};
 use crate::pattern::{Sample, subset};
 use glam::{Vec2, Vec3};
 
@@ -14,6 +14,9 @@ pub(crate) struct GatherKernel<'a> {
     projection: RsmProjection,
     /// How far the VPLs were moved against their normals.
     offset: f32,
+    /// The texels' footprint facing the light and the light's direction
+    /// ([`RsmProjection::texel_footprint`]): each VPL is a disc of its texel's area.
+    footprint: (f32, Vec3),
     /// Per sub-buffer: (offset in texels, weight in texels).
     pub subsets: Vec<Vec<(Vec2, f32)>>,
     /// Every sample as one set (the non-interleaved estimate).
@@ -35,6 +38,7 @@ impl<'a> GatherKernel<'a> {
             height: rsm.height,
             projection: rsm.projection,
             offset,
+            footprint: rsm.projection.texel_footprint(),
             subsets: (0..cells).map(|c| subset(samples, c, cells, radius)).collect(),
             all: subset(samples, 0, 1, radius),
         }
@@ -65,7 +69,8 @@ impl<'a> GatherKernel<'a> {
             if t.flux == Vec3::ZERO {
                 continue;
             }
-            let c = vpl_irradiance(p.position, p.normal, t.position, t.normal, t.flux);
+            let area = texel_area(self.footprint.0, self.footprint.1, t.normal);
+            let c = vpl_irradiance_area(p.position, p.normal, t.position, t.normal, t.flux, area);
             if c != Vec3::ZERO
                 && visible(
                     p.position + 0.01 * p.normal,

@@ -57,6 +57,22 @@ impl RsmProjection {
     pub fn texel(&self, p: Vec3) -> Vec2 {
         self.world_to_texel.project_point3(p).truncate()
     }
+
+    /// For an orthographic map (a sun's): the world area one texel covers on a plane facing
+    /// the light, and the unit direction along which the map looks (either sign). From the
+    /// rows of `world_to_texel` that give the texel's x and y: their cross product's length is
+    /// texels per square metre. A degenerate projection gives `(0, 0)`.
+    pub fn texel_footprint(&self) -> (f32, Vec3) {
+        let m = self.world_to_texel;
+        let rx = Vec3::new(m.x_axis.x, m.y_axis.x, m.z_axis.x);
+        let ry = Vec3::new(m.x_axis.y, m.y_axis.y, m.z_axis.y);
+        let c = rx.cross(ry);
+        let len = c.length();
+        if !(len > 0.0 && len.is_finite()) {
+            return (0.0, Vec3::ZERO);
+        }
+        (1.0 / len, c / len)
+    }
 }
 
 /// A reflective shadow map as three row-major planes of `width * height` texels (row 0 at
@@ -195,11 +211,39 @@ pub(crate) fn prepare_texels(rsm: &RsmInput, offset: f32) -> (Vec<Texel>, u64) {
 /// `flux max(0, n_p . (x - x_p)) max(0, n . (x_p - x)) / (pi |x - x_p|^4)`.
 #[inline]
 pub fn vpl_irradiance(x: Vec3, n: Vec3, vpl_position: Vec3, vpl_normal: Vec3, flux: Vec3) -> Vec3 {
+    vpl_irradiance_area(x, n, vpl_position, vpl_normal, flux, 0.0)
+}
+
+/// [`vpl_irradiance`] from a VPL that is a disc of `area` (an RSM texel's surface): the
+/// disc's form factor `area cos cos / (pi d² + area)` (exact on the disc's axis) instead of
+/// the point's `area cos cos / (pi d²)`. Far away the two agree; near the disc the point's
+/// grows without bound while the disc's stays below the texel's radiosity `flux / area`,
+/// which is what keeps a wall next to a sunlit floor from gathering many times the light
+/// the floor reflects. `area` 0 is the point.
+#[inline]
+pub fn vpl_irradiance_area(
+    x: Vec3,
+    n: Vec3,
+    vpl_position: Vec3,
+    vpl_normal: Vec3,
+    flux: Vec3,
+    area: f32,
+) -> Vec3 {
     let d = x - vpl_position;
     let r2 = d.length_squared();
     let c = vpl_normal.dot(d).max(0.0) * n.dot(-d).max(0.0);
     if r2 <= 1e-12 || c <= 0.0 {
         return Vec3::ZERO;
     }
-    flux * (c / (std::f32::consts::PI * r2 * r2))
+    flux * (c / (r2 * (std::f32::consts::PI * r2 + area.max(0.0))))
 }
+
+/// The surface area an RSM texel with unit normal `n` covers: the texel's footprint on a
+/// plane facing the light over `|n . light|`, at most [`MAX_TEXEL_STRETCH`] footprints.
+#[inline]
+pub fn texel_area(footprint: f32, light: Vec3, n: Vec3) -> f32 {
+    footprint / n.dot(light).abs().max(1.0 / MAX_TEXEL_STRETCH)
+}
+
+/// The most a grazing surface stretches an RSM texel's area (1 / the smallest cosine).
+pub const MAX_TEXEL_STRETCH: f32 = 10.0;

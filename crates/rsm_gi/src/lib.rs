@@ -14,14 +14,20 @@
 //!
 //! 1. **Gather** ([`RsmGi::gather`]): each pixel projects into the RSM and sums the VPLs
 //!    of the texels at `vpls` offsets in a disc of `r_max` (fraction of the RSM width)
-//!    around it, with the point-to-point form factor [`vpl_irradiance`]. Offsets are the
+//!    around it, each texel a disc of its surface's area ([`vpl_irradiance_area`], the
+//!    area from the map's orthographic footprint, [`RsmProjection::texel_footprint`]; the
+//!    paper's point-to-point form factor [`vpl_irradiance`] where the projection gives no
+//!    area, and for the splat's VPLs). Offsets are the
 //!    paper's polar pattern (density compensated: weight `2 pi xi1`) or a Poisson disk
 //!    ([`Sampling`], [`samples`]); each sample stands for the texels around it, so the sum
 //!    is an unbiased estimate of the whole disc's.
 //! 2. **Near-singularity** (the paper's fix, section 4): where two walls meet, `1/r^4`
 //!    explodes; every VPL is moved `vpl_offset` against its normal before it lights
 //!    anything, which also stops a texel from lighting its own plane. Since nothing is
-//!    occluded, the move has no other cost (thin objects may light their far side).
+//!    occluded, the move has no other cost (thin objects may light their far side). The
+//!    disc form factor bounds what is left: a texel never lights a point more than its own
+//!    radiosity does (in the engine, the point form made the 1024-VPL preset 5x too bright,
+//!    its samples reaching the near texels the 512-VPL pattern skips).
 //! 3. **Splat** ([`RsmGi::splat`]): `vpls` VPLs chosen from the RSM with probability
 //!    proportional to their flux ([`RsmGi::splat_vpls`], flux divided by the probability), each
 //!    added to the pixels within `splat_radius` of it, found through its projected box.
@@ -126,7 +132,10 @@ mod splat;
 pub mod gpu;
 
 pub use error::RsmGiError;
-pub use input::{GBuffer, RsmInput, RsmProjection, Stats, vpl_irradiance};
+pub use input::{
+    GBuffer, MAX_TEXEL_STRETCH, RsmInput, RsmProjection, Stats, texel_area, vpl_irradiance,
+    vpl_irradiance_area,
+};
 pub use interleave::Interleave;
 pub use pattern::{Sample, samples};
 pub use pipeline::{Output, RsmGi};

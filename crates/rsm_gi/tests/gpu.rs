@@ -25,6 +25,9 @@ fn shaders_validate_with_naga() {
     for s in [GATHER_WGSL, BLUR_WGSL, UPSAMPLE_WGSL] {
         validate(s);
     }
+    // The texel-area cap is one number on both sides.
+    let line = format!("const RSM_GI_MAX_TEXEL_STRETCH: f32 = {:?};", rsm_gi::MAX_TEXEL_STRETCH);
+    assert!(GATHER_WGSL.contains(&line), "the WGSL should declare `{line}`");
 }
 
 /// Relative L2 difference over RGB.

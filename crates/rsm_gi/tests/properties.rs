@@ -5,7 +5,10 @@ mod fixtures;
 
 use glam::{Mat4, Vec3};
 use proptest::prelude::*;
-use rsm_gi::{GBuffer, Interleave, RsmGi, RsmInput, RsmProjection, Sampling, Settings};
+use rsm_gi::{
+    GBuffer, Interleave, RsmGi, RsmInput, RsmProjection, Sampling, Settings, texel_area,
+    vpl_irradiance, vpl_irradiance_area,
+};
 
 fn cfg() -> ProptestConfig {
     ProptestConfig {
@@ -102,6 +105,48 @@ proptest! {
         let expect = form_factor(x[0], n[0], moved, np, phi);
         let got = out.irradiance[0].y;
         prop_assert!((got - expect).abs() <= 1e-4 * expect.max(1e-3), "splat {got} vs {expect}");
+    }
+
+    #[test]
+    fn a_disc_vpl_is_exact_on_its_axis_bounded_near_and_a_point_far(
+        area in 1e-3f32..4.0, h in 1e-3f32..10.0, phi in 0.1f32..10.0,
+        tilt in -0.6f32..0.6,
+    ) {
+        let np = Vec3::new(tilt, 1.0, 0.3 * tilt).normalize();
+        let flux = Vec3::splat(phi);
+        // On the axis, facing the disc: the closed form phi / (pi h² + area).
+        let on_axis = vpl_irradiance_area(np * h, -np, Vec3::ZERO, np, flux, area).x;
+        let exact = phi / (std::f32::consts::PI * h * h + area);
+        prop_assert!((on_axis - exact).abs() <= 1e-5 * exact, "{on_axis} vs {exact}");
+        // Never above the texel's radiosity, whatever the distance.
+        prop_assert!(on_axis <= phi / area * (1.0 + 1e-5));
+        // Far away (d² >= 100 area / pi) within 1% of the point.
+        let far = np * (10.0 * (area / std::f32::consts::PI).sqrt()).max(h);
+        let (disc, point) = (
+            vpl_irradiance_area(far, -np, Vec3::ZERO, np, flux, area).x,
+            vpl_irradiance(far, -np, Vec3::ZERO, np, flux).x,
+        );
+        prop_assert!(disc <= point && disc >= 0.99 * point, "{disc} vs {point}");
+    }
+
+    #[test]
+    fn an_orthographic_maps_texel_footprint_is_its_texel_size_squared(
+        r in 0.5f32..100.0, res in 16u32..2048, dx in -1.0f32..1.0, dz in -1.0f32..1.0,
+        n_tilt in -3.0f32..3.0,
+    ) {
+        let to_light = Vec3::new(dx, 1.0, dz).normalize();
+        let up = if to_light.x.abs() < 0.9 { Vec3::X } else { Vec3::Z };
+        let view = glam::camera::rh::view::look_at_mat4(to_light * 50.0, Vec3::ZERO, up);
+        let proj = glam::camera::rh::proj::directx::orthographic(-r, r, -r, r, 0.1, 100.0);
+        let (footprint, dir) = RsmProjection::from_view_proj(proj * view, res, res).texel_footprint();
+        let texel = 2.0 * r / res as f32;
+        prop_assert!((footprint - texel * texel).abs() <= 1e-3 * texel * texel, "{footprint}");
+        prop_assert!((dir.dot(to_light).abs() - 1.0).abs() < 1e-4, "{dir}");
+        // A surface tilted away from the light covers footprint / cos, at most 10 footprints.
+        let n = Vec3::new(n_tilt.sin(), n_tilt.cos(), 0.0);
+        let a = texel_area(footprint, dir, n);
+        let cos = n.dot(to_light).abs();
+        prop_assert!((a - footprint / cos.max(0.1)).abs() <= 1e-3 * a);
     }
 
     #[test]
