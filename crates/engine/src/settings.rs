@@ -265,9 +265,17 @@ impl Settings {
                     ..lpv::LpvSettings::high()
                 },
                 rsm_resolution: 512,
-                // Full resolution. Not the crate's HIGH (1024 VPLs, 2x2): in the engine it
-                // made the bounce 5x too bright on cornell_window (rel RMS 7.0 vs 1.36 here)
-                // and the city (7.6 vs 2.7), unexplained yet (the GPU matches the CPU at 1024).
+                // Full resolution. Not the crate's HIGH (1024 VPLs, 2x2): on cornell_window
+                // the bounce comes out 12.9x too bright (rel RMS 6.3 against 1.39 here). Not a
+                // bug but what the gather converges to there: its one pattern at every pixel
+                // undersamples the near field with 512 uniform (Poisson) samples and finds
+                // it with 1024; the paper's polar pattern, which samples the near field
+                // densely, converges at any count (a floor lighting a wall: 0.45-0.50 of the
+                // floor's radiosity from 32 to 4096 samples, Poisson 0.25-0.74) and gives
+                // 10.7 / 12.8 / 16.6x at low / default / high on cornell_window, where the
+                // sunlit ground outside lights the room through its walls (no occlusion: the
+                // radiance cache's 1.8x). The city, with its open streets, prefers polar
+                // (0.57 against 0.69) but the presets keep Poisson's luckier total.
                 rsm_gi: rsm_gi::Settings::DEFAULT,
                 radiance_cache: radiance_cache::Settings::HIGH,
                 cache_frames: 16,
