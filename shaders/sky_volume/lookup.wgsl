@@ -5,6 +5,8 @@
 
 struct LookupParams {
     origin: vec4<f32>,
+    // w: 1 = oriented lookup (probes behind the surface's plane left out, the others
+    // renormalised; CPU twin: lookup.rs SkyVolume::oriented).
     spacing: vec4<f32>,
     dims: vec4<u32>,
     // Per-coefficient factors: clamped cosine times the window, 9 used.
@@ -44,6 +46,8 @@ fn sky_volume_irradiance(pos: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
     let ay = axis_coord(pos.y, params.origin.y, params.spacing.y, params.dims.y);
     let az = axis_coord(pos.z, params.origin.z, params.spacing.z, params.dims.z);
     var e = vec3<f32>(0.0);
+    var e_front = vec3<f32>(0.0);
+    var w_front = 0.0;
     for (var c = 0u; c < 8u; c++) {
         let sx = select(0u, 1u, (c & 1u) != 0u);
         let sy = select(0u, 1u, (c & 2u) != 0u);
@@ -59,6 +63,14 @@ fn sky_volume_irradiance(pos: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
             d += vec3<f32>(probes[base + i], probes[base + 9u + i], probes[base + 18u + i]) * kb[i];
         }
         e += d * w;
+        let probe = params.origin.xyz + vec3<f32>(f32(x), f32(yy), f32(z)) * params.spacing.xyz;
+        if dot(probe - pos, normal) >= 0.0 {
+            e_front += d * w;
+            w_front += w;
+        }
+    }
+    if params.spacing.w > 0.5 && w_front > 0.0 {
+        e = e_front / w_front;
     }
     return max(e, vec3<f32>(0.0));
 }

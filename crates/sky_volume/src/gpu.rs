@@ -101,7 +101,11 @@ impl SkyVolume {
         kernel[..9].copy_from_slice(&self.kernel);
         LookupParams {
             origin: g.origin.extend(0.0).to_array(),
-            spacing: g.spacing.extend(0.0).to_array(),
+            // w: 1 for the oriented lookup (`Settings::oriented_lookup`).
+            spacing: g
+                .spacing
+                .extend(f32::from(u8::from(self.settings.oriented_lookup)))
+                .to_array(),
             dims: [g.dims.x, g.dims.y, g.dims.z, g.len() as u32],
             kernel,
         }

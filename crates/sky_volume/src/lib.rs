@@ -7,7 +7,12 @@
 //! every point against **occlusion quads** (rectangles standing in for buildings) and
 //! projecting the sky radiance of the unblocked directions. A deferred pass then reads the
 //! volume trilinearly and convolves with the clamped cosine (Ramamoorthi & Hanrahan 2001) to
-//! get the irradiance at a surface normal; diffuse light is `albedo / pi * E`.
+//! get the irradiance at a surface normal; diffuse light is `albedo / pi * E`. Beyond the
+//! thesis, the lookup leaves out the probes behind the surface's plane
+//! ([`Settings::oriented_lookup`], on by default): a facade between a probe inside its
+//! building (no sky) and one outside otherwise gets half its sky light (the engine's city:
+//! vertical faces 0.4-0.5x of the path-traced sky light with plain trilinear, 0.8-0.9x
+//! oriented; the sky component's rel RMS 0.49 -> 0.40).
 //!
 //! The thesis filled the volume in 369 ms on a GTX 260 and spread it over 16 frames. Here the
 //! same result comes from three interchangeable fills ([`FillMethod`]):

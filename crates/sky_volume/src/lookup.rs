@@ -60,6 +60,26 @@ impl SkyVolume {
         (idx, w)
     }
 
+    /// `w` with the probes behind the plane through `pos` with normal `normal` left out and
+    /// the rest renormalised (unchanged when none is in front; a zero normal keeps all): [`crate::Settings::oriented_lookup`].
+    pub fn oriented(&self, pos: Vec3, normal: Vec3, idx: &[usize; 8], mut w: [f32; 8]) -> [f32; 8] {
+        let g = &self.grid;
+        let (mut front, mut sum) = ([false; 8], 0.0f32);
+        for c in 0..8 {
+            let probe = g.position(g.coords(idx[c]));
+            front[c] = (probe - pos).dot(normal) >= 0.0;
+            if front[c] {
+                sum += w[c];
+            }
+        }
+        if sum > 0.0 {
+            for c in 0..8 {
+                w[c] = if front[c] { w[c] / sum } else { 0.0 };
+            }
+        }
+        w
+    }
+
     /// Interpolated radiance SH at a world position.
     pub fn sample(&self, pos: Vec3) -> Sh3Rgb {
         let (idx, w) = self.trilinear(pos);
@@ -86,6 +106,7 @@ impl SkyVolume {
             kb[i] = y.c[i] * self.kernel[i];
         }
         let (idx, w) = self.trilinear(pos);
+        let w = if self.settings.oriented_lookup { self.oriented(pos, normal, &idx, w) } else { w };
         let mut acc = [0.0f32; 27];
         for c in 0..8 {
             let p: &[f32; 27] = bytemuck::cast_ref(&self.probes[idx[c]]);

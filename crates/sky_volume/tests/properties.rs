@@ -57,6 +57,40 @@ fn arb_quad() -> impl Strategy<Value = OcclusionQuad> {
         })
 }
 
+/// The six walls of the box `lo..hi` as occlusion quads.
+fn box_quads(lo: Vec3, hi: Vec3) -> Vec<OcclusionQuad> {
+    let (c, h) = ((lo + hi) * 0.5, (hi - lo) * 0.5);
+    let face = |axis: Vec3, u: Vec3, v: Vec3, hu: f32, hv: f32| {
+        [1.0f32, -1.0].map(|s| OcclusionQuad::new(c + axis * s * h.dot(axis), u, v, hu, hv))
+    };
+    let mut q = Vec::new();
+    q.extend(face(Vec3::X, Vec3::Y, Vec3::Z, h.y, h.z));
+    q.extend(face(Vec3::Y, Vec3::X, Vec3::Z, h.x, h.z));
+    q.extend(face(Vec3::Z, Vec3::X, Vec3::Y, h.x, h.y));
+    q
+}
+
+/// A building (a closed box of quads) between probes: its probes inside see no sky. On its
+/// +x face the oriented lookup reads only the probes outside (exactly the lookup at the next
+/// probe plane out, same height), while the thesis's plain trilinear mixes in the black
+/// probes inside and darkens the wall.
+#[test]
+fn the_oriented_lookup_keeps_a_walls_sky_from_the_probes_inside_the_building() {
+    let quads = box_quads(Vec3::new(-3.5, -1.0, -3.5), Vec3::new(1.5, 7.5, 1.5));
+    let sky = ConstantSky(Vec3::ONE);
+    let oriented = fill(small_grid(), Settings::DEFAULT, &quads, &sky);
+    let plain =
+        fill(small_grid(), Settings { oriented_lookup: false, ..Settings::DEFAULT }, &quads, &sky);
+    for (y, z) in [(1.0, -2.0), (2.5, 0.5), (4.2, -0.7), (5.9, 1.2)] {
+        let face = Vec3::new(1.5, y, z);
+        let out = oriented.irradiance(Vec3::new(3.0, y, z), Vec3::X);
+        let on = oriented.irradiance(face, Vec3::X);
+        assert!((on - out).abs().max_element() <= 1e-5 * out.x, "{on} vs outside {out}");
+        let mixed = plain.irradiance(face, Vec3::X);
+        assert!(out.x > 0.5 && mixed.x < 0.8 * out.x, "plain {mixed} vs outside {out}");
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(cases()))]
 
