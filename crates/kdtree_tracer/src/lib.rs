@@ -55,8 +55,10 @@
 //!
 //! Standing after these steps (`kdrace --rays 100000`, medians of three runs of 15 rounds,
 //! load 3.9-5.0): city 1.14 / 1.10 (one / two threads), blob 1.03 / 0.99, cable 1.57 / 1.63,
-//! atrium 1.58 / 1.61. The bench's full sweep races obvhs's fastest-tracing preset rather than
-//! the medium build, which is why its blob ratio is lower (0.82).
+//! atrium 1.58 / 1.61. The bench's quick sweep in the same hour (medium build, 40k rays, load
+//! 4.3-4.4): city 1.08 / 1.07, blob 1.03 / 0.85, cable 1.44 / 1.41, atrium 1.54 / 1.59. The
+//! full sweep races obvhs's fastest-tracing preset on 200k rays instead, which may explain
+//! its lower blob ratio (0.82 / 0.88); that was not checked.
 //!
 //! Swept and not kept (no gain beyond the scatter, same rays): intersection cost 0.3 / 0.55
 //! per pack, empty bonus 0 / 0.1 / 0.5, perfect splits as the default (fewer references,
@@ -80,7 +82,9 @@
 //! for the next node (blob +6%, city -4%, atrium +3%: within the scatter), a box per pack in
 //! a separate 32-byte array tested before the pack (20-30% slower on every mesh), the ids
 //! moved out of the packs into a parallel array read only for the hit (144-byte packs:
-//! geomean 1.247 -> 1.213), and on the
+//! geomean 1.247 -> 1.213), the per-axis traversals as separate functions rather than
+//! inlined into one (`#[inline(never)]`: CPU-time A/B geomean 1.238 -> 1.293, but the
+//! interleaved race 1.299 -> 1.269 over three alternating runs each), and on the
 //! blob alone perfect splits (refs/tri 1.76 -> 1.71), intersection cost 0.25 / 0.6, empty
 //! bonus 0.6 / 0.8 with the depth limit raised to 50 (0.72-0.92 where the default gave
 //! 0.95 in the same runs). Where the blob's time goes (`perf` with cpu-clock sampling): 60%
