@@ -1,9 +1,12 @@
 //! kdrace: the kd-tree raced against obvhs's CWBVH (medium build), interleaved in one process,
 //! on several generated meshes; prints kd-tree / CWBVH throughput ratios (load cancels out).
 //! A development tool for tuning: settings come from the environment (`KD_KI`, `KD_KT`,
-//! `KD_BONUS`, `KD_LEAF`, `KD_PERFECT=1`), rays per mesh from `--rays N`, threads `--threads T`.
+//! `KD_BONUS`, `KD_LEAF`, `KD_PERFECT=1`), rays per mesh from `--rays N`, threads `--threads T`,
+//! the obvhs build from `--preset NAME` (default `medium_build`; the full bench sweep races the
+//! fastest-tracing preset, often a slower build, so its ratios can be lower).
 //!
-//! cargo run --release -p kdtree_tracer --example kdrace -- [--rays N] [--threads T] [MESH...]
+//! cargo run --release -p kdtree_tracer --example kdrace -- [--rays N] [--threads T]
+//! [--preset NAME] [MESH...]
 
 use std::time::Instant;
 
@@ -37,6 +40,7 @@ fn mesh(name: &str) -> Option<Mesh> {
 fn main() -> Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let (mut n, mut threads, mut names) = (100_000usize, 1usize, Vec::new());
+    let mut preset = BvhPreset::MediumBuild;
     let mut i = 0;
     while i < args.len() {
         match args[i].as_str() {
@@ -47,6 +51,14 @@ fn main() -> Result<()> {
             "--threads" => {
                 i += 1;
                 threads = args.get(i).context("--threads T")?.parse()?;
+            }
+            "--preset" => {
+                i += 1;
+                let name = args.get(i).context("--preset NAME")?;
+                preset = *BvhPreset::ALL
+                    .iter()
+                    .find(|p| p.name() == name)
+                    .with_context(|| format!("unknown preset {name}"))?;
             }
             a => names.push(a.to_owned()),
         }
@@ -70,7 +82,7 @@ fn main() -> Result<()> {
         let t = Instant::now();
         let kd = KdTree::build(&m, &s)?;
         let build = t.elapsed().as_secs_f64() * 1e3;
-        let cw = BvhAccel::build(&m, BvhKind::Cwbvh, BvhPreset::MediumBuild)?;
+        let cw = BvhAccel::build(&m, BvhKind::Cwbvh, preset)?;
         let rays = if name == "city" {
             let cam = Camera::over_city(&m);
             let all = test_util::screen_incoherent_rays(&kd, &m, &cam, 800, 450, 17);

@@ -20,7 +20,8 @@
 //!   Intersection", JCGT 2013): the sheared, permuted edge functions are evaluated identically
 //!   for triangles sharing an edge, so rays through edges and vertices cannot slip between
 //!   them (Moller-Trumbore can); exact zeros are recomputed in f64.
-//! - **Batches**: [`trace_tiles`] over image-shaped ray buffers in 40x40 tiles on rayon.
+//! - **Batches**: [`trace_tiles`] over image-shaped ray buffers in 40x40 tiles on rayon,
+//!   handed out along a Z-order curve (each thread's share is a compact block of the image).
 //! - **Mip selection**: [`texture_footprint`] intersects a pixel's ray differentials
 //!   (H. Igehy, "Tracing Ray Differentials", SIGGRAPH 1999) with the hit triangle's plane.
 //! - **Dynamic geometry** (the thesis's future work): [`BvhAccel`] answers the same queries
@@ -48,6 +49,17 @@
 //! | SAH counting packs, `ceil(N/4)`, costs 1 : 0.4 | 1.00-1.08 | 0.82-0.95 | 1.35-1.56 | 1.26-1.37 | 1.12-1.19 |
 //! | ids in the packs, no separate 48-byte records (54 B/tri on the city, was 106) | 1.14 | 0.91-0.99 | 1.30-1.51 | 1.42-1.53 | 1.22 |
 //!
+//! The reflection buffer (`trace_tiles`, 800x450 incoherent hemisphere rays over the city,
+//! 2 threads): tiles in Z-order instead of row-major order, 5% faster (row-major / Z-order
+//! time 1.01-1.08, median 1.05 over five interleaved runs of 15 rounds, load 2.5-2.7).
+//!
+//! Standing after these steps (`kdrace --rays 100000`, medians of three runs of 15 rounds,
+//! load 3.9-5.0): city 1.14 / 1.10 (one / two threads), blob 1.03 / 0.99, cable 1.57 / 1.63,
+//! atrium 1.58 / 1.61. The bench's quick sweep in the same hour (medium build, 40k rays, load
+//! 4.3-4.4): city 1.08 / 1.07, blob 1.03 / 0.85, cable 1.44 / 1.41, atrium 1.54 / 1.59. The
+//! full sweep races obvhs's fastest-tracing preset on 200k rays instead, which may explain
+//! its lower blob ratio (0.82 / 0.88); that was not checked.
+//!
 //! Swept and not kept (no gain beyond the scatter, same rays): intersection cost 0.3 / 0.55
 //! per pack, empty bonus 0 / 0.1 / 0.5, perfect splits as the default (fewer references,
 //! slower build), a larger leaf size, and AVX testing two packs at once (the traversal
@@ -60,6 +72,28 @@
 //! closed blob is where a BVH still wins:
 //! rays leaving a curved surface cross many thin leaves around it (12 leaves, 50 steps per
 //! ray against 5 leaves, 25 steps on the city).
+//!
+//! Also tried and not kept (the same races plus a CPU-time A/B of two builds on 50-150k rays,
+//! 3-4 alternating runs, load 2.5-5): returning from the pack test before its division when no
+//! lane is inside its triangle (city 1.13 -> 1.02 over four runs, blob unchanged: the
+//! data-dependent branch costs more than the division), prefetching a pushed far leaf's
+//! packs (no change), 64-byte aligned packs (192 bytes, so a pack spans 3 cache lines rather
+//! than 3.5 on average: geomean 1.296 -> 1.287), a traversal step with one branch and a select
+//! for the next node (blob +6%, city -4%, atrium +3%: within the scatter), a box per pack in
+//! a separate 32-byte array tested before the pack (20-30% slower on every mesh), the ids
+//! moved out of the packs into a parallel array read only for the hit (144-byte packs:
+//! geomean 1.247 -> 1.213), the per-axis traversals as separate functions rather than
+//! inlined into one (`#[inline(never)]`: CPU-time A/B geomean 1.238 -> 1.293, but the
+//! interleaved race 1.299 -> 1.269 over three alternating runs each), and on the
+//! blob alone perfect splits (refs/tri 1.76 -> 1.71), intersection cost 0.25 / 0.6, empty
+//! bonus 0.6 / 0.8 with the depth limit raised to 50 (0.72-0.92 where the default gave
+//! 0.95 in the same runs). Where the blob's time goes (`perf` with cpu-clock sampling): 60%
+//! in the pack tests, 40% in traversal steps; the hottest instruction, a fifth of the time,
+//! is the first load of a leaf's packs, a cache miss (the blob's packs are 7 MB, its nodes
+//! 200 KB). 12 leaves per ray at the blob's average of 12 references (three packs) per leaf
+//! is of the order of 140 triangle tests per ray (an estimate, not a count), far more than a
+//! BVH makes; the test itself is cheap, so catching up needs trees whose rays cross fewer
+//! full leaves, which no SAH setting tried gives.
 //!
 //! ```
 //! use glam::Vec3;
