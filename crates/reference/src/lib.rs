@@ -53,6 +53,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 mod camera;
+mod caustics;
 mod compare;
 mod error;
 mod from_scene;
