@@ -1,28 +1,38 @@
-//! Sun caustics by progressive photon mapping: the light paths `sun -> (mirror|glass)+ ->
-//! base surface` that the path tracer only finds when a BRDF-sampled ray happens to reach the
-//! sun's tiny disk through a chain of perfectly specular bounces.
+//! Sun caustics by progressive photon mapping: the light paths `sun -> (S)+ -> D` that the
+//! path tracer only finds when a BRDF-sampled ray happens to reach the sun's tiny disk
+//! through a chain of specular bounces.
 //!
-//! **Photon pass.** Photons leave the sun towards the surfaces with a mirror or glass part
-//! (the *delta triangles*): a triangle `t` is chosen in proportion to its area projected
-//! towards the sun's centre, `A_t |cos theta_t|` (Walker alias table), a point `x` uniform in
-//! its area, a direction `w` uniform in the sun's cone; the photon travels along `-w` from
-//! outside the world's bounds and counts only when the first surface it meets is `t` itself
-//! (so every light ray is counted once, through the triangle it meets first). Its power is
-//! `L_sun Omega A_t |cos(n_t, w)| / (P(t) N)`: an unbiased sample of the sun's flux onto the
-//! delta surfaces. It then follows only the mirror/glass parts (the part chosen as the path
-//! tracer chooses it, Fresnel included, Russian roulette on the part's weight so its power
-//! stays constant) and is **stored** wherever it meets a surface with a base BRDF after at
-//! least one delta bounce: position, the incoming direction, the normal facing it, its power
-//! and its number of delta bounces.
+//! **The partition of paths.** An *S event* is a bounce off a mirror or glass part (a delta
+//! event) or off the base BRDF of a *sharp* material, whose Phong lobe peaks at
+//! `g (n + 2) / (2 pi) >= 20` per steradian (the city's mirror, glass and chrome: highlights
+//! of the sun so narrow that a diffuse surface finds them only by chance); a *D event* is a
+//! bounce off the base BRDF of any other material (and a query point). A light path whose
+//! last D event is followed only by S events up to the sun is a **caustic**: the photons
+//! carry it. In the path tracer (with photons) that means: after a D event, the sun seen
+//! through delta bounces and the sun's next-event estimate at a sharp vertex are left out;
+//! at every D vertex the photon density estimate is added instead. Everything else (the
+//! sun's next-event estimate at D vertices, the sun seen from the eye through S events,
+//! sky, emitters, point lights) is unchanged, so each light path is counted exactly once.
 //!
-//! **Density estimate.** At a base-BRDF vertex `x` of a camera path (normal `n` facing the
-//! viewer), the reflected caustic radiance is `sum_p f(wo, -w_p) Phi_p / (pi r^2)` over the
-//! photons within `r` of `x` whose normal is within ~25 degrees of `n` (the same side of the
-//! same surface) and whose bounce count the path's bounce budget still allows (so bounce
-//! limits cut both estimators in the same place). The path tracer, for its part, no longer
-//! counts the sun seen through one or more delta bounces after a base-BRDF vertex (next-event
-//! estimation and everything else are unchanged), so every light path is counted exactly
-//! once.
+//! **Photon pass.** Photons leave the sun towards the surfaces photons follow (a mirror or
+//! glass part, or a sharp base: the *specular triangles*): a triangle `t` is chosen in
+//! proportion to its area projected towards the sun's centre, `A_t |cos theta_t|` (Walker
+//! alias table), a point `x` uniform in its area, a direction `w` uniform in the sun's cone;
+//! the photon travels along `-w` from outside the world's bounds and counts only when the
+//! first surface it meets is `t` itself (so every light ray is counted once, through the
+//! triangle it meets first). Its power is `L_sun Omega A_t |cos(n_t, w)| / (P(t) N)`: an
+//! unbiased sample of the sun's flux onto the specular surfaces. It then follows only S
+//! events (the delta part of a material chosen as the path tracer chooses it, Fresnel
+//! included, or the whole BSDF of a sharp material; Russian roulette on the event's weight)
+//! and is **stored** wherever it meets a non-sharp surface with a base BRDF after at least
+//! one S event: position, the incoming direction, the normal facing it, its power and its
+//! number of S events.
+//!
+//! **Density estimate.** At a D vertex `x` of a camera path (normal `n` facing the viewer),
+//! the reflected caustic radiance is `sum_p f(wo, -w_p) Phi_p / (pi r^2)` over the photons
+//! within `r` of `x` whose normal is within ~25 degrees of `n` (the same side of the same
+//! surface) and whose bounce count the path's bounce budget still allows (so bounce limits
+//! cut both estimators in the same place).
 //!
 //! **Radius schedule (consistency).** Sample `k` of every pixel or query point uses photon
 //! map `k` (pass `i = k + 1`, `N` photons of its own seeded streams), with the radius of
@@ -40,6 +50,7 @@
 //! (and the images) are identical bit for bit whatever the thread count.
 
 use crate::lights::AliasTable;
+use crate::material::Material;
 use crate::rng::{Rng, mix64};
 use crate::sampling::uniform_cone;
 use crate::world::World;
@@ -60,6 +71,22 @@ const SAME_SURFACE_COS: f32 = 0.9;
 
 /// Salt that separates the photon streams from the camera streams of the same seed.
 const PHOTON_SALT: u64 = 0xC4A5_71C5_0F5E_ED00;
+
+/// Peak of the Phong lobe, `g (n + 2) / (2 pi)` (1/sr), from which a material's base BRDF
+/// counts as *sharp*: a near-mirror whose highlight of the sun is a caustic like a mirror's.
+pub(crate) const SHARP_PEAK: f32 = 20.0;
+
+/// True when the base BRDF of `m` is a sharp Phong lobe (peak at least [`SHARP_PEAK`]): the
+/// photons follow it like a mirror and a camera path makes no density estimate there.
+pub(crate) fn sharp(m: &Material) -> bool {
+    m.base_weight() > 0.0 && m.glossiness * (m.specular_power + 2.0) / (2.0 * PI) >= SHARP_PEAK
+}
+
+/// True when photons follow a material's scattering: it has a mirror or glass part or a sharp
+/// base.
+pub(crate) fn specular(m: &Material) -> bool {
+    m.has_delta() || sharp(m)
+}
 
 /// One stored photon.
 #[derive(Clone, Copy, Debug)]
@@ -102,7 +129,7 @@ impl CausticSource {
         let mut triangles = Vec::new();
         let mut projected = Vec::new();
         for t in 0..world.triangle_count() as u32 {
-            if !world.material(world.triangle_material(t)).has_delta() {
+            if !specular(world.material(world.triangle_material(t))) {
                 continue;
             }
             let [a, b, c] = world.triangle(t);
@@ -195,13 +222,20 @@ impl CausticSource {
             let wo = -dir;
             let front = h.normal.dot(wo) >= 0.0;
             let n = if front { h.normal } else { -h.normal };
-            if bounces >= 1 && m.base_weight() > 0.0 {
+            let sharp = sharp(&m);
+            if bounces >= 1 && m.base_weight() > 0.0 && !sharp {
                 out.push(Photon { position: h.position, dir, normal: n, power, bounces });
             }
             if bounces >= cap {
                 return;
             }
-            let Some(s) = m.sample_delta(n, wo, front, rng.next_f32()) else { return };
+            let u = rng.next_f32();
+            let s = if sharp {
+                m.sample(n, wo, front, u, rng.next_2d())
+            } else {
+                m.sample_delta(n, wo, front, u)
+            };
+            let Some(s) = s else { return };
             let q = s.weight.max_element().min(1.0);
             if !(q > 0.0) || rng.next_f32() >= q {
                 return;

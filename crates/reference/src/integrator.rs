@@ -1,6 +1,6 @@
 //! The path tracer and the component estimators, one sample at a time.
 
-use crate::caustics::PhotonMap;
+use crate::caustics::{PhotonMap, sharp};
 use crate::lights::{balance, emitter_pdf, sample_emitter, visible};
 use crate::material::Material;
 use crate::rng::Rng;
@@ -75,11 +75,15 @@ pub struct PathSettings {
     /// importance sampling (balance heuristic). `false`: emitters only count when a path
     /// happens to hit them (the estimator before light sampling, kept for comparisons).
     pub emitter_sampling: bool,
-    /// Photons shot from the sun towards the mirror and glass surfaces per pass (one pass
-    /// per sample index) for the caustic estimator (progressive photon mapping, see the
-    /// crate doc); 0 turns it off: then the path tracer alone finds sunlight reaching a
-    /// surface through mirrors and glass, as before. Has no effect on a world without a sun
-    /// or without a mirror/glass part.
+    /// Photons shot from the sun towards the mirror, glass and sharp glossy surfaces per
+    /// pass (one pass per sample index) for the caustic estimator (progressive photon
+    /// mapping, see the crate doc); 0 turns it off: then the path tracer alone finds
+    /// sunlight reaching a surface through them, as before. Has no effect on a world without
+    /// a sun or without such a surface, nor on components other than `Full` and
+    /// `Reflections`.
+    /// [`PathSettings::DEFAULT`] (and so the point queries) leaves it off: a query pays for
+    /// one photon map per sample whatever its number of points; the image presets turn it on
+    /// ([`PathSettings::CAUSTIC_PHOTONS`]).
     pub caustic_photons: u32,
     /// Radius of the first pass's density estimate, world units; 0: automatic (about 16
     /// photons in the disk at full sun irradiance). Later passes shrink it (Knaus and
@@ -95,6 +99,12 @@ impl PathSettings {
         caustic_photons: 0,
         caustic_radius: 0.0,
     };
+
+    /// Photons per pass of the caustic estimator in the image presets
+    /// ([`crate::RenderSettings::DEFAULT`], `high`, `reference`): on the city at 320x180 and
+    /// 64 spp, 30 000 photons cut the noise as much as 100 000 (the rest is the path
+    /// tracer's) for a third of the photon time.
+    pub const CAUSTIC_PHOTONS: u32 = 30_000;
 
     /// Bounce limits with the default light sampling.
     pub const fn new(max_bounces: u32, rr_start: u32) -> Self {
@@ -296,13 +306,19 @@ pub(crate) fn trace_path_from(
             break;
         }
         let wb = m.base_weight();
+        // The sun's highlight on a sharp base after a base-BRDF vertex is a caustic too.
+        let sharp = caustics.is_some() && sharp(&m);
         if wb > 0.0 {
-            if let Some((wi, e)) = sun_sample(world, h.position, n, rng) {
+            if let Some((wi, e)) = sun_sample(world, h.position, n, rng)
+                && !(sharp && after_base)
+            {
                 l += beta * wb * m.eval_base(n, wo, wi) * e;
             }
             l += beta * wb * point_lights(world, h.position, n, |wi| m.eval_base(n, wo, wi));
             l += beta * surface_emitters(world, &m, h.position, n, wo, settings, rng);
-            if let Some(map) = caustics {
+            if let Some(map) = caustics
+                && !sharp
+            {
                 let budget = settings.max_bounces - depth - 1;
                 l += beta * wb * map.estimate(h.position, n, budget, |wi| m.eval_base(n, wo, wi));
             }
@@ -314,7 +330,7 @@ pub(crate) fn trace_path_from(
         prev = PrevVertex { position: h.position, pdf: mis.then(|| m.sample_pdf(n, wo, s.dir)) };
         beta *= s.weight;
         specular = s.delta;
-        after_base |= !s.delta;
+        after_base |= !s.delta && !sharp;
         origin = world.offset(h.position, h.normal, s.dir);
         dir = s.dir;
         depth += 1;

@@ -41,12 +41,14 @@ impl RenderSettings {
             seed: 1,
         }
     }
+    /// 320x180 at 16 spp, all bounces, with the caustic estimator
+    /// ([`PathSettings::CAUSTIC_PHOTONS`] photons per pass).
     pub const DEFAULT: Self = Self {
         width: 320,
         height: 180,
         spp: 16,
         component: Component::Full,
-        path: PathSettings::DEFAULT,
+        path: PathSettings::DEFAULT.with_caustics(PathSettings::CAUSTIC_PHOTONS, 0.0),
         seed: 1,
     };
     pub const fn high() -> Self {
@@ -57,7 +59,7 @@ impl RenderSettings {
             width: 1600,
             height: 900,
             spp: 1024,
-            path: PathSettings::new(256, 4),
+            path: PathSettings::new(256, 4).with_caustics(PathSettings::CAUSTIC_PHOTONS, 0.0),
             ..Self::DEFAULT
         }
     }

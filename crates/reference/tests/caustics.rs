@@ -17,14 +17,16 @@ const FAST: bool = cfg!(debug_assertions);
 /// A 2 x 2 m vertical mirror (reflectance 0.8) at x = 0 facing +x on a grey ground, under a
 /// large sun (angular radius 0.15 rad, so the path tracer alone finds the caustic often
 /// enough to be compared with) at 45 degrees from +x: the reflected beam lands on
-/// `x in (0, 2), z in (-1, 1)`. A glass pane (with a faint base BRDF, as the city's) stands
-/// beside it, so paths also run through refraction.
+/// `x in (0, 2), z in (-1, 1)`. A glass pane with a sharp Phong base (as the city's glass)
+/// stands beside it, so paths also run through refraction and a glossy highlight.
 fn mirror_world() -> World {
     let mut b = World::builder();
     let grey = b.material(Material::diffuse(Vec3::splat(0.5)));
     let mirror = b.material(Material::mirror(0.8));
     let glass = b.material(Material {
         albedo: Vec3::splat(0.3),
+        glossiness: 1.0,
+        specular_power: 256.0,
         reflectivity: 0.08,
         transparency: 0.7,
         ..Material::glass(1.5)
@@ -95,6 +97,37 @@ fn caustic_estimator_and_path_tracing_agree_without_double_counting() {
 }
 
 #[test]
+fn a_sharp_glossy_reflector_is_counted_once() {
+    // No mirror part at all: a Phong lobe of power 512 (peak 82 per steradian) reflects the
+    // sun onto the ground; the path tracer finds it by next-event estimation at the glossy
+    // vertex, the photons by following the lobe.
+    let mut b = World::builder();
+    let grey = b.material(Material::diffuse(Vec3::splat(0.5)));
+    let shiny = b.material(Material::glossy(Vec3::splat(0.1), 1.0, 512.0));
+    ground(&mut b, grey);
+    b.quad(Vec3::new(0.0, 0.0, -1.0), Vec3::new(0.0, 0.0, 2.0), Vec3::new(0.0, 2.0, 0.0), shiny);
+    b.sun(Sun::new(dir(45.0, 0.0), Vec3::new(3.0, 2.5, 2.0)));
+    let world = b.build().unwrap();
+    let (spp, photons) = if FAST { (64, 4_000) } else { (128, 10_000) };
+    let off = RenderSettings {
+        width: 32,
+        height: 24,
+        spp,
+        path: PathSettings::new(8, 3),
+        seed: 5,
+        ..RenderSettings::DEFAULT
+    };
+    let on = RenderSettings { path: off.path.with_caustics(photons, 0.0), ..off };
+    let (ma, sa) = pooled(&render(&world, camera(), off, false).unwrap().estimates());
+    let (mb, sb) = pooled(&render(&world, camera(), on, false).unwrap().estimates());
+    let one = RenderSettings { path: PathSettings::new(1, 3).with_caustics(photons, 0.0), ..off };
+    let (m1, _) = pooled(&render(&world, camera(), one, false).unwrap().estimates());
+    eprintln!("glossy: off {ma} +- {sa}, on {mb} +- {sb}, one bounce {m1}");
+    assert!((ma - mb).abs() < 4.0 * sa.hypot(sb), "off {ma} +- {sa}, on {mb} +- {sb}");
+    assert!(mb - m1 > 6.0 * sa.hypot(sb), "caustic {} vs error bar {sa}", mb - m1);
+}
+
+#[test]
 fn caustic_images_are_deterministic_whatever_the_thread_count_and_progressive() {
     let world = mirror_world();
     let s = RenderSettings {
@@ -126,7 +159,13 @@ fn without_mirrors_or_glass_the_caustic_setting_changes_nothing() {
     b.sky(|d| Vec3::new(0.2, 0.3, 0.5) * d.y.max(0.0));
     let world = b.build().unwrap();
     let cam = Camera::look_at(Vec3::new(2.0, 1.5, 3.0), Vec3::new(0.0, 0.4, 0.0), 50.0);
-    let off = RenderSettings { width: 24, height: 16, spp: 9, ..RenderSettings::DEFAULT };
+    let off = RenderSettings {
+        width: 24,
+        height: 16,
+        spp: 9,
+        path: PathSettings::DEFAULT.with_caustics(0, 0.0),
+        ..RenderSettings::DEFAULT
+    };
     let on = RenderSettings { path: off.path.with_caustics(5_000, 0.0), ..off };
     for c in [Component::Full, Component::Reflections, Component::SunIndirectDiffuse] {
         let a = render(&world, cam, off.with_component(c), false).unwrap();
@@ -136,6 +175,7 @@ fn without_mirrors_or_glass_the_caustic_setting_changes_nothing() {
     }
     let p = [QueryPoint::new(Vec3::new(0.0, 0.0, 1.0), Vec3::Y)];
     let q = QuerySettings { samples: 64, ..QuerySettings::low() };
+    assert_eq!(q.path.caustic_photons, 0, "queries leave the photons off by default");
     let q_on = QuerySettings { path: q.path.with_caustics(5_000, 0.0), ..q };
     assert_eq!(
         irradiance(&world, Component::Full, &p, &q).unwrap(),
