@@ -132,8 +132,43 @@ fn main() -> Result<()> {
             a.pixels.iter().map(|&p| luminance(p) as f64).sum::<f64>() / a.pixels.len() as f64,
             b.pixels.iter().map(|&p| luminance(p) as f64).sum::<f64>() / b.pixels.len() as f64,
         );
+        // Where the squared difference between the seeds lies: the share of the top 1% of
+        // pixels, and the 8 x 8 blocks holding most of it.
+        let mut d2: Vec<(f64, usize)> = a
+            .pixels
+            .iter()
+            .zip(&b.pixels)
+            .enumerate()
+            .map(|(i, (p, q))| ((*p - *q).length_squared() as f64, i))
+            .collect();
+        let total: f64 = d2.iter().map(|x| x.0).sum();
+        d2.sort_by(|x, y| y.0.total_cmp(&x.0));
+        let top: f64 = d2[..d2.len() / 100].iter().map(|x| x.0).sum();
+        println!(
+            "{name}: top 1% of pixels hold {:.1}% of the squared difference",
+            100.0 * top / total
+        );
+        for &(v, i) in &d2[..8] {
+            let w = a.width as usize;
+            println!(
+                "  pixel ({}, {}): share {:.1}%, seed 1 {:?}, seed 2 {:?}",
+                i % w,
+                i / w,
+                100.0 * v / total,
+                a.pixels[i],
+                b.pixels[i]
+            );
+        }
         if let Some(dir) = &args.png {
             std::fs::create_dir_all(dir)?;
+            let mut diff = a.clone();
+            for (i, p) in diff.pixels.iter_mut().enumerate() {
+                *p = (*p - b.pixels[i]).abs();
+            }
+            diff.write_png(
+                dir.join(format!("{}_{name}_diff.png", args.scene)),
+                4.0 * a.auto_exposure(),
+            )?;
             a.write_png(dir.join(format!("{}_{name}.png", args.scene)), a.auto_exposure())?;
         }
     }
