@@ -97,8 +97,10 @@ fn main() -> Result<()> {
     }
     let world = world_from_scene(&scene, &SceneLighting::DEFAULT)?;
     let cam = camera_from_scene(&scene);
-    let mut modes =
-        vec![("caustics_on", PathSettings::DEFAULT.with_caustics(args.photons, args.radius))];
+    let mut modes = vec![(
+        if args.photons > 0 { "caustics_on" } else { "caustics_off" },
+        PathSettings::DEFAULT.with_caustics(args.photons, args.radius),
+    )];
     if args.baseline {
         modes.push(("caustics_off", PathSettings::DEFAULT.with_caustics(0, 0.0)));
     }
