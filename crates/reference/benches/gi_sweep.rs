@@ -4,7 +4,9 @@
 //! standard error; samples per second), `reference/city_800x450_64spp` (full sweep only),
 //! `reference/cornell_area_320x180_equal_time` (the area-lit Cornell box rendered with
 //! emitter sampling for as long as the estimator without it took; the variance ratio at
-//! equal time) and `reference/furnace` (error against the analytic furnace radiance). Also: the image
+//! equal time), `reference/furnace` (error against the analytic furnace radiance) and
+//! `reference/city_320x180_caustics_{on,off}` (two independent renders with and without the
+//! caustic estimator; error = their relative RMS against each other). Also: the image
 //! error of low sample counts against a higher-sample render (the comparison helpers every
 //! crate uses), and the camera-path throughput.
 
@@ -101,6 +103,7 @@ fn main() {
         );
     }
 
+    city_caustics(&mut sweep, &world, cam, quick);
     cornell_area_equal_time(&mut sweep, quick);
 
     sweep.stage("furnace");
@@ -129,6 +132,45 @@ fn main() {
             .threads(threads()),
     );
     sweep.finish().expect("writing the sweep");
+}
+
+/// The city at 320x180 with and without the caustic estimator (photons from the sun through
+/// mirrors, glass and sharp lobes): two independent renders (seeds 1 and 2) each; the error
+/// is their whole-frame relative RMS against each other, unclamped; the time is one render.
+fn city_caustics(sweep: &mut Sweep, world: &reference::World, cam: reference::Camera, quick: bool) {
+    let spp = if quick { 16 } else { 64 };
+    let photons = reference::PathSettings::CAUSTIC_PHOTONS;
+    for (name, path) in [
+        ("on", RenderSettings::DEFAULT.path.with_caustics(photons, 0.0)),
+        ("off", RenderSettings::DEFAULT.path.with_caustics(0, 0.0)),
+    ] {
+        sweep.stage(&format!("city caustics {name}"));
+        let mut renders = Vec::new();
+        let mut ms = Vec::new();
+        for seed in [1u64, 2] {
+            let s = RenderSettings { spp, path, seed, ..RenderSettings::DEFAULT };
+            let t0 = Instant::now();
+            renders.push(render(world, cam, s, false).expect("render"));
+            ms.push(t0.elapsed().as_secs_f64() * 1e3);
+        }
+        let e = compare(&renders[0].mean(), &renders[1].mean(), None).expect("same size");
+        let rse = renders[0].mean_rel_std_error();
+        sweep.entry(
+            Entry::new(format!("reference/city_320x180_caustics_{name}"), "path_tracing", ms[0])
+                .setting("spp", spp)
+                .setting("caustic_photons_per_pass", path.caustic_photons)
+                .setting("mean_rel_std_error", rse)
+                .error("rel_rms_between_seeds", e.rel_rms, "independent_render_same_settings")
+                .note(format!(
+                    "two renders (seeds 1, 2) in {:.1} and {:.1} s; rel_rms between them {:.4}, \
+                     mean relative standard error {rse:.4}",
+                    ms[0] * 1e-3,
+                    ms[1] * 1e-3,
+                    e.rel_rms
+                ))
+                .threads(threads()),
+        );
+    }
 }
 
 /// The area-lit Cornell box at 320x180: first without emitter sampling (`spp` samples, time

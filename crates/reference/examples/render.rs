@@ -35,6 +35,9 @@ struct Args {
     /// Turns next-event estimation of emissive triangles off (the older estimator).
     #[arg(long)]
     no_emitter_sampling: bool,
+    /// Photons per pass of the caustic estimator (0: the path tracer alone).
+    #[arg(long, default_value_t = PathSettings::CAUSTIC_PHOTONS)]
+    caustic_photons: u32,
     /// PNG exposure multiplier; automatic (mean luminance to 0.18) when absent.
     #[arg(long)]
     exposure: Option<f32>,
@@ -69,7 +72,8 @@ fn main() -> Result<()> {
         spp: args.spp,
         component,
         path: PathSettings { max_bounces: args.max_bounces, ..PathSettings::DEFAULT }
-            .with_emitter_sampling(!args.no_emitter_sampling),
+            .with_emitter_sampling(!args.no_emitter_sampling)
+            .with_caustics(args.caustic_photons, 0.0),
         seed: args.seed,
     };
     let t1 = Instant::now();

@@ -1,5 +1,6 @@
 //! The path tracer and the component estimators, one sample at a time.
 
+use crate::caustics::{PhotonMap, sharp};
 use crate::lights::{balance, emitter_pdf, sample_emitter, visible};
 use crate::material::Material;
 use crate::rng::Rng;
@@ -74,10 +75,36 @@ pub struct PathSettings {
     /// importance sampling (balance heuristic). `false`: emitters only count when a path
     /// happens to hit them (the estimator before light sampling, kept for comparisons).
     pub emitter_sampling: bool,
+    /// Photons shot from the sun towards the mirror, glass and sharp glossy surfaces per
+    /// pass (one pass per sample index) for the caustic estimator (progressive photon
+    /// mapping, see the crate doc); 0 turns it off: then the path tracer alone finds
+    /// sunlight reaching a surface through them, as before. Has no effect on a world without
+    /// a sun or without such a surface, nor on components other than `Full` and
+    /// `Reflections`.
+    /// [`PathSettings::DEFAULT`] (and so the point queries) leaves it off: a query pays for
+    /// one photon map per sample whatever its number of points; the image presets turn it on
+    /// ([`PathSettings::CAUSTIC_PHOTONS`]).
+    pub caustic_photons: u32,
+    /// Radius of the first pass's density estimate, world units; 0: automatic (about 16
+    /// photons in the disk at full sun irradiance). Later passes shrink it (Knaus and
+    /// Zwicker 2011, `alpha = 2/3`).
+    pub caustic_radius: f32,
 }
 
 impl PathSettings {
-    pub const DEFAULT: Self = Self { max_bounces: 64, rr_start: 3, emitter_sampling: true };
+    pub const DEFAULT: Self = Self {
+        max_bounces: 64,
+        rr_start: 3,
+        emitter_sampling: true,
+        caustic_photons: 0,
+        caustic_radius: 0.0,
+    };
+
+    /// Photons per pass of the caustic estimator in the image presets
+    /// ([`crate::RenderSettings::DEFAULT`], `high`, `reference`): on the city at 320x180 and
+    /// 64 spp, 30 000 photons cut the noise as much as 100 000 (the rest is the path
+    /// tracer's) for a third of the photon time.
+    pub const CAUSTIC_PHOTONS: u32 = 30_000;
 
     /// Bounce limits with the default light sampling.
     pub const fn new(max_bounces: u32, rr_start: u32) -> Self {
@@ -87,6 +114,14 @@ impl PathSettings {
     /// The same settings with emitter sampling on or off.
     pub const fn with_emitter_sampling(mut self, on: bool) -> Self {
         self.emitter_sampling = on;
+        self
+    }
+
+    /// The same settings with the caustic estimator: `photons` per pass (0: off) and the
+    /// first pass's radius (0: automatic).
+    pub const fn with_caustics(mut self, photons: u32, radius: f32) -> Self {
+        self.caustic_photons = photons;
+        self.caustic_radius = radius;
         self
     }
 }
@@ -207,7 +242,10 @@ fn emission_weight(
 /// Radiance arriving along a ray through a full path (all light), starting with throughput
 /// `beta` after `depth` bounces; `specular` says whether the previous vertex was the eye or
 /// a mirror/glass bounce (then the sun disk is seen directly). Emission at the first hit
-/// counts fully (no emitter sample was taken where the ray started).
+/// counts fully (no emitter sample was taken where the ray started). With a photon map
+/// (`caustics`), sunlight through mirrors and glass onto the base BRDF of a vertex comes from
+/// its density estimate and the sun seen through delta bounces after such a vertex is not
+/// counted (see the crate doc).
 #[allow(clippy::too_many_arguments)] // the path state, spelled out
 pub(crate) fn trace_path(
     world: &World,
@@ -217,14 +255,16 @@ pub(crate) fn trace_path(
     specular: bool,
     start_depth: u32,
     settings: &PathSettings,
+    caustics: Option<&PhotonMap>,
     rng: &mut Rng,
 ) -> Vec3 {
     let prev = PrevVertex { position: origin, pdf: None };
-    trace_path_from(world, origin, dir, beta, specular, prev, start_depth, settings, rng)
+    trace_path_from(world, origin, dir, beta, specular, prev, start_depth, settings, caustics, rng)
 }
 
 /// [`trace_path`] from a vertex that took an emitter sample (`prev`), so the emission the
-/// ray finds is weighted against it.
+/// ray finds is weighted against it. `specular == false` means the ray left a base-BRDF
+/// vertex (a query point).
 #[allow(clippy::too_many_arguments)] // the path state, spelled out
 pub(crate) fn trace_path_from(
     world: &World,
@@ -235,14 +275,19 @@ pub(crate) fn trace_path_from(
     mut prev: PrevVertex,
     start_depth: u32,
     settings: &PathSettings,
+    caustics: Option<&PhotonMap>,
     rng: &mut Rng,
 ) -> Vec3 {
     let mut l = Vec3::ZERO;
     let mut depth = start_depth;
+    // A base-BRDF vertex lies behind: the sun through delta bounces from here is a caustic,
+    // which the photons carry when there is a photon map.
+    let mut after_base = !specular;
     loop {
         let Some(h) = world.intersect(origin, dir, f32::INFINITY) else {
             l += beta * world.sky_radiance(dir);
             if specular
+                && !(after_base && caustics.is_some())
                 && let Some(sun) = world.sun()
                 && dir.dot(sun.direction) >= sun.cos_max()
             {
@@ -261,12 +306,22 @@ pub(crate) fn trace_path_from(
             break;
         }
         let wb = m.base_weight();
+        // The sun's highlight on a sharp base after a base-BRDF vertex is a caustic too.
+        let sharp = caustics.is_some() && sharp(&m);
         if wb > 0.0 {
-            if let Some((wi, e)) = sun_sample(world, h.position, n, rng) {
+            if let Some((wi, e)) = sun_sample(world, h.position, n, rng)
+                && !(sharp && after_base)
+            {
                 l += beta * wb * m.eval_base(n, wo, wi) * e;
             }
             l += beta * wb * point_lights(world, h.position, n, |wi| m.eval_base(n, wo, wi));
             l += beta * surface_emitters(world, &m, h.position, n, wo, settings, rng);
+            if let Some(map) = caustics
+                && !sharp
+            {
+                let budget = settings.max_bounces - depth - 1;
+                l += beta * wb * map.estimate(h.position, n, budget, |wi| m.eval_base(n, wo, wi));
+            }
         }
         let u_lobe = rng.next_f32();
         let Some(s) = m.sample(n, wo, front, u_lobe, rng.next_2d()) else { break };
@@ -275,6 +330,7 @@ pub(crate) fn trace_path_from(
         prev = PrevVertex { position: h.position, pdf: mis.then(|| m.sample_pdf(n, wo, s.dir)) };
         beta *= s.weight;
         specular = s.delta;
+        after_base |= !s.delta && !sharp;
         origin = world.offset(h.position, h.normal, s.dir);
         dir = s.dir;
         depth += 1;
@@ -323,6 +379,7 @@ pub(crate) fn irradiance(
     p: Vec3,
     n: Vec3,
     settings: &PathSettings,
+    caustics: Option<&PhotonMap>,
     rng: &mut Rng,
 ) -> Vec3 {
     match component {
@@ -358,13 +415,20 @@ pub(crate) fn irradiance(
         }
         Component::Full | Component::Reflections => {
             let cos_pdf = |wi: Vec3| wi.dot(n).max(0.0) / PI;
-            let direct = sun_irradiance(world, p, n, rng)
+            let caustic = caustics.map_or(Vec3::ZERO, |map| {
+                let budget = settings.max_bounces.saturating_sub(1);
+                map.estimate(p, n, budget, |_| Vec3::ONE)
+            });
+            let direct = caustic
+                + sun_irradiance(world, p, n, rng)
                 + point_lights(world, p, n, |_| Vec3::ONE)
                 + PI * emitters_direct(world, p, n, settings, rng, |_| Vec3::ONE / PI, cos_pdf);
             let wi = cosine_hemisphere(n, rng.next_2d());
             let o = world.offset(p, n, wi);
             let prev = PrevVertex { position: p, pdf: Some(cos_pdf(wi)) };
-            direct + PI * trace_path_from(world, o, wi, Vec3::ONE, false, prev, 1, settings, rng)
+            let rest =
+                trace_path_from(world, o, wi, Vec3::ONE, false, prev, 1, settings, caustics, rng);
+            direct + PI * rest
         }
     }
 }
@@ -376,10 +440,11 @@ pub(crate) fn radiance(
     origin: Vec3,
     dir: Vec3,
     settings: &PathSettings,
+    caustics: Option<&PhotonMap>,
     rng: &mut Rng,
 ) -> Vec3 {
     if component == Component::Full {
-        return trace_path(world, origin, dir, Vec3::ONE, true, 0, settings, rng);
+        return trace_path(world, origin, dir, Vec3::ONE, true, 0, settings, caustics, rng);
     }
     let Some(h) = world.intersect(origin, dir, f32::INFINITY) else { return Vec3::ZERO };
     let m = world.shade(&h);
@@ -392,9 +457,11 @@ pub(crate) fn radiance(
         },
         Component::SunIndirectDiffuse => {
             m.diffuse_reflectance() / PI
-                * irradiance(world, component, h.position, n, settings, rng)
+                * irradiance(world, component, h.position, n, settings, None, rng)
         }
-        Component::SkyIrradiance => irradiance(world, component, h.position, n, settings, rng),
+        Component::SkyIrradiance => {
+            irradiance(world, component, h.position, n, settings, None, rng)
+        }
         Component::PointLights => {
             m.base_weight() * point_lights(world, h.position, n, |wi| m.eval_base(n, wo, wi))
         }
@@ -407,11 +474,13 @@ pub(crate) fn radiance(
             match m.sample_delta(n, wo, front, u) {
                 Some(s) => {
                     let o = world.offset(h.position, h.normal, s.dir);
-                    trace_path(world, o, s.dir, s.weight, true, 1, settings, rng)
+                    trace_path(world, o, s.dir, s.weight, true, 1, settings, caustics, rng)
                 }
                 None => Vec3::ZERO,
             }
         }
-        Component::Full => trace_path(world, origin, dir, Vec3::ONE, true, 0, settings, rng),
+        Component::Full => {
+            trace_path(world, origin, dir, Vec3::ONE, true, 0, settings, caustics, rng)
+        }
     }
 }

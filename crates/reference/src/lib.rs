@@ -15,6 +15,17 @@
 //!   importance-sampled with the BRDF (cosine / Phong lobe);
 //! - **multiple importance sampling** of the base BRDF's diffuse and Phong lobes (one-sample
 //!   balance heuristic, E. Veach and L. Guibas, SIGGRAPH 1995);
+//! - **sun caustics by progressive photon mapping** ([`PathSettings::caustic_photons`], off
+//!   by default): sunlight reaching a surface through mirrors, glass and sharp Phong lobes
+//!   (paths `sun (S)+ D`) is a density estimate of photons shot from the sun's disk at the
+//!   specular surfaces, one photon map per sample index with the radius shrinking by
+//!   C. Knaus and M. Zwicker's schedule ("Progressive photon mapping: a probabilistic
+//!   approach", ACM TOG 2011; after T. Hachisuka, S. Ogaki and H. W. Jensen, "Progressive
+//!   photon mapping", SIGGRAPH Asia 2008, and T. Hachisuka and H. W. Jensen, "Stochastic
+//!   progressive photon mapping", SIGGRAPH Asia 2009), so the estimate is consistent; the
+//!   path tracer then leaves exactly those paths out (each light path is counted once),
+//!   which removes the fireflies of the sun found by chance through a chain of specular
+//!   bounces (see the `caustics` module for the partition of paths);
 //! - **Russian roulette** on the path throughput;
 //! - **materials**: Lambert + energy-normalised Phong (Lafortune and Willems 1994), perfect
 //!   mirror, smooth glass with Fresnel, alpha test ([`Material`]);
@@ -53,6 +64,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 mod camera;
+mod caustics;
 mod compare;
 mod error;
 mod from_scene;

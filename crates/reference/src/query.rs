@@ -1,6 +1,7 @@
 //! Point queries: a list of positions (+ normals) or rays in, estimates with standard
 //! errors out, so techniques that store light at points are measured without images.
 
+use crate::caustics::{CausticSource, PhotonMap};
 use crate::integrator::{self, Component, PathSettings};
 use crate::rng::Rng;
 use crate::stats::{Estimate, Moments};
@@ -62,22 +63,77 @@ fn per_point(
     settings: &QuerySettings,
     sample: impl Fn(Vec3, Vec3, &mut Rng) -> Vec3 + Sync,
 ) -> Vec<Estimate> {
-    points
-        .par_iter()
-        .enumerate()
-        .map(|(i, q)| {
-            let Some(n) = q.normal.try_normalize() else { return Estimate::default() };
-            if !q.position.is_finite() {
-                return Estimate::default();
+    per_item(
+        points,
+        settings,
+        None,
+        |q| checked(q.position, q.normal),
+        |&(p, n), _, rng| sample(p, n, rng),
+    )
+}
+
+/// A finite position and a unit direction, or `None`.
+fn checked(p: Vec3, d: Vec3) -> Option<(Vec3, Vec3)> {
+    let d = d.try_normalize()?;
+    p.is_finite().then_some((p, d))
+}
+
+/// Samples of the caustic estimator whose photon maps are held at once.
+const CAUSTIC_BATCH: u32 = 8;
+
+/// The mean of `sample(item, photon map, rng)` over `settings.samples` samples per item
+/// (`prep` turns an item into what is sampled; `None`: a zero estimate with zero samples),
+/// in parallel with one seeded stream per item and sample. With a caustic `source`, sample
+/// `k` of every item sees photon map `k` (built in batches; each item adds its samples in
+/// order, so the batching never changes a bit).
+fn per_item<T: Sync, U: Send>(
+    items: &[T],
+    settings: &QuerySettings,
+    source: Option<(&World, &CausticSource)>,
+    prep: impl Fn(&T) -> Option<U> + Sync,
+    sample: impl Fn(&U, Option<&PhotonMap>, &mut Rng) -> Vec3 + Sync,
+) -> Vec<Estimate> {
+    let mut acc: Vec<Option<(U, Moments)>> =
+        items.par_iter().map(|t| prep(t).map(|u| (u, Moments::default()))).collect();
+    let total = settings.samples;
+    let batch = if source.is_some() { CAUSTIC_BATCH } else { total.max(1) };
+    let mut k0 = 0;
+    while k0 < total {
+        let k1 = (k0 + batch).min(total);
+        let maps: Vec<PhotonMap> = match source {
+            Some((world, src)) => {
+                (k0..k1).map(|k| src.map(world, k as u64, settings.path.max_bounces)).collect()
             }
-            let mut m = Moments::default();
-            for s in 0..settings.samples {
+            None => Vec::new(),
+        };
+        acc.par_iter_mut().enumerate().for_each(|(i, a)| {
+            let Some((u, m)) = a else { return };
+            for s in k0..k1 {
                 let mut rng = Rng::for_sample(settings.seed, i as u64, s as u64);
-                m.add(sample(q.position, n, &mut rng));
+                m.add(sample(u, maps.get((s - k0) as usize), &mut rng));
             }
-            m.estimate()
-        })
-        .collect()
+        });
+        k0 = k1;
+    }
+    acc.iter().map(|a| a.as_ref().map_or(Estimate::default(), |(_, m)| m.estimate())).collect()
+}
+
+/// The photon source for a query of `component`, when the settings and the world call for
+/// one.
+fn caustic_source(
+    world: &World,
+    component: Component,
+    settings: &QuerySettings,
+) -> Option<CausticSource> {
+    if !matches!(component, Component::Full | Component::Reflections) {
+        return None;
+    }
+    CausticSource::new(
+        world,
+        settings.path.caustic_photons,
+        settings.path.caustic_radius,
+        settings.seed,
+    )
 }
 
 /// Irradiance of `component` at each point (for [`Component::Reflections`] the same as
@@ -90,9 +146,16 @@ pub fn irradiance(
     settings: &QuerySettings,
 ) -> Result<Vec<Estimate>, crate::Error> {
     settings.validate()?;
-    Ok(per_point(points, settings, |p, n, rng| {
-        integrator::irradiance(world, component, p, n, &settings.path, rng)
-    }))
+    let source = caustic_source(world, component, settings);
+    Ok(per_item(
+        points,
+        settings,
+        source.as_ref().map(|s| (world, s)),
+        |q| checked(q.position, q.normal),
+        |&(p, n), map, rng| {
+            integrator::irradiance(world, component, p, n, &settings.path, map, rng)
+        },
+    ))
 }
 
 /// Ambient occlusion at each point: the cosine-weighted fraction of the hemisphere around
@@ -126,20 +189,12 @@ pub fn radiance(
     settings: &QuerySettings,
 ) -> Result<Vec<Estimate>, crate::Error> {
     settings.validate()?;
-    Ok(rays
-        .par_iter()
-        .enumerate()
-        .map(|(i, &(o, d))| {
-            let Some(d) = d.try_normalize() else { return Estimate::default() };
-            if !o.is_finite() {
-                return Estimate::default();
-            }
-            let mut m = Moments::default();
-            for s in 0..settings.samples {
-                let mut rng = Rng::for_sample(settings.seed, i as u64, s as u64);
-                m.add(integrator::radiance(world, component, o, d, &settings.path, &mut rng));
-            }
-            m.estimate()
-        })
-        .collect())
+    let source = caustic_source(world, component, settings);
+    Ok(per_item(
+        rays,
+        settings,
+        source.as_ref().map(|s| (world, s)),
+        |&(o, d)| checked(o, d),
+        |&(o, d), map, rng| integrator::radiance(world, component, o, d, &settings.path, map, rng),
+    ))
 }

@@ -1,6 +1,7 @@
 //! Progressive image rendering: tiles on rayon, per-pixel moments, a progress bar.
 
 use crate::camera::Camera;
+use crate::caustics::{CausticSource, PhotonMap};
 use crate::image::Image;
 use crate::integrator::{self, Component, PathSettings};
 use crate::rng::Rng;
@@ -12,6 +13,9 @@ use rayon::prelude::*;
 
 /// Tile edge in pixels (the unit of parallel work).
 pub const TILE: u32 = 16;
+
+/// Samples per pixel whose photon maps are held at once (caustic estimator).
+const CAUSTIC_BATCH: u32 = 8;
 
 /// What to render and how many samples.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -37,12 +41,14 @@ impl RenderSettings {
             seed: 1,
         }
     }
+    /// 320x180 at 16 spp, all bounces, with the caustic estimator
+    /// ([`PathSettings::CAUSTIC_PHOTONS`] photons per pass).
     pub const DEFAULT: Self = Self {
         width: 320,
         height: 180,
         spp: 16,
         component: Component::Full,
-        path: PathSettings::DEFAULT,
+        path: PathSettings::DEFAULT.with_caustics(PathSettings::CAUSTIC_PHOTONS, 0.0),
         seed: 1,
     };
     pub const fn high() -> Self {
@@ -53,7 +59,7 @@ impl RenderSettings {
             width: 1600,
             height: 900,
             spp: 1024,
-            path: PathSettings::new(256, 4),
+            path: PathSettings::new(256, 4).with_caustics(PathSettings::CAUSTIC_PHOTONS, 0.0),
             ..Self::DEFAULT
         }
     }
@@ -160,17 +166,39 @@ impl<'w> Renderer<'w> {
         };
         let first = self.samples;
         let (world, camera, s) = (self.world, self.camera, self.settings);
-        let results: Vec<(u32, Vec<Moments>)> = (0..tiles)
-            .into_par_iter()
+        // Per tile, the moments of this call's samples, in pixel order.
+        let mut results: Vec<(u32, Vec<Moments>)> = (0..tiles)
             .map(|t| {
                 let (x0, y0) = ((t % tiles_x) * TILE, (t / tiles_x) * TILE);
                 let (x1, y1) = ((x0 + TILE).min(w), (y0 + TILE).min(h));
-                let mut out = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
+                (t, vec![Moments::default(); ((x1 - x0) * (y1 - y0)) as usize])
+            })
+            .collect();
+        // Without caustics one batch holds every sample; with them, a batch of samples
+        // shares the memory of its photon maps (one per sample index). Each pixel adds its
+        // samples in order either way, so the batching never changes a bit.
+        let source = self.caustic_source();
+        let batch = if source.is_some() { CAUSTIC_BATCH } else { count.max(1) };
+        let mut k0 = first;
+        while k0 < first + count {
+            let k1 = (k0 + batch).min(first + count);
+            let maps: Vec<PhotonMap> = match &source {
+                Some(src) => {
+                    (k0..k1).map(|k| src.map(world, k as u64, s.path.max_bounces)).collect()
+                }
+                None => Vec::new(),
+            };
+            let last = k1 == first + count;
+            results.par_iter_mut().for_each(|(t, out)| {
+                let (x0, y0) = ((*t % tiles_x) * TILE, (*t / tiles_x) * TILE);
+                let (x1, y1) = ((x0 + TILE).min(w), (y0 + TILE).min(h));
+                let mut i = 0;
                 for y in y0..y1 {
                     for x in x0..x1 {
                         let pixel = (y * w + x) as u64;
-                        let mut m = Moments::default();
-                        for k in first..first + count {
+                        let m = &mut out[i];
+                        i += 1;
+                        for k in k0..k1 {
                             let mut rng = Rng::for_sample(s.seed, pixel, k as u64);
                             let (jx, jy) = rng.next_2d();
                             let dir = camera.direction(x as f32 + jx, y as f32 + jy, w, h);
@@ -180,16 +208,18 @@ impl<'w> Renderer<'w> {
                                 camera.position,
                                 dir,
                                 &s.path,
+                                maps.get((k - k0) as usize),
                                 &mut rng,
                             ));
                         }
-                        out.push(m);
                     }
                 }
-                bar.inc(1);
-                (t, out)
-            })
-            .collect();
+                if last {
+                    bar.inc(1);
+                }
+            });
+            k0 = k1;
+        }
         bar.finish_and_clear();
         for (t, tile) in results {
             let (x0, y0) = ((t % tiles_x) * TILE, (t / tiles_x) * TILE);
@@ -200,6 +230,16 @@ impl<'w> Renderer<'w> {
             }
         }
         self.samples += count;
+    }
+
+    /// The photon source of the caustic estimator, when the settings, the component and the
+    /// world call for one.
+    fn caustic_source(&self) -> Option<CausticSource> {
+        let s = &self.settings;
+        if !matches!(s.component, Component::Full | Component::Reflections) {
+            return None;
+        }
+        CausticSource::new(self.world, s.path.caustic_photons, s.path.caustic_radius, s.seed)
     }
 
     /// Per-pixel estimates.
