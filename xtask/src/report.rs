@@ -1,4 +1,6 @@
-//! The merged report: report.json, report.md and one error-vs-time SVG per technique.
+//! The merged report: report.json, report.md, one error-vs-time SVG per technique, and one
+//! race per truth: every technique measured against the same reference (whatever crate's
+//! sweep measured it) on one chart.
 
 use anyhow::Context;
 use gi_report::{Comparison, Entry, Part};
@@ -67,7 +69,8 @@ pub fn redraw(dir: &Path) -> anyhow::Result<()> {
     let report: Report = serde_json::from_str(
         &std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?,
     )?;
-    let charts = charts(dir, &report)?;
+    let mut charts = charts(dir, &report)?;
+    charts.extend(races(dir, &report)?);
     std::fs::write(dir.join("report.md"), markdown(&report, &charts))?;
     eprintln!("wrote {}/report.json, report.md and {} charts", dir.display(), charts.len());
     Ok(())
@@ -115,6 +118,15 @@ fn markdown(report: &Report, charts: &[String]) -> String {
             md += &format!("\n![{c}]({c})\n");
         }
     }
+    let races: Vec<&String> = charts.iter().filter(|c| c.starts_with(RACE_PREFIX)).collect();
+    if !races.is_empty() {
+        md += "\n## Races: every technique measured against one truth\n\nEach chart holds the \
+               entries, of any crate, whose error names the same reference (the same scene, \
+               receivers and samples): one series per technique.\n";
+        for c in races {
+            md += &format!("\n![{c}]({c})\n");
+        }
+    }
     if !report.comparisons.is_empty() {
         md += "\n## Side-by-side comparisons (same process, interleaved; ratio > 1: we are better)\n\n| name | ours | theirs | unit | ratio | note |\n|---|---:|---:|---|---:|---|\n";
         for c in &report.comparisons {
@@ -138,7 +150,6 @@ fn markdown(report: &Report, charts: &[String]) -> String {
 /// One log-log chart (error vs ms) per (crate, technique) with at least one error figure.
 /// Returns the file names written.
 fn charts(dir: &Path, report: &Report) -> anyhow::Result<Vec<String>> {
-    type Points = Vec<(f64, f64, String)>;
     let mut groups: BTreeMap<(String, String), Points> = BTreeMap::new();
     for e in &report.entries {
         let Some(err) = &e.error else { continue };
@@ -154,6 +165,39 @@ fn charts(dir: &Path, report: &Report) -> anyhow::Result<Vec<String>> {
     for ((krate, technique), points) in groups {
         let file = format!("{krate}__{}.svg", technique.replace(['/', ' '], "_"));
         draw_chart(&dir.join(&file), &format!("{krate}: {technique}"), &points)
+            .with_context(|| format!("drawing {file}"))?;
+        written.push(file);
+    }
+    Ok(written)
+}
+
+/// A chart's points: (error, ms, label).
+type Points = Vec<(f64, f64, String)>;
+
+/// File-name prefix of the race charts.
+const RACE_PREFIX: &str = "race__";
+
+/// One chart per reference that entries of at least two techniques were measured against
+/// (series: `crate/technique`). Returns the file names written.
+fn races(dir: &Path, report: &Report) -> anyhow::Result<Vec<String>> {
+    let mut groups: BTreeMap<(&str, &str), Points> = BTreeMap::new();
+    for e in &report.entries {
+        let (Some(err), Some(reference)) = (&e.error, &e.reference) else { continue };
+        if err.value > 0.0 && err.value.is_finite() && e.time_ms > 0.0 {
+            let series = format!("{}/{}", e.crate_name, e.technique);
+            let key = (reference.as_str(), err.metric.as_str());
+            groups.entry(key).or_default().push((err.value, e.time_ms, series));
+        }
+    }
+    let mut written = Vec::new();
+    for ((reference, metric), points) in groups {
+        let techniques: std::collections::BTreeSet<&str> =
+            points.iter().map(|p| p.2.as_str()).collect();
+        if techniques.len() < 2 {
+            continue;
+        }
+        let file = format!("{RACE_PREFIX}{reference}_{metric}.svg").replace(['/', ' '], "_");
+        draw_chart(&dir.join(&file), &format!("race: {metric} against {reference}"), &points)
             .with_context(|| format!("drawing {file}"))?;
         written.push(file);
     }

@@ -78,18 +78,7 @@ impl SceneCase {
     /// A `res²` RSM over the sphere (`center`, `radius`): the VPLs (one per covered texel)
     /// and the RSM's surfels.
     pub fn rsm(&self, center: Vec3, radius: f32, res: u32) -> (Vec<Vpl>, Vec<Surfel>) {
-        let basis = shadows::LightBasis::new(-self.to_sun).expect("sun direction");
-        let view = shadows::ShadowView::fit_sphere(
-            basis,
-            center.as_dvec3(),
-            radius as f64,
-            res,
-            200.0,
-            false,
-        );
-        let (rsm, _) =
-            shadows::Rsm::render(&view, &self.triangles, &self.albedo, self.sun_irradiance)
-                .expect("RSM");
+        let (view, rsm) = self.sun_rsm(center, radius, res);
         let texel_area = (view.texel_size * view.texel_size) as f32;
         let mut vpls = Vec::new();
         let mut surfels = Vec::new();
@@ -104,6 +93,39 @@ impl SceneCase {
             surfels.push(Surfel::new(p, n, texel_area / cos));
         }
         (vpls, surfels)
+    }
+
+    /// The sun's `res²` CPU RSM over the sphere (`center`, `radius`) and its view.
+    pub fn sun_rsm(
+        &self,
+        center: Vec3,
+        radius: f32,
+        res: u32,
+    ) -> (shadows::ShadowView, shadows::Rsm) {
+        let basis = shadows::LightBasis::new(-self.to_sun).expect("sun direction");
+        let view = shadows::ShadowView::fit_sphere(
+            basis,
+            center.as_dvec3(),
+            radius as f64,
+            res,
+            200.0,
+            false,
+        );
+        let (rsm, _) =
+            shadows::Rsm::render(&view, &self.triangles, &self.albedo, self.sun_irradiance)
+                .expect("RSM");
+        (view, rsm)
+    }
+
+    /// That RSM reduced to `shadows` VPLs, one per `block²` texels (the radiance cache's input).
+    pub fn shadow_vpls(
+        &self,
+        center: Vec3,
+        radius: f32,
+        res: u32,
+        block: u32,
+    ) -> Vec<shadows::Vpl> {
+        self.sun_rsm(center, radius, res).1.extract_vpls(block).expect("VPLs")
     }
 
     /// Surfels on the front (wound) side of every triangle that reaches into the cube of

@@ -46,7 +46,7 @@ impl Case {
         let case = SceneCase::new(which, 1);
         let (center, radius, receivers) = case.view_receivers(rooms, rays);
         let truth = case.reference(&receivers, samples);
-        let vpls = rsm_vpls(&case, center, radius);
+        let vpls = case.shadow_vpls(center, radius, RSM_RES, RSM_BLOCK);
         let mesh = Mesh::from_triangles(&case.triangles).expect("scene mesh");
         let tree = KdTree::build(&mesh, &TreeSettings::DEFAULT).expect("kd-tree");
         let pixels = case
@@ -80,22 +80,6 @@ impl Case {
         let ratio = |s: [f64; 2]| (s[1] / counts[1]) / (s[0] / counts[0]).max(1e-30);
         (ratio(sums[0]), ratio(sums[1]))
     }
-}
-
-/// The sun's 256² RSM over the sphere (`center`, `radius`), reduced to VPLs.
-fn rsm_vpls(case: &SceneCase, center: Vec3, radius: f32) -> Vec<Vpl> {
-    let basis = shadows::LightBasis::new(-case.to_sun).expect("sun direction");
-    let view = shadows::ShadowView::fit_sphere(
-        basis,
-        center.as_dvec3(),
-        radius as f64,
-        RSM_RES,
-        200.0,
-        false,
-    );
-    let (rsm, _) = shadows::Rsm::render(&view, &case.triangles, &case.albedo, case.sun_irradiance)
-        .expect("RSM");
-    rsm.extract_vpls(RSM_BLOCK).expect("VPLs")
 }
 
 fn main() {

@@ -12,7 +12,9 @@
 //!
 //! Also: `rsm_gi/splat_*_unscaled` (the energy question: interleaved SII without scaling
 //! each sub-buffer's VPLs by N M), `rsm_gi/lpv_{default,best}_{scene}` (lpv on the very
-//! same pixels), `rsm_gi/leak_{scene}` (the gather with and without the path tracer's
+//! same pixels), `rsm_gi/radiance_cache_{low,default}_{scene}` (the radiance cache on the
+//! same pixels, lit from the same RSM's VPLs, time = its converging updates; with these
+//! the report's race chart of this truth has every one-bounce technique), `rsm_gi/leak_{scene}` (the gather with and without the path tracer's
 //! visibility: the share of the error that is light through walls), `rsm_gi/gather_city_
 //! 320x180_{preset}` (the target frame time) and an `r_max` sweep on `cornell_window`.
 
@@ -122,6 +124,49 @@ fn entry(name: String, technique: &str, ms: f64, c: &Case, s: &Settings, a: &[Ve
         .setting("reference_noise_rel_rms", noise)
         .error("rel_rms", e, &c.reference_name)
         .threads(2)
+}
+
+/// Frames of a still camera the radiance cache converges over before it is measured (its
+/// own sweep's quick figure).
+const CACHE_FRAMES: usize = 8;
+
+/// `radiance_cache` on the same pixels: allocated from them, lit `CACHE_FRAMES` times from
+/// the VPLs of a 256² CPU RSM of the same sphere (4² texels each, as its own sweep) with
+/// shadow rays through a kd-tree of the scene; time = those updates.
+fn radiance_cache_race(sweep: &mut Sweep, c: &Case, pool: &rayon::ThreadPool, reps: usize) {
+    use radiance_cache::{RadianceCache, SurfacePoint};
+    let mesh = kdtree_tracer::Mesh::from_triangles(&c.case.triangles).expect("scene mesh");
+    let tree =
+        kdtree_tracer::KdTree::build(&mesh, &kdtree_tracer::Settings::DEFAULT).expect("kd-tree");
+    let vpls = c.case.shadow_vpls(c.center, c.radius, 256, 4);
+    let points: Vec<SurfacePoint> =
+        c.receivers.iter().map(|r| SurfacePoint::new(r.position, r.normal)).collect();
+    for (tag, s) in
+        [("low", radiance_cache::Settings::LOW), ("default", radiance_cache::Settings::DEFAULT)]
+    {
+        let converge = || {
+            let mut cache = RadianceCache::new(s).expect("settings");
+            cache.allocate(c.center, &points);
+            for _ in 0..CACHE_FRAMES {
+                cache.update(&vpls, &tree);
+            }
+            cache
+        };
+        let (ms, cache) = pool.install(|| time_ms(reps, converge));
+        let a: Vec<Vec3> = points.iter().map(|p| cache.irradiance(p.position, p.normal)).collect();
+        let (e, scale, noise) = c.errors(&a);
+        sweep.entry(
+            Entry::new(format!("rsm_gi/radiance_cache_{tag}_{}", c.case.name), "radiance_cache", ms)
+                .setting("scene", c.case.name)
+                .setting("frames", CACHE_FRAMES)
+                .setting("allocated", cache.allocated())
+                .setting("best_fit_scale", scale)
+                .setting("reference_noise_rel_rms", noise)
+                .error("rel_rms", e, &c.reference_name)
+                .threads(2)
+                .note("radiance_cache on the same pixels as rsm_gi (time: its converging updates, not one frame)"),
+        );
+    }
 }
 
 fn main() {
@@ -235,6 +280,9 @@ fn main() {
                     .note("lpv on the same pixels as rsm_gi (time includes its RSM extraction and surfels)"),
             );
         }
+
+        sweep.stage(&format!("radiance cache {scene}"));
+        radiance_cache_race(&mut sweep, c, &pool, reps(3));
 
         sweep.stage(&format!("leak {scene}"));
         let s = Settings::DEFAULT;
