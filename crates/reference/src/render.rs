@@ -147,30 +147,13 @@ impl<'w> Renderer<'w> {
         let (w, h) = (self.settings.width, self.settings.height);
         let tiles_x = w.div_ceil(TILE);
         let tiles = tiles_x * h.div_ceil(TILE);
-        let bar = if self.progress {
-            let b = ProgressBar::new(tiles as u64);
-            if let Ok(style) = ProgressStyle::with_template(
-                "{msg} [{elapsed_precise}] {wide_bar} {pos}/{len} tiles (eta {eta})",
-            ) {
-                b.set_style(style);
-            }
-            b.set_message(format!(
-                "{} spp {}..{}",
-                self.settings.component.name(),
-                self.samples,
-                self.samples + count
-            ));
-            b
-        } else {
-            ProgressBar::hidden()
-        };
+        let bar = self.progress_bar(count);
         let first = self.samples;
         let (world, camera, s) = (self.world, self.camera, self.settings);
         // Per tile, the moments of this call's samples, in pixel order.
         let mut results: Vec<(u32, Vec<Moments>)> = (0..tiles)
             .map(|t| {
-                let (x0, y0) = ((t % tiles_x) * TILE, (t / tiles_x) * TILE);
-                let (x1, y1) = ((x0 + TILE).min(w), (y0 + TILE).min(h));
+                let (x0, y0, x1, y1) = tile_rect(t, tiles_x, w, h);
                 (t, vec![Moments::default(); ((x1 - x0) * (y1 - y0)) as usize])
             })
             .collect();
@@ -190,8 +173,7 @@ impl<'w> Renderer<'w> {
             };
             let last = k1 == first + count;
             results.par_iter_mut().for_each(|(t, out)| {
-                let (x0, y0) = ((*t % tiles_x) * TILE, (*t / tiles_x) * TILE);
-                let (x1, y1) = ((x0 + TILE).min(w), (y0 + TILE).min(h));
+                let (x0, y0, x1, y1) = tile_rect(*t, tiles_x, w, h);
                 let mut i = 0;
                 for y in y0..y1 {
                     for x in x0..x1 {
@@ -222,14 +204,35 @@ impl<'w> Renderer<'w> {
         }
         bar.finish_and_clear();
         for (t, tile) in results {
-            let (x0, y0) = ((t % tiles_x) * TILE, (t / tiles_x) * TILE);
-            let tw = (x0 + TILE).min(w) - x0;
+            let (x0, y0, x1, _) = tile_rect(t, tiles_x, w, h);
+            let tw = x1 - x0;
             for (i, m) in tile.iter().enumerate() {
                 let (x, y) = (x0 + i as u32 % tw, y0 + i as u32 / tw);
                 self.moments[(y * w + x) as usize].merge(m);
             }
         }
         self.samples += count;
+    }
+
+    /// The progress bar of one [`Renderer::add_samples`] call (hidden unless asked for).
+    fn progress_bar(&self, count: u32) -> ProgressBar {
+        if !self.progress {
+            return ProgressBar::hidden();
+        }
+        let tiles = self.settings.width.div_ceil(TILE) * self.settings.height.div_ceil(TILE);
+        let b = ProgressBar::new(tiles as u64);
+        if let Ok(style) = ProgressStyle::with_template(
+            "{msg} [{elapsed_precise}] {wide_bar} {pos}/{len} tiles (eta {eta})",
+        ) {
+            b.set_style(style);
+        }
+        b.set_message(format!(
+            "{} spp {}..{}",
+            self.settings.component.name(),
+            self.samples,
+            self.samples + count
+        ));
+        b
     }
 
     /// The photon source of the caustic estimator, when the settings, the component and the
@@ -288,4 +291,11 @@ pub fn render<'w>(
     let mut r = Renderer::new(world, camera, settings)?.with_progress(progress);
     r.add_samples(settings.spp);
     Ok(r)
+}
+
+/// Pixel rectangle `(x0, y0, x1, y1)` (exclusive ends) of tile `t` of a `w x h` image with
+/// `tiles_x` tiles per row.
+fn tile_rect(t: u32, tiles_x: u32, w: u32, h: u32) -> (u32, u32, u32, u32) {
+    let (x0, y0) = ((t % tiles_x) * TILE, (t / tiles_x) * TILE);
+    (x0, y0, (x0 + TILE).min(w), (y0 + TILE).min(h))
 }
