@@ -27,6 +27,7 @@ fn shaders_validate_with_naga() {
     validate_wgsl(PCSS_EVAL_WGSL);
     validate_wgsl(DEPTH_WGSL);
     validate_wgsl(RSM_WGSL);
+    validate_wgsl(shadows::gpu::RSM_VPLS_WGSL);
     validate_wgsl(CSM_EVAL_WGSL);
     validate_wgsl(&format!("{CUBE_INC_WGSL}\n@compute @workgroup_size(1) fn main() {{}}"));
 }

@@ -8,7 +8,7 @@ use gpu_harness::{Binding, GpuContext, gpu_test_context};
 use proptest::prelude::*;
 use shadows::gpu::{
     CSM_EVAL_WGSL, CUBE_INC_WGSL, CascadeShadows, CsmCascade, CubeLight, CubeShadows, DepthPass,
-    DrawRange, Geometry, GpuMesh, ReflectiveShadowMap, VertexLayout,
+    DrawRange, Geometry, GpuMesh, GpuVplReduction, ReflectiveShadowMap, VertexLayout,
 };
 use shadows::plane_box::PlaneBox;
 use shadows::*;
@@ -363,6 +363,27 @@ fn passes_share_one_encoder_and_allocate_nothing_when_reused() {
     map.validate().unwrap();
     let covered = map.normal.iter().filter(|n| **n != Vec3::ZERO).count();
     assert!(covered > 64 * 64 / 2, "the RSM sees the plane ({covered} texels)");
+    // Its VPLs reduced on the GPU are the CPU's `extract_vpls` of the map read back, and
+    // reducing again makes nothing.
+    for block in [1, 4, 5] {
+        let reduction = GpuVplReduction::new(d, &rsm, block).unwrap();
+        submit(&ctx, |enc| reduction.record(enc));
+        let got = reduction.read(d).unwrap();
+        let before = counts(d);
+        submit(&ctx, |enc| reduction.record(enc));
+        assert_eq!(reduction.read(d).unwrap(), got);
+        assert_eq!(before, counts(d), "a reduction creates nothing");
+        let want = map.extract_vpls(block).unwrap();
+        assert_eq!(got.len(), want.len(), "block {block}: VPL count");
+        let scale = want.iter().fold(0.0f32, |m, v| m.max(v.flux.max_element())).max(1e-30);
+        for (g, w) in got.iter().zip(&want) {
+            let close = |a: Vec3, b: Vec3, tol: f32| (a - b).abs().max_element() <= tol;
+            assert!(close(g.flux, w.flux, 1e-5 * scale), "block {block}: {g:?} vs {w:?}");
+            assert!(close(g.position, w.position, 1e-4), "block {block}: {g:?} vs {w:?}");
+            assert!(close(g.normal, w.normal, 1e-5), "block {block}: {g:?} vs {w:?}");
+        }
+    }
+    assert!(GpuVplReduction::new(d, &rsm, 0).is_err(), "block 0 is a typed error");
     // More cascades or lights than the pass was made for is an error, not a panic.
     let (_, pcss, mut blocks) = cascades(Vec3::new(-6.0, 4.0, -5.0), 128);
     blocks.push(blocks[0]);

@@ -2,8 +2,9 @@
 //! probe visibility of Majercik et al. 2019), `Indirect::Cache`:
 //!
 //! 1. the sun's RSM over the coarsest cascade around the camera (the whole scene when it is
-//!    smaller) is rendered and read back when that sphere or the sun moved, and reduced to
-//!    at most 64² VPLs (`shadows::Rsm::extract_vpls`);
+//!    smaller) is rendered when that sphere or the sun moved, reduced on the GPU to at most
+//!    64² VPLs (`shadows::gpu::GpuVplReduction`, the twin of `Rsm::extract_vpls`) and only
+//!    those are read back (192 KiB);
 //! 2. a grid of at most `Settings::cache_points` camera rays traced on the CPU through the
 //!    scene's kd-tree finds the surface points the view sees, and they allocate the caches
 //!    their lookups interpolate;
@@ -35,6 +36,7 @@ pub struct CacheState {
     /// The caches on the CPU (the traced hits read them).
     pub cache: RadianceCache,
     rsm: SunRsm,
+    reduction: shadows::gpu::GpuVplReduction,
     region: Region,
     /// The RSM's VPLs, and the sphere and sun direction they were read back for.
     vpls: Vec<Vpl>,
@@ -99,8 +101,11 @@ impl CacheState {
         let cache = RadianceCache::new(s).map_err(tech)?;
         let coarsest = s.spacing(s.cascades - 1) * s.resolution as f32;
         let region = Region::of(&scene.bounds(), 0.5 * 3f64.sqrt() * coarsest as f64);
+        let rsm = SunRsm::new(gpu, buffers, settings)?;
+        let reduction = rsm.vpl_reduction(gpu, (rsm.resolution() / VPLS_PER_SIDE).max(1))?;
         Ok(Self {
-            rsm: SunRsm::new(gpu, buffers, settings)?,
+            rsm,
+            reduction,
             region,
             vpls: Vec::new(),
             vpls_for: None,
@@ -128,9 +133,12 @@ impl CacheState {
             return Ok(());
         }
         self.rsm.render(gpu, scene, sphere, sun)?;
-        let rsm = self.rsm.read_back(gpu)?;
-        let block = (rsm.width / VPLS_PER_SIDE).max(1);
-        self.vpls = rsm.extract_vpls(block).map_err(|e| EngineError::technique("shadows", e))?;
+        let mut enc = gpu.device.create_command_encoder(&Default::default());
+        self.reduction.record(&mut enc);
+        gpu.queue.submit([enc.finish()]);
+        self.vpls =
+            self.reduction.read(&gpu.device).map_err(|e| EngineError::technique("shadows", e))?;
+        gpu.transfers.read_back(self.reduction.read_back_bytes());
         self.vpls_for = Some((sphere, sun.dir));
         Ok(())
     }

@@ -105,6 +105,16 @@ impl SunRsm {
         Ok(view)
     }
 
+    /// The map's resident reduction to one VPL per `block²` texels (for a technique that
+    /// lights on the CPU from VPLs: 48 bytes per VPL read back instead of the map).
+    pub fn vpl_reduction(
+        &self,
+        gpu: &Gpu,
+        block: u32,
+    ) -> Result<shadows::gpu::GpuVplReduction, EngineError> {
+        shadows::gpu::GpuVplReduction::new(&gpu.device, &self.rsm, block).map_err(tech)
+    }
+
     /// The map read back (for a technique that runs on the CPU), counted as four copies.
     pub fn read_back(&self, gpu: &Gpu) -> Result<shadows::Rsm, EngineError> {
         let (rsm, _depth) = self.rsm.read_back(&gpu.device, &gpu.queue).map_err(tech)?;

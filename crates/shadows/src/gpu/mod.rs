@@ -24,6 +24,7 @@ mod geometry;
 mod oneshot;
 pub mod readback;
 mod rsm_pass;
+mod rsm_vpls;
 mod slots;
 
 pub use crate::csm_lookup::CsmCascade;
@@ -32,6 +33,7 @@ pub use cubes::{CubeLight, CubeShadows};
 pub use geometry::{DrawRange, Geometry, VertexLayout};
 pub use oneshot::{DepthPass, GpuMesh, RsmPass};
 pub use rsm_pass::ReflectiveShadowMap;
+pub use rsm_vpls::{GpuVplReduction, RSM_VPLS_WGSL};
 
 /// The PCF/PCSS snippet (`shaders/shadows/pcss.inc.wgsl`).
 pub const PCSS_INC_WGSL: &str = include_str!("../../../../shaders/shadows/pcss.inc.wgsl");

@@ -65,6 +65,18 @@ fn texel_bytes(
         wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
     );
     queue.submit([encoder.finish()]);
+    let data = mapped(device, &buf)?;
+    let mut out = Vec::with_capacity((w * h * bytes_per_texel) as usize);
+    for y in 0..h as usize {
+        let start = y * row as usize;
+        out.extend_from_slice(&data[start..start + (w * bytes_per_texel) as usize]);
+    }
+    Ok(out)
+}
+
+/// The bytes of a `MAP_READ` buffer once the queue has finished writing it (blocking; the
+/// buffer is unmapped again).
+pub(crate) fn mapped(device: &wgpu::Device, buf: &wgpu::Buffer) -> Result<Vec<u8>, ShadowError> {
     let slice = buf.slice(..);
     let (tx, rx) = std::sync::mpsc::channel();
     slice.map_async(wgpu::MapMode::Read, move |r| {
@@ -72,15 +84,9 @@ fn texel_bytes(
     });
     device.poll(wgpu::PollType::wait_indefinitely()).map_err(gpu_err)?;
     rx.recv().map_err(gpu_err)?.map_err(gpu_err)?;
-    let data = slice.get_mapped_range().map_err(gpu_err)?;
-    let mut out = Vec::with_capacity((w * h * bytes_per_texel) as usize);
-    for y in 0..h as usize {
-        let start = y * row as usize;
-        out.extend_from_slice(&data[start..start + (w * bytes_per_texel) as usize]);
-    }
-    drop(data);
+    let data = slice.get_mapped_range().map_err(gpu_err)?.to_vec();
     buf.unmap();
-    Ok(out)
+    Ok(data)
 }
 
 /// Layer `layer` of a `Depth32Float` texture as a [`DepthMap`].
