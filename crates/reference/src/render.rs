@@ -4,7 +4,7 @@ use crate::camera::Camera;
 use crate::caustics::{CausticSource, PhotonMap};
 use crate::image::Image;
 use crate::integrator::{self, Component, PathSettings};
-use crate::rng::Rng;
+use crate::rng::{Rng, pixel_jitter};
 use crate::stats::{Estimate, Moments};
 use crate::world::World;
 use crate::{Error, sampling::luminance};
@@ -182,7 +182,7 @@ impl<'w> Renderer<'w> {
                         i += 1;
                         for k in k0..k1 {
                             let mut rng = Rng::for_sample(s.seed, pixel, k as u64);
-                            let (jx, jy) = rng.next_2d();
+                            let (jx, jy) = pixel_jitter(s.seed, pixel, k as u64);
                             let dir = camera.direction(x as f32 + jx, y as f32 + jy, w, h);
                             m.add(integrator::radiance(
                                 world,
