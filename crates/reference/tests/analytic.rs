@@ -2,20 +2,13 @@
 
 mod common;
 
-use common::{dir, furnace, ground};
+use common::{dir, furnace, ground, pooled};
 use glam::Vec3;
 use reference::{
-    Camera, Component, Estimate, Material, PathSettings, PointLight, QueryPoint, QuerySettings,
+    Camera, Component, Material, PathSettings, PointLight, QueryPoint, QuerySettings,
     RenderSettings, Sun, World, irradiance, radiance, render,
 };
 use std::f32::consts::PI;
-
-fn pooled(est: &[Estimate]) -> (f64, f64) {
-    let n = est.len() as f64;
-    let mean = est.iter().map(|e| e.mean.x as f64).sum::<f64>() / n;
-    let se = est.iter().map(|e| (e.std_error.x as f64).powi(2)).sum::<f64>().sqrt() / n;
-    (mean, se)
-}
 
 #[test]
 fn furnace_converges_to_the_analytic_radiance() {

@@ -4,11 +4,11 @@
 
 mod common;
 
-use common::{dir, ground};
+use common::{dir, ground, pooled};
 use glam::Vec3;
 use reference::{
-    Camera, Component, Estimate, Material, PathSettings, QueryPoint, QuerySettings, RenderSettings,
-    Renderer, Sun, World, irradiance, render,
+    Camera, Component, Material, PathSettings, QueryPoint, QuerySettings, RenderSettings, Renderer,
+    Sun, World, irradiance, render,
 };
 
 /// Debug builds (the workspace's `cargo test`) run the same checks on fewer samples.
@@ -41,14 +41,6 @@ fn mirror_world() -> World {
 
 fn camera() -> Camera {
     Camera::look_at(Vec3::new(4.5, 3.5, 2.5), Vec3::new(1.0, 0.0, 0.3), 55.0)
-}
-
-/// Pooled mean luminance-free (red channel) and its standard error over a set of estimates.
-fn pooled(est: &[Estimate]) -> (f64, f64) {
-    let n = est.len() as f64;
-    let mean = est.iter().map(|e| e.mean.x as f64).sum::<f64>() / n;
-    let se = est.iter().map(|e| (e.std_error.x as f64).powi(2)).sum::<f64>().sqrt() / n;
-    (mean, se)
 }
 
 #[test]

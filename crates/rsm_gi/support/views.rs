@@ -25,18 +25,7 @@ pub struct RsmPlanes {
 
 impl RsmPlanes {
     pub fn new(case: &SceneCase, center: Vec3, radius: f32, res: u32) -> Self {
-        let basis = shadows::LightBasis::new(-case.to_sun).expect("sun direction");
-        let view = shadows::ShadowView::fit_sphere(
-            basis,
-            center.as_dvec3(),
-            radius as f64,
-            res,
-            200.0,
-            false,
-        );
-        let (rsm, _) =
-            shadows::Rsm::render(&view, &case.triangles, &case.albedo, case.sun_irradiance)
-                .expect("RSM");
+        let (view, rsm) = case.sun_rsm(center, radius, res);
         // world_to_map is affine for the orthographic sun view: its matrix from 4 points.
         let o = view.world_to_map(DVec3::ZERO);
         let col = |e: DVec3| view.world_to_map(e) - o;

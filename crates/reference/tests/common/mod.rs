@@ -2,7 +2,7 @@
 #![allow(dead_code)]
 
 use glam::Vec3;
-use reference::{Material, World, WorldBuilder};
+use reference::{Estimate, Material, World, WorldBuilder};
 use std::f32::consts::PI;
 
 /// A closed UV sphere of radius `r` around the origin (shared vertices: watertight), its
@@ -58,4 +58,12 @@ pub fn ground(b: &mut WorldBuilder, material: u32) {
 pub fn dir(elevation_deg: f32, azimuth_deg: f32) -> Vec3 {
     let (e, a) = (elevation_deg.to_radians(), azimuth_deg.to_radians());
     Vec3::new(e.cos() * a.cos(), e.sin(), -e.cos() * a.sin())
+}
+
+/// Pooled mean of the red channel over a set of estimates, and its standard error.
+pub fn pooled(est: &[Estimate]) -> (f64, f64) {
+    let n = est.len() as f64;
+    let mean = est.iter().map(|e| e.mean.x as f64).sum::<f64>() / n;
+    let se = est.iter().map(|e| (e.std_error.x as f64).powi(2)).sum::<f64>().sqrt() / n;
+    (mean, se)
 }
