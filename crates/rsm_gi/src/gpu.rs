@@ -2,8 +2,10 @@
 //! `wgpu::Device` and a [`RsmGi`] (it owns the pipelines, the sample pattern, the uniform
 //! blocks and the output buffers) and [`GpuGather::record`] adds the interleaved gather and
 //! the two geometry-aware blur passes to an encoder over GPU textures ([`GpuRsm`],
-//! [`GpuGBuffer`]: `Rgba32Float`, xyz used). Read-back ([`GpuGather::read_back`]) is a
-//! separate call for the parity tests.
+//! [`GpuGBuffer`]: `Rgba32Float`, xyz used). [`GpuGather::splat`] builds the splat instead
+//! (`shaders/rsm_gi/splat.wgsl`, full resolution): [`GpuGather::record_splat`] uploads the
+//! caller's VPLs ([`RsmGi::splat_vpls`]) and records the splat and the same blur.
+//! Read-back ([`GpuGather::read_back`]) is a separate call for the parity tests.
 //!
 //! The shaders (`shaders/rsm_gi/gather.wgsl`, `blur.wgsl`, `upsample.wgsl`, sharing
 //! `common.inc.wgsl` and `gather.inc.wgsl`) expect finite inputs: [`GpuRsm::upload`] and
@@ -33,9 +35,16 @@ macro_rules! shader {
 pub const GATHER_WGSL: &str = shader!("gather.inc.wgsl", "gather.wgsl");
 /// One direction of the blur (entry point `blur`).
 pub const BLUR_WGSL: &str = shader!("blur.wgsl");
+/// The interleaved splat (entry point `splat`).
+pub const SPLAT_WGSL: &str = shader!("splat.wgsl");
 /// The upsampling of a low-resolution result (entry point `upsample`).
 pub const UPSAMPLE_WGSL: &str = shader!("gather.inc.wgsl", "upsample.wgsl");
 const WORKGROUP: u32 = 8;
+
+/// Workgroups covering a `w x h` grid.
+fn groups((w, h): (u32, u32)) -> (u32, u32) {
+    (w.div_ceil(WORKGROUP), h.div_ceil(WORKGROUP))
+}
 
 /// `RsmGiView` in `common.inc.wgsl`.
 #[repr(C)]
@@ -231,7 +240,8 @@ pub struct GpuGather {
     height: u32,
     /// The grid the gather and the blur run on (`1/low_res` of the image).
     low: (u32, u32),
-    gather: (wgpu::ComputePipeline, wgpu::BindGroupLayout),
+    /// The first pass: the gather, or for [`GpuGather::splat`] the splat.
+    first: (wgpu::ComputePipeline, wgpu::BindGroupLayout),
     blur: (wgpu::ComputePipeline, wgpu::BindGroupLayout),
     upsample: (wgpu::ComputePipeline, wgpu::BindGroupLayout),
     samples: wgpu::Buffer,
@@ -242,6 +252,8 @@ pub struct GpuGather {
     /// image (the upsampling's).
     images: [wgpu::Buffer; 4],
     readback: wgpu::Buffer,
+    /// The splat's VPLs (`vec4` position, normal, flux each) and how many fit.
+    splat_vpls: Option<(wgpu::Buffer, u32)>,
 }
 
 /// The pattern's sub-buffer subsets, then the whole pattern (the upsampling's fallback), as
@@ -351,7 +363,7 @@ impl GpuGather {
             width,
             height,
             low,
-            gather,
+            first: gather,
             blur,
             upsample,
             samples,
@@ -369,7 +381,44 @@ impl GpuGather {
                 img("rsm_gi upsampled", full.0, full.1),
             ],
             readback,
+            splat_vpls: None,
         };
+        if let Some(err) = pollster::block_on(scope.pop()) {
+            return Err(RsmGiError::Gpu(err.to_string()));
+        }
+        Ok(me)
+    }
+
+    /// The splat instead of the gather (and the same blur) for up to `max_vpls` VPLs per
+    /// frame ([`GpuGather::record_splat`]); at full resolution only (`low_res` 1: the
+    /// upsampling's fallback is a gather).
+    pub fn splat(
+        device: &wgpu::Device,
+        gi: &RsmGi,
+        width: u32,
+        height: u32,
+        max_vpls: u32,
+    ) -> Result<Self, RsmGiError> {
+        let s = gi.settings();
+        if s.low_res != 1 {
+            let why = "the GPU splat runs at full resolution (1)";
+            return Err(RsmGiError::InvalidSetting {
+                name: "low_res",
+                value: s.low_res as f64,
+                why,
+            });
+        }
+        let mut me = Self::new(device, gi, width, height, 1)?;
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let layout = [uniform(0), tex(1), tex(2), storage(3, true), storage(4, false)];
+        me.first = pipeline(device, "rsm_gi splat", SPLAT_WGSL, "splat", &layout);
+        let vpls = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("rsm_gi splat vpls"),
+            size: (max_vpls.max(1) as u64) * 48,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        me.splat_vpls = Some((vpls, max_vpls));
         if let Some(err) = pollster::block_on(scope.pop()) {
             return Err(RsmGiError::Gpu(err.to_string()));
         }
@@ -389,87 +438,43 @@ impl GpuGather {
         g: &GpuGBuffer,
         blur: bool,
     ) -> Result<&wgpu::Buffer, RsmGiError> {
-        if (g.width, g.height) != (self.width, self.height) {
-            return Err(RsmGiError::SizeMismatch {
-                what: "GPU G-buffer (this GpuGather's size)",
-                got: g.width as usize * g.height as usize,
-                width: self.width,
-                height: self.height,
-            });
+        self.check_size(g)?;
+        if self.splat_vpls.is_some() {
+            return Err(RsmGiError::Gpu("this GpuGather splats: use record_splat".into()));
         }
         let s = self.gi.settings();
-        let (nx, ny, f) = (s.pattern.nx, s.pattern.ny, s.low_res);
-        let (lw, lh) = self.low;
-        let view = |size: (u32, u32), pattern: [u32; 4]| GpuView {
-            world_to_texel: rsm.world_to_texel.to_cols_array(),
-            view_proj: g.view_proj.to_cols_array(),
-            sizes: [size.0, size.1, rsm.width, rsm.height],
-            pattern,
-            knobs: [s.vpl_offset, s.depth_tolerance, s.normal_power, f as f32],
-        };
-        let blocks = [
-            view(self.low, [nx, ny, 0, 0]),
-            view(self.low, [nx, ny, nx, 0]),
-            view(self.low, [nx, ny, ny, 1]),
-            view((self.width, self.height), [nx, ny, lw, lh]),
-        ];
-        for (buf, v) in self.views.iter().zip(blocks) {
-            queue.write_buffer(buf, 0, bytemuck::bytes_of(&v));
-        }
-        let groups = |(w, h): (u32, u32)| (w.div_ceil(WORKGROUP), h.div_ceil(WORKGROUP));
-        fn res(b: &wgpu::Buffer) -> wgpu::BindingResource<'_> {
-            b.as_entire_binding()
-        }
+        let sizes = [self.low.0, self.low.1, rsm.width, rsm.height];
+        self.write_views(queue, rsm.world_to_texel, g, sizes, s.vpl_offset);
         let tv = wgpu::BindingResource::TextureView;
         let gather_group = |layout, view: &wgpu::Buffer, extra: &[(u32, &wgpu::Buffer)]| {
             let mut entries = vec![
-                wgpu::BindGroupEntry { binding: 0, resource: res(view) },
+                wgpu::BindGroupEntry { binding: 0, resource: view.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 1, resource: tv(&rsm.flux) },
                 wgpu::BindGroupEntry { binding: 2, resource: tv(&rsm.normal) },
                 wgpu::BindGroupEntry { binding: 3, resource: tv(&rsm.position) },
                 wgpu::BindGroupEntry { binding: 4, resource: tv(&g.position) },
                 wgpu::BindGroupEntry { binding: 5, resource: tv(&g.normal) },
-                wgpu::BindGroupEntry { binding: 6, resource: res(&self.samples) },
-                wgpu::BindGroupEntry { binding: 7, resource: res(&self.ranges) },
+                wgpu::BindGroupEntry { binding: 6, resource: self.samples.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 7, resource: self.ranges.as_entire_binding() },
             ];
-            entries.extend(
-                extra
-                    .iter()
-                    .map(|&(binding, b)| wgpu::BindGroupEntry { binding, resource: res(b) }),
-            );
+            entries.extend(extra.iter().map(|&(binding, b)| wgpu::BindGroupEntry {
+                binding,
+                resource: b.as_entire_binding(),
+            }));
             device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("rsm_gi gather"),
                 layout,
                 entries: &entries,
             })
         };
-        let bind = gather_group(&self.gather.1, &self.views[0], &[(8, &self.images[0])]);
+        let bind = gather_group(&self.first.1, &self.views[0], &[(8, &self.images[0])]);
         let mut pass = encoder.begin_compute_pass(&Default::default());
-        pass.set_pipeline(&self.gather.0);
+        pass.set_pipeline(&self.first.0);
         pass.set_bind_group(0, &bind, &[]);
         let (gx, gy) = groups(self.low);
         pass.dispatch_workgroups(gx, gy, 1);
-        let mut result = 0;
-        if blur && s.pattern.cells() > 1 {
-            for (k, (src, dst)) in [(0usize, 1usize), (1, 2)].into_iter().enumerate() {
-                let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("rsm_gi blur"),
-                    layout: &self.blur.1,
-                    entries: &[
-                        wgpu::BindGroupEntry { binding: 0, resource: res(&self.views[k + 1]) },
-                        wgpu::BindGroupEntry { binding: 1, resource: tv(&g.position) },
-                        wgpu::BindGroupEntry { binding: 2, resource: tv(&g.normal) },
-                        wgpu::BindGroupEntry { binding: 3, resource: res(&self.images[src]) },
-                        wgpu::BindGroupEntry { binding: 4, resource: res(&self.images[dst]) },
-                    ],
-                });
-                pass.set_pipeline(&self.blur.0);
-                pass.set_bind_group(0, &bind, &[]);
-                pass.dispatch_workgroups(gx, gy, 1);
-            }
-            result = 2;
-        }
-        if f == 1 {
+        let result = self.record_blur(device, &mut pass, g, blur);
+        if s.low_res == 1 {
             return Ok(&self.images[result]);
         }
         let extra = [(8, &self.images[3]), (9, &self.images[result])];
@@ -479,6 +484,152 @@ impl GpuGather {
         let (ux, uy) = groups((self.width, self.height));
         pass.dispatch_workgroups(ux, uy, 1);
         Ok(&self.images[3])
+    }
+
+    /// For a [`GpuGather::splat`]: uploads `vpls` (with the energy scale of the settings) and
+    /// records the splat, then (when the pattern interleaves and `blur` is set) the blur.
+    /// Returns the buffer holding the result, as [`GpuGather::record`]. More VPLs than the
+    /// splat was made for is a typed error.
+    pub fn record_splat(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        vpls: &[crate::SplatVpl],
+        g: &GpuGBuffer,
+        blur: bool,
+    ) -> Result<&wgpu::Buffer, RsmGiError> {
+        self.check_size(g)?;
+        let Some((buffer, capacity)) = &self.splat_vpls else {
+            return Err(RsmGiError::Gpu("this GpuGather gathers: use record".into()));
+        };
+        if vpls.len() > *capacity as usize {
+            return Err(RsmGiError::SizeMismatch {
+                what: "splat VPLs (more than the GPU splat was made for)",
+                got: vpls.len(),
+                width: *capacity,
+                height: 1,
+            });
+        }
+        let s = self.gi.settings();
+        let scale = if s.splat_energy_scale { s.pattern.cells() as f32 } else { 1.0 };
+        let data: Vec<[f32; 12]> = vpls
+            .iter()
+            .map(|v| {
+                let (p, n, f) = (v.position, v.normal, v.flux * scale);
+                [p.x, p.y, p.z, 0.0, n.x, n.y, n.z, 0.0, f.x, f.y, f.z, 0.0]
+            })
+            .collect();
+        if !data.is_empty() {
+            queue.write_buffer(buffer, 0, bytemuck::cast_slice(&data));
+        }
+        let sizes = [self.width, self.height, vpls.len() as u32, s.pattern.cells()];
+        self.write_views(queue, Mat4::IDENTITY, g, sizes, s.splat_radius);
+        let tv = wgpu::BindingResource::TextureView;
+        let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("rsm_gi splat"),
+            layout: &self.first.1,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: self.views[0].as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: tv(&g.position) },
+                wgpu::BindGroupEntry { binding: 2, resource: tv(&g.normal) },
+                wgpu::BindGroupEntry { binding: 3, resource: buffer.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 4, resource: self.images[0].as_entire_binding() },
+            ],
+        });
+        let mut pass = encoder.begin_compute_pass(&Default::default());
+        pass.set_pipeline(&self.first.0);
+        pass.set_bind_group(0, &bind, &[]);
+        let (gx, gy) = groups(self.low);
+        pass.dispatch_workgroups(gx, gy, 1);
+        Ok(&self.images[self.record_blur(device, &mut pass, g, blur)])
+    }
+
+    fn check_size(&self, g: &GpuGBuffer) -> Result<(), RsmGiError> {
+        if (g.width, g.height) != (self.width, self.height) {
+            return Err(RsmGiError::SizeMismatch {
+                what: "GPU G-buffer (this GpuGather's size)",
+                got: g.width as usize * g.height as usize,
+                width: self.width,
+                height: self.height,
+            });
+        }
+        Ok(())
+    }
+
+    /// This frame's uniform blocks: the first pass's (`sizes`, `knobs.x` = `first_knob`: the
+    /// VPL offset of the gather, the radius of the splat), the two blur directions' and the
+    /// upsampling's.
+    fn write_views(
+        &self,
+        queue: &wgpu::Queue,
+        world_to_texel: Mat4,
+        g: &GpuGBuffer,
+        sizes: [u32; 4],
+        first_knob: f32,
+    ) {
+        let s = self.gi.settings();
+        let (nx, ny, f) = (s.pattern.nx, s.pattern.ny, s.low_res);
+        let (lw, lh) = self.low;
+        let view = |sizes: [u32; 4], pattern: [u32; 4]| GpuView {
+            world_to_texel: world_to_texel.to_cols_array(),
+            view_proj: g.view_proj.to_cols_array(),
+            sizes,
+            pattern,
+            knobs: [first_knob, s.depth_tolerance, s.normal_power, f as f32],
+        };
+        let (rw, rh) = (sizes[2], sizes[3]);
+        let blocks = [
+            view(sizes, [nx, ny, 0, 0]),
+            view([lw, lh, rw, rh], [nx, ny, nx, 0]),
+            view([lw, lh, rw, rh], [nx, ny, ny, 1]),
+            view([self.width, self.height, rw, rh], [nx, ny, lw, lh]),
+        ];
+        for (buf, v) in self.views.iter().zip(blocks) {
+            queue.write_buffer(buf, 0, bytemuck::bytes_of(&v));
+        }
+    }
+
+    /// Records the x and y blur passes over `images[0]` when the pattern interleaves and
+    /// `blur` is set; returns the index of the image holding the result.
+    fn record_blur(
+        &self,
+        device: &wgpu::Device,
+        pass: &mut wgpu::ComputePass<'_>,
+        g: &GpuGBuffer,
+        blur: bool,
+    ) -> usize {
+        if !blur || self.gi.settings().pattern.cells() <= 1 {
+            return 0;
+        }
+        let tv = wgpu::BindingResource::TextureView;
+        let (gx, gy) = groups(self.low);
+        for (k, (src, dst)) in [(0usize, 1usize), (1, 2)].into_iter().enumerate() {
+            let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("rsm_gi blur"),
+                layout: &self.blur.1,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: self.views[k + 1].as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry { binding: 1, resource: tv(&g.position) },
+                    wgpu::BindGroupEntry { binding: 2, resource: tv(&g.normal) },
+                    wgpu::BindGroupEntry {
+                        binding: 3,
+                        resource: self.images[src].as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 4,
+                        resource: self.images[dst].as_entire_binding(),
+                    },
+                ],
+            });
+            pass.set_pipeline(&self.blur.0);
+            pass.set_bind_group(0, &bind, &[]);
+            pass.dispatch_workgroups(gx, gy, 1);
+        }
+        2
     }
 
     /// Copies `result` (one of this struct's images, as [`GpuGather::record`] returned it)

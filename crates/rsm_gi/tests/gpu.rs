@@ -7,7 +7,9 @@
 mod fixtures;
 
 use glam::{Mat4, Vec3};
-use rsm_gi::gpu::{BLUR_WGSL, GATHER_WGSL, GpuGBuffer, GpuGather, GpuRsm, UPSAMPLE_WGSL};
+use rsm_gi::gpu::{
+    BLUR_WGSL, GATHER_WGSL, GpuGBuffer, GpuGather, GpuRsm, SPLAT_WGSL, UPSAMPLE_WGSL,
+};
 use rsm_gi::{GBuffer, Interleave, RsmGi, RsmInput, Sampling, Settings};
 
 fn validate(src: &str) {
@@ -22,7 +24,7 @@ fn validate(src: &str) {
 
 #[test]
 fn shaders_validate_with_naga() {
-    for s in [GATHER_WGSL, BLUR_WGSL, UPSAMPLE_WGSL] {
+    for s in [GATHER_WGSL, BLUR_WGSL, UPSAMPLE_WGSL, SPLAT_WGSL] {
         validate(s);
     }
     // The texel-area cap is one number on both sides.
@@ -111,6 +113,58 @@ fn gpu_gather_and_blur_match_the_cpu() {
             assert_eq!(on_gpu[9], Vec3::ZERO);
         }
     }
+    // The splat: the same VPLs splatted on the GPU (per pixel, its cell's VPLs in order)
+    // and on the CPU (per VPL, over its footprint), with and without the energy scale and
+    // the blur; re-recording creates no buffer.
+    for (pattern, scale) in
+        [(Interleave::NONE, true), (Interleave::P2X2, true), (Interleave::P4X4, false)]
+    {
+        let s = Settings {
+            vpls: 200,
+            pattern,
+            splat_radius: 3.0,
+            splat_energy_scale: scale,
+            ..Settings::DEFAULT
+        };
+        let gi = RsmGi::new(s).unwrap();
+        let (vpls, _) = gi.splat_vpls(&rsm).unwrap();
+        let splat = GpuGather::splat(&ctx.device, &gi, w, h, 256).unwrap();
+        for blur in [false, true] {
+            let mut encoder = ctx.device.create_command_encoder(&Default::default());
+            let out = splat
+                .record_splat(&ctx.device, &ctx.queue, &mut encoder, &vpls, &gpu_g, blur)
+                .unwrap();
+            ctx.queue.submit([encoder.finish()]);
+            let on_gpu = splat.read_back(&ctx.device, &ctx.queue, out).unwrap();
+            let cpu = if blur { gi.splat(&rsm, &g) } else { gi.without_blur().splat(&rsm, &g) }
+                .unwrap()
+                .irradiance;
+            let d = rel_l2(&on_gpu, &cpu);
+            eprintln!(
+                "{} splat {pattern:?} scale={scale} blur={blur}: rel L2 = {d:e}",
+                ctx.describe()
+            );
+            assert!(
+                d < 1e-5 && cpu.iter().any(|e| e.x > 0.0),
+                "splat {pattern:?} blur={blur}: {d}"
+            );
+        }
+        let too_many = vec![vpls[0]; 257];
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        assert!(
+            splat
+                .record_splat(&ctx.device, &ctx.queue, &mut encoder, &too_many, &gpu_g, true)
+                .is_err()
+        );
+        assert!(
+            splat.record(&ctx.device, &ctx.queue, &mut encoder, &gpu_rsm, &gpu_g, true).is_err()
+        );
+    }
+    let low = RsmGi::new(Settings { low_res: 2, ..Settings::DEFAULT }).unwrap();
+    assert!(
+        GpuGather::splat(&ctx.device, &low, w, h, 16).is_err(),
+        "the GPU splat is full resolution"
+    );
     // A G-buffer of another size is a typed error, not a panic.
     let gi = RsmGi::new(Settings::DEFAULT).unwrap();
     let gather = GpuGather::new(&ctx.device, &gi, 8, 8, 64).unwrap();
