@@ -42,38 +42,71 @@ fn rel_l2(a: &[Vec3], b: &[Vec3]) -> f64 {
     (num / den.max(1e-30)).sqrt()
 }
 
+/// A sunlit floor with a dark stripe (one NaN texel, one uncovered), seen from above at an
+/// angle with a depth step, odd-sized, with a background pixel, a non-finite one and lone
+/// pixels facing away from their neighbours (no coarse pixel fits them).
+struct Scene {
+    flux: Vec<Vec3>,
+    normal: Vec<Vec3>,
+    position: Vec<Vec3>,
+    projection: rsm_gi::RsmProjection,
+    gp: Vec<Vec3>,
+    gn: Vec<Vec3>,
+    view_proj: Mat4,
+}
+
+const W: u32 = 37;
+const H: u32 = 23;
+
+impl Scene {
+    fn new() -> Self {
+        let (mut flux, mut normal, position, projection) =
+            fixtures::floor_rsm(64, 8.0, Vec3::new(0.02, 0.015, 0.01));
+        for i in 0..64 * 8 {
+            flux[64 * 20 + i] = Vec3::ZERO;
+        }
+        flux[5] = Vec3::NAN;
+        normal[7] = Vec3::ZERO;
+        let eye = Vec3::new(4.0, 2.5, 4.0);
+        let (mut gp, _, _) = fixtures::gbuffer(eye, W, H, |x, _| if x < 15 { 1.5 } else { 2.5 });
+        let mut gn: Vec<Vec3> =
+            (0..W * H).map(|i| Vec3::new(0.1 * (i % 3) as f32, -0.6, 1.0).normalize()).collect();
+        gn[3] = Vec3::ZERO;
+        for (x, y) in [(8, 8), (10, 10), (17, 13)] {
+            gn[(y * W + x) as usize] = Vec3::new(1.0, 0.2, 0.0).normalize();
+        }
+        gp[9] = Vec3::INFINITY;
+        let view_proj = fixtures::camera(eye, W, H);
+        Self { flux, normal, position, projection, gp, gn, view_proj }
+    }
+
+    fn rsm(&self) -> RsmInput<'_> {
+        RsmInput {
+            width: 64,
+            height: 64,
+            flux: &self.flux,
+            normal: &self.normal,
+            position: &self.position,
+            projection: self.projection,
+        }
+    }
+
+    fn g(&self) -> GBuffer<'_> {
+        GBuffer {
+            width: W,
+            height: H,
+            position: &self.gp,
+            normal: &self.gn,
+            view_proj: self.view_proj,
+        }
+    }
+}
+
 #[test]
 fn gpu_gather_and_blur_match_the_cpu() {
     let Some(ctx) = gpu_harness::gpu_test_context() else { return };
-    // A sunlit floor with a dark stripe, seen from above at an angle, with a depth step.
-    let (mut flux, mut normal, position, projection) =
-        fixtures::floor_rsm(64, 8.0, Vec3::new(0.02, 0.015, 0.01));
-    for i in 0..64 * 8 {
-        flux[64 * 20 + i] = Vec3::ZERO;
-    }
-    flux[5] = Vec3::NAN;
-    normal[7] = Vec3::ZERO;
-    let rsm = RsmInput {
-        width: 64,
-        height: 64,
-        flux: &flux,
-        normal: &normal,
-        position: &position,
-        projection,
-    };
-    let (w, h) = (37, 23);
-    let eye = Vec3::new(4.0, 2.5, 4.0);
-    let (mut gp, _, _) = fixtures::gbuffer(eye, w, h, |x, _| if x < 15 { 1.5 } else { 2.5 });
-    let view_proj = fixtures::camera(eye, w, h);
-    let mut gn: Vec<Vec3> =
-        (0..w * h).map(|i| Vec3::new(0.1 * (i % 3) as f32, -0.6, 1.0).normalize()).collect();
-    gn[3] = Vec3::ZERO;
-    // Lone pixels facing away from their neighbours: no coarse pixel fits them.
-    for (x, y) in [(8, 8), (10, 10), (17, 13)] {
-        gn[(y * w + x) as usize] = Vec3::new(1.0, 0.2, 0.0).normalize();
-    }
-    gp[9] = Vec3::INFINITY;
-    let g = GBuffer { width: w, height: h, position: &gp, normal: &gn, view_proj };
+    let scene = Scene::new();
+    let (rsm, g, (w, h)) = (scene.rsm(), scene.g(), (W, H));
     let gpu_rsm = GpuRsm::upload(&ctx.device, &ctx.queue, &rsm).unwrap();
     let gpu_g = GpuGBuffer::upload(&ctx.device, &ctx.queue, &g).unwrap();
     for (pattern, sampling, low_res) in [
@@ -113,9 +146,23 @@ fn gpu_gather_and_blur_match_the_cpu() {
             assert_eq!(on_gpu[9], Vec3::ZERO);
         }
     }
-    // The splat: the same VPLs splatted on the GPU (per pixel, its cell's VPLs in order)
-    // and on the CPU (per VPL, over its footprint), with and without the energy scale and
-    // the blur; re-recording creates no buffer.
+    // A G-buffer of another size is a typed error, not a panic.
+    let gi = RsmGi::new(Settings::DEFAULT).unwrap();
+    let gather = GpuGather::new(&ctx.device, &gi, 8, 8, 64).unwrap();
+    let mut encoder = ctx.device.create_command_encoder(&Default::default());
+    assert!(gather.record(&ctx.device, &ctx.queue, &mut encoder, &gpu_rsm, &gpu_g, true).is_err());
+    let _ = Mat4::IDENTITY;
+}
+
+/// The splat: the same VPLs splatted on the GPU (per pixel, its cell's VPLs in order) and on
+/// the CPU (per VPL, over its footprint), with and without the energy scale and the blur.
+#[test]
+fn gpu_splat_matches_the_cpu() {
+    let Some(ctx) = gpu_harness::gpu_test_context() else { return };
+    let scene = Scene::new();
+    let (rsm, g, (w, h)) = (scene.rsm(), scene.g(), (W, H));
+    let gpu_rsm = GpuRsm::upload(&ctx.device, &ctx.queue, &rsm).unwrap();
+    let gpu_g = GpuGBuffer::upload(&ctx.device, &ctx.queue, &g).unwrap();
     for (pattern, scale) in
         [(Interleave::NONE, true), (Interleave::P2X2, true), (Interleave::P4X4, false)]
     {
@@ -165,10 +212,4 @@ fn gpu_gather_and_blur_match_the_cpu() {
         GpuGather::splat(&ctx.device, &low, w, h, 16).is_err(),
         "the GPU splat is full resolution"
     );
-    // A G-buffer of another size is a typed error, not a panic.
-    let gi = RsmGi::new(Settings::DEFAULT).unwrap();
-    let gather = GpuGather::new(&ctx.device, &gi, 8, 8, 64).unwrap();
-    let mut encoder = ctx.device.create_command_encoder(&Default::default());
-    assert!(gather.record(&ctx.device, &ctx.queue, &mut encoder, &gpu_rsm, &gpu_g, true).is_err());
-    let _ = Mat4::IDENTITY;
 }
