@@ -37,12 +37,13 @@ fn switched_off_effects_skip_their_passes_and_come_back() {
     assert!(!need.needed && need.reason == "sun shadows switched off", "{need:?}");
     let (lum_unshadowed, finite) = common::hdr_stats(&unshadowed);
     assert!(finite && lum_unshadowed > lum_on * 1.02, "{lum_unshadowed} vs on {lum_on}");
-    // Without the bounce (the presets' RSM gather): less light than with it.
+    // Without the bounce (the presets' RSM gather): less light than with it (on the city the
+    // bounce is about 1% of the frame's luminance since the RSM takes the albedo textures).
     r.set_effect(Effect::IndirectLight, false);
     let unbounced = r.render_frame().expect("frame");
     skipped_by_switch(&unbounced, pass::SUN_RSM, Effect::IndirectLight);
     let (lum_unbounced, _) = common::hdr_stats(&unbounced);
-    assert!(lum_unbounced < lum_unshadowed * 0.98, "{lum_unbounced} vs {lum_unshadowed}");
+    assert!(lum_unbounced < lum_unshadowed * 0.997, "{lum_unbounced} vs {lum_unshadowed}");
     for e in Effect::ALL {
         r.set_effect(e, true);
         assert!(r.effect(e));
