@@ -230,6 +230,9 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
         .collect();
     notes.push(format!("sky volume complete: {}", renderer.sky_volume_complete()));
     notes.push(format!("one-bounce technique: {}", job.indirect));
+    if let Some(c) = renderer.radiance_cache().filter(|_| job.indirect == Indirect::Cache) {
+        notes.push(format!("radiance cache: {c}"));
+    }
     notes.push(format!(
         "the passes table is of frame {}: after {} frames of a still camera the camera moved 1 cm, \
          so every per-frame pass ran while the sky map and sky volume were reused",

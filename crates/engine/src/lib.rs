@@ -89,6 +89,7 @@ pub use effects::{Effect, Effects};
 pub use error::EngineError;
 pub use gpu::TransferCounts;
 pub use graph::pass;
+pub use passes::radiance_cache::CacheSummary;
 pub use renderer::{Frame, FrameStats, HdrFrame, Renderer};
 pub use settings::{Indirect, Preset, Settings, Specular};
 pub use views::{Channel, View};

@@ -243,6 +243,11 @@ impl Renderer {
         self.fixed_dt = dt;
     }
 
+    /// What the radiance cache's last update did (`Indirect::Cache`; `None` before its first).
+    pub fn radiance_cache(&self) -> Option<crate::CacheSummary> {
+        self.state.cache.read().ok().and_then(|c| c.summary())
+    }
+
     /// Whether the amortised sky volume has completed its current cycle.
     pub fn sky_volume_complete(&self) -> bool {
         self.scheduler.progress(self.sky_volume).is_some_and(|p| p.complete())

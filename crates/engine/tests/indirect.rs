@@ -185,6 +185,12 @@ fn the_radiance_cache_is_amortised_over_frames() {
         (0..total).map(|i| Outcome::Amortised { from: i, to: i + 1, total }).collect();
     expected.extend([Outcome::Reused, Outcome::Reused]);
     assert_eq!(outcomes, expected);
+    // The report of the last update: the view's share of the grids, every cache lit, the
+    // oldest light at most the frames a budget needs to go round.
+    let c = r.radiance_cache().expect("a cache summary");
+    assert!(c.allocated > 0 && c.allocated < c.full_grid / 4, "{c}");
+    assert!(c.never_lit == 0 && c.lit > 0 && c.memory_bytes > 0, "{c}");
+    assert!(c.oldest_age_frames < n as u64, "{c}");
     let mut camera = *r.camera();
     camera.position += glam::Vec3::new(0.05, 0.0, 0.0);
     r.set_camera(camera).expect("camera");
