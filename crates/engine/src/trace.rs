@@ -14,7 +14,9 @@
 //!   max(0, r . l)^n E_sun V_sun cos)` with `w_b = 1 - reflectivity - transparency`, `g` the
 //!   glossiness, `n` the specular power and `r` the mirror direction of the ray. Visibility
 //!   `V` comes from shadow rays through the same tree, which replace the thesis's overlapped
-//!   shadow maps (6.3.1); point lights contribute nothing beyond their radius. The indirect
+//!   shadow maps (6.3.1); glass panes on the way pass `transparency * (1 - F)` of the light
+//!   (the sun lights a glass tower's floors, as it does in the reference, where it is a
+//!   caustic); point lights contribute nothing beyond their radius. The indirect
 //!   irradiance `E_ambient` is the caller's (the engine passes its sky volume + LPV lookup).
 //! - **Sky correction** (6.3.2): a ray that leaves the scene returns the sky radiance in its
 //!   direction.
@@ -62,7 +64,17 @@ pub struct TraceScene {
     /// Indexed by [`TextureId`]; only textures some material uses are kept.
     textures: Vec<Option<Texture>>,
     any_alpha: bool,
+    any_glass: bool,
     epsilon: f32,
+}
+
+/// Most surfaces a shadow ray passes through before it counts as blocked.
+const MAX_TRANSMISSIONS: u32 = 16;
+
+/// Fresnel-Schlick reflectance of a dielectric of index `ior` at incidence cosine `cos`.
+fn fresnel_schlick(ior: f32, cos: f32) -> f32 {
+    let r0 = ((ior - 1.0) / (ior + 1.0)).powi(2);
+    r0 + (1.0 - r0) * (1.0 - cos.clamp(0.0, 1.0)).powi(5)
 }
 
 impl TraceScene {
@@ -132,6 +144,7 @@ impl TraceScene {
             normals,
             uvs,
             any_alpha: scene.materials.iter().any(|m| m.alpha_mask.is_some()),
+            any_glass: scene.materials.iter().any(Material::is_transparent),
             materials: scene.materials.clone(),
             textures,
             epsilon: 2e-5 * extent,
@@ -201,6 +214,34 @@ impl TraceScene {
         } else {
             self.tree.occluded(&Ray::new(origin, dir), t_max)
         }
+    }
+
+    /// The fraction of light that travels along the ray within `[0, t_max]`: 0 behind an
+    /// opaque surface, 1 in the open, and through glass the product over the panes crossed
+    /// of `transparency * (1 - F)` (Fresnel-Schlick at the pane). The ray goes straight on:
+    /// a thin pane shifts light but does not turn it, and the refraction's bend is left out.
+    /// Alpha-tested holes let light through with `alpha`.
+    fn transmittance(&self, origin: Vec3, dir: Vec3, t_max: f32, alpha: bool) -> f32 {
+        if !self.any_glass {
+            return if self.occluded(origin, dir, t_max, alpha) { 0.0 } else { 1.0 };
+        }
+        if !self.tree.occluded(&Ray::new(origin, dir), t_max) {
+            return 1.0;
+        }
+        let (mut t_min, mut through) = (0.0, 1.0);
+        for _ in 0..MAX_TRANSMISSIONS {
+            let Some(h) = self.intersect_from(origin, dir, t_min, t_max, alpha) else {
+                return through;
+            };
+            let m = self.material(&h);
+            if !m.is_transparent() {
+                return 0.0;
+            }
+            let cos = dir.dot(self.geometric_normal(&h)).abs();
+            through *= m.transparency * (1.0 - fresnel_schlick(m.ior, cos));
+            t_min = h.t + (h.t * 1e-6).max(1e-7);
+        }
+        0.0
     }
 
     /// The unit geometric normal of a hit triangle (zero for a degenerate one).
@@ -348,9 +389,7 @@ impl Tracer<'_> {
             let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
             let t = eta * dir + (eta * cos_i - k.max(0.0).sqrt()) * n;
             if k > 0.0 && t.dot(ng) < 0.0 {
-                let r0 = ((m.ior - 1.0) / (m.ior + 1.0)).powi(2);
-                let cos = if front { cos_i } else { k.sqrt() };
-                let f = r0 + (1.0 - r0) * (1.0 - cos.clamp(0.0, 1.0)).powi(5);
+                let f = fresnel_schlick(m.ior, if front { cos_i } else { k.sqrt() });
                 w_reflect += m.transparency * f;
                 refracted = Some((m.transparency * (1.0 - f), t.normalize()));
             } else {
@@ -377,7 +416,10 @@ impl Tracer<'_> {
         let mut specular = Vec3::ZERO;
         if let Some((l, e)) = self.sun {
             let cos = n.dot(l);
-            if cos > 0.0 && !s.occluded(po, l, f32::INFINITY, self.alpha) {
+            let through =
+                if cos > 0.0 { s.transmittance(po, l, f32::INFINITY, self.alpha) } else { 0.0 };
+            if through > 0.0 {
+                let e = e * through;
                 irradiance += e * cos;
                 let rc = reflect(dir, n).dot(l);
                 if m.glossiness > 0.0 && rc > 0.0 {
@@ -396,8 +438,13 @@ impl Tracer<'_> {
             let d = d2.sqrt();
             let l = to / d;
             let cos = n.dot(l);
-            if cos > 0.0 && !(light.casts_shadows && s.occluded(po, l, d - s.epsilon, self.alpha)) {
-                irradiance += finite(light.color) * (cos / d2);
+            if cos > 0.0 {
+                let through = if light.casts_shadows {
+                    s.transmittance(po, l, d - s.epsilon, self.alpha)
+                } else {
+                    1.0
+                };
+                irradiance += finite(light.color) * (through * cos / d2);
             }
         }
         (1.0 - m.glossiness) * albedo / PI * irradiance + specular

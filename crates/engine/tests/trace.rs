@@ -104,7 +104,7 @@ fn mirror_reflects_the_lit_floor_only_with_recursion() {
 }
 
 #[test]
-fn glass_splits_with_schlick() {
+fn glass_splits_with_schlick_and_passes_sunlight() {
     let mut s = floor_scene();
     let glass = s.add_material(Material {
         albedo: Vec3::ZERO,
@@ -118,10 +118,26 @@ fn glass_splits_with_schlick() {
     let origin = Vec3::new(0.0, 0.6, 0.0);
     let got = trace(&s, sun, Vec3::ONE, &[TraceRay { origin, dir }], D2)[0];
     // The refracted ray reaches the sunlit floor behind the pane; the reflected one the floor
-    // in front of it, in the pane's shadow (glass casts shadows): ambient light only.
-    let f = 0.04 + 0.96 * (1.0 - dir.x).powi(5);
-    let want = 0.9 * f * 0.5 / PI + 0.9 * (1.0 - f) * 0.5 / PI * (E * sun.y + 1.0);
+    // in front of it, where the sun arrives through the pane: `0.9 (1 - F)` of it, Fresnel
+    // at the sun's incidence on the pane (its normal is x).
+    let schlick = |cos: f32| 0.04 + 0.96 * (1.0 - cos).powi(5);
+    let f = schlick(dir.x);
+    let through = 0.9 * (1.0 - schlick(sun.x));
+    let want = 0.9 * f * 0.5 / PI * (E * sun.y * through + 1.0)
+        + 0.9 * (1.0 - f) * 0.5 / PI * (E * sun.y + 1.0);
     assert!(close(got, want), "{got} vs {want}");
+    // Two panes in a row pass the product; an opaque wall behind them blocks all of it.
+    s.meshes.push(quad(Vec3::new(1.8, 0.0, -3.0), Vec3::Z * 6.0, Vec3::Y * 3.0, glass));
+    let two =
+        trace(&s, sun, Vec3::ZERO, &[ray(Vec3::new(1.5, 1.0, 0.0), Vec3::new(1.6, 0.0, 0.0))], D1)
+            [0];
+    let want = 0.5 / PI * E * sun.y * through * through;
+    assert!(close(two, want), "{two} vs {want}");
+    s.meshes.push(quad(Vec3::new(1.9, 0.0, -3.0), Vec3::Z * 6.0, Vec3::Y * 3.0, MaterialId(0)));
+    let none =
+        trace(&s, sun, Vec3::ZERO, &[ray(Vec3::new(1.5, 1.0, 0.0), Vec3::new(1.6, 0.0, 0.0))], D1)
+            [0];
+    assert!(none.max_element() < 1e-6, "{none}");
 }
 
 #[test]
