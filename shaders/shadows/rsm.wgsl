@@ -1,3 +1,5 @@
+// include: shadows/mask.inc.wgsl
+//
 // Reflective shadow map pass (Dachsbacher & Stamminger 2005): depth plus three targets per
 // texel: reflected flux (light colour * albedo * texel area), world normal facing the light,
 // world position.
@@ -17,10 +19,10 @@ struct VsOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) world: vec3<f32>,
     @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
 }
 
-@vertex
-fn vs_main(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>) -> VsOut {
+fn transform(position: vec3<f32>, normal: vec3<f32>) -> VsOut {
     var o: VsOut;
     o.clip = draw.clip_from_local * vec4<f32>(position, 1.0);
     o.world = (draw.world_from_local * vec4<f32>(position, 1.0)).xyz;
@@ -30,14 +32,30 @@ fn vs_main(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>) -> 
     return o;
 }
 
+@vertex
+fn vs_main(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>) -> VsOut {
+    return transform(position, normal);
+}
+
+// Alpha-tested draws: the same, with texture coordinates for `fs_masked`.
+@vertex
+fn vs_masked(
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+) -> VsOut {
+    var o = transform(position, normal);
+    o.uv = uv;
+    return o;
+}
+
 struct FsOut {
     @location(0) flux: vec4<f32>,
     @location(1) normal: vec4<f32>,
     @location(2) position: vec4<f32>,
 }
 
-@fragment
-fn fs_main(i: VsOut) -> FsOut {
+fn shade(i: VsOut) -> FsOut {
     var n = normalize(i.normal);
     if dot(n, draw.to_light.xyz) < 0.0 {
         n = -n;
@@ -47,4 +65,17 @@ fn fs_main(i: VsOut) -> FsOut {
     o.normal = vec4<f32>(n, 1.0);
     o.position = vec4<f32>(i.world, 1.0);
     return o;
+}
+
+@fragment
+fn fs_main(i: VsOut) -> FsOut {
+    return shade(i);
+}
+
+@fragment
+fn fs_masked(i: VsOut) -> FsOut {
+    if mask_is_hole(i.uv) {
+        discard;
+    }
+    return shade(i);
 }

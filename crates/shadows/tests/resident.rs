@@ -51,12 +51,7 @@ impl Buffers {
     }
 
     fn geometry(&self) -> Geometry<'_> {
-        Geometry {
-            vertices: &self.vertices,
-            indices: &self.indices,
-            index_format: wgpu::IndexFormat::Uint32,
-            draws: &self.draws,
-        }
+        Geometry::opaque(&self.vertices, &self.indices, wgpu::IndexFormat::Uint32, &self.draws)
     }
 }
 

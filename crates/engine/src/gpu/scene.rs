@@ -75,6 +75,8 @@ pub struct SceneBuffers {
     /// them.
     pub all_triangles: Vec<shadows::gpu::DrawRange>,
     pub material_ranges: Vec<shadows::gpu::DrawRange>,
+    /// Per material draw, the alpha mask of an alpha-tested one.
+    pub shadow_masks: Vec<Option<shadows::gpu::AlphaMask>>,
 }
 
 /// The scene's meshes in world space, sorted by material: vertices, indices, and one draw per
@@ -140,52 +142,87 @@ fn material_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     })
 }
 
-/// The scene's textures uploaded and one bind group per material (a missing texture binds
-/// white).
-fn material_groups(
-    device: &wgpu::Device,
-    queue: &wgpu::Queue,
-    scene: &scene::Scene,
-    layout: &wgpu::BindGroupLayout,
-) -> Vec<wgpu::BindGroup> {
-    let textures: Vec<wgpu::TextureView> =
-        scene.textures.iter().map(|t| upload_texture(device, queue, t)).collect();
-    let solid = scene::Texture::solid("white", glam::Vec4::ONE).expect("a solid texture is valid");
-    let white = upload_texture(device, queue, &solid);
-    let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-        label: Some("material sampler"),
-        address_mode_u: wgpu::AddressMode::Repeat,
-        address_mode_v: wgpu::AddressMode::Repeat,
-        mag_filter: wgpu::FilterMode::Linear,
-        min_filter: wgpu::FilterMode::Linear,
-        mipmap_filter: wgpu::MipmapFilterMode::Linear,
-        anisotropy_clamp: 4,
-        ..Default::default()
-    });
-    let view_of =
-        |id: Option<scene::TextureId>| id.and_then(|t| textures.get(t.index())).unwrap_or(&white);
-    let tv = wgpu::BindingResource::TextureView;
-    scene
-        .materials
-        .iter()
-        .map(|m| {
-            device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("material"),
-                layout,
-                entries: &[
-                    wgpu::BindGroupEntry { binding: 0, resource: tv(view_of(m.albedo_texture)) },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: tv(view_of(m.alpha_mask.map(|a| a.texture))),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 2,
-                        resource: wgpu::BindingResource::Sampler(&sampler),
-                    },
-                ],
+/// The scene's textures uploaded, with the white texture that stands in for a missing one
+/// and the sampler every material uses.
+struct MaterialTextures {
+    views: Vec<wgpu::TextureView>,
+    white: wgpu::TextureView,
+    sampler: wgpu::Sampler,
+}
+
+impl MaterialTextures {
+    fn new(device: &wgpu::Device, queue: &wgpu::Queue, scene: &scene::Scene) -> Self {
+        let views = scene.textures.iter().map(|t| upload_texture(device, queue, t)).collect();
+        let solid =
+            scene::Texture::solid("white", glam::Vec4::ONE).expect("a solid texture is valid");
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("material sampler"),
+            address_mode_u: wgpu::AddressMode::Repeat,
+            address_mode_v: wgpu::AddressMode::Repeat,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            mipmap_filter: wgpu::MipmapFilterMode::Linear,
+            anisotropy_clamp: 4,
+            ..Default::default()
+        });
+        Self { views, white: upload_texture(device, queue, &solid), sampler }
+    }
+
+    fn view(&self, id: Option<scene::TextureId>) -> &wgpu::TextureView {
+        id.and_then(|t| self.views.get(t.index())).unwrap_or(&self.white)
+    }
+
+    /// One bind group per material (albedo, alpha mask, sampler).
+    fn groups(
+        &self,
+        device: &wgpu::Device,
+        scene: &scene::Scene,
+        layout: &wgpu::BindGroupLayout,
+    ) -> Vec<wgpu::BindGroup> {
+        let tv = wgpu::BindingResource::TextureView;
+        scene
+            .materials
+            .iter()
+            .map(|m| {
+                device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("material"),
+                    layout,
+                    entries: &[
+                        wgpu::BindGroupEntry {
+                            binding: 0,
+                            resource: tv(self.view(m.albedo_texture)),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 1,
+                            resource: tv(self.view(m.alpha_mask.map(|a| a.texture))),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 2,
+                            resource: wgpu::BindingResource::Sampler(&self.sampler),
+                        },
+                    ],
+                })
             })
-        })
-        .collect()
+            .collect()
+    }
+
+    /// Per draw, the `shadows` mask of an alpha-tested material (`None`: opaque), so that
+    /// leaves cast the shadow of their texture, not of their quads.
+    fn shadow_masks(
+        &self,
+        device: &wgpu::Device,
+        scene: &scene::Scene,
+        draws: &[Draw],
+    ) -> Vec<Option<shadows::gpu::AlphaMask>> {
+        draws
+            .iter()
+            .map(|d| {
+                let mask = scene.materials.get(d.material as usize)?.alpha_mask?;
+                let view = self.view(Some(mask.texture));
+                shadows::gpu::AlphaMask::new(device, view, &self.sampler, mask.cutoff).ok()
+            })
+            .collect()
+    }
 }
 
 /// [`SceneBuffers::diffuse_albedo`] of one material.
@@ -205,7 +242,9 @@ impl SceneBuffers {
             scene.materials.iter().map(GpuMaterial::new).collect();
         let diffuse_albedo = scene.materials.iter().map(|m| diffuse_albedo(scene, m)).collect();
         let material_layout = material_layout(device);
-        let material_groups = material_groups(device, queue, scene, &material_layout);
+        let textures = MaterialTextures::new(device, queue, scene);
+        let material_groups = textures.groups(device, scene, &material_layout);
+        let shadow_masks = textures.shadow_masks(device, scene, &draws);
         let range = |first: u32, count: u32| shadows::gpu::DrawRange {
             indices: first..first + count,
             base_vertex: 0,
@@ -235,21 +274,37 @@ impl SceneBuffers {
             triangle_count: indices.len() / 3,
             all_triangles: vec![range(0, indices.len() as u32)],
             material_ranges,
+            shadow_masks,
         }
     }
 
-    /// Where positions and normals sit in a [`Vertex`], for the `shadows` passes.
-    pub const SHADOW_LAYOUT: shadows::gpu::VertexLayout =
-        shadows::gpu::VertexLayout { stride: 36, position_offset: 0, normal_offset: 12 };
+    /// Where positions, normals and texture coordinates sit in a [`Vertex`], for the
+    /// `shadows` passes.
+    pub const SHADOW_LAYOUT: shadows::gpu::VertexLayout = shadows::gpu::VertexLayout {
+        stride: 36,
+        position_offset: 0,
+        normal_offset: 12,
+        uv_offset: Some(24),
+    };
 
-    /// The scene as the `shadows` passes draw it: all triangles in one draw (`by_material`
-    /// false) or one draw per material, in [`Self::draws`] order.
+    /// The scene as the `shadows` passes draw it: one draw per material, in [`Self::draws`]
+    /// order, with the alpha masks (`by_material`, or when a material is alpha-tested), else
+    /// all triangles in one draw.
     pub fn shadow_geometry(&self, by_material: bool) -> shadows::gpu::Geometry<'_> {
+        let masked = self.shadow_masks.iter().any(Option::is_some);
+        let (draws, masks) = if by_material || masked {
+            (&self.material_ranges, &self.shadow_masks[..])
+        } else {
+            (&self.all_triangles, &[][..])
+        };
         shadows::gpu::Geometry {
-            vertices: &self.vertices,
-            indices: &self.indices,
-            index_format: wgpu::IndexFormat::Uint32,
-            draws: if by_material { &self.material_ranges } else { &self.all_triangles },
+            masks,
+            ..shadows::gpu::Geometry::opaque(
+                &self.vertices,
+                &self.indices,
+                wgpu::IndexFormat::Uint32,
+                draws,
+            )
         }
     }
 

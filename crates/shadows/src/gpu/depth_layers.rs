@@ -2,7 +2,8 @@
 //! layers, the depth pipeline for the caller's vertex layout, and one view-projection slot per
 //! layer. Sun cascades and point-light cube faces are both layers of such a texture.
 
-use super::geometry::{Geometry, VertexLayout};
+use super::geometry::{Geometry, Pipelines, VertexLayout};
+use super::mask::mask_layout;
 use super::slots::UniformSlots;
 use super::{DEPTH_WGSL, device_call};
 use crate::error::ShadowError;
@@ -34,56 +35,65 @@ pub(crate) fn depth_attachment(
     }
 }
 
-/// A shadow pipeline: `source`'s `vs_main` over the caller's `vertex` layout (normals at
-/// location 1 when there are colour `targets`, drawn by `fs_main`), group 0 the draw `slots`,
-/// depth test and write, no culling (both windings cast; cube faces mirror them).
-pub(crate) fn shadow_pipeline(
+/// A pass's shadow pipelines over the caller's `vertex` layout, group 0 the draw `slots`,
+/// depth test and write, no culling (both windings cast; cube faces mirror them): the opaque
+/// one (`source`'s `vs_main`, normals at location 1 when there are colour `targets`, drawn by
+/// `fs_main`) and, when the layout has texture coordinates, the alpha-tested one (`vs_masked`
+/// and `fs_masked`, the mask at group 1).
+pub(crate) fn shadow_pipelines(
     device: &wgpu::Device,
     label: &str,
     source: &str,
     slots: &UniformSlots,
     vertex: VertexLayout,
     targets: &[Option<wgpu::ColorTargetState>],
-) -> wgpu::RenderPipeline {
+) -> Pipelines {
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(label),
         source: wgpu::ShaderSource::Wgsl(source.into()),
     });
-    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some(label),
-        bind_group_layouts: &[Some(&slots.layout)],
-        immediate_size: 0,
-    });
-    let attributes = vertex.attributes(!targets.is_empty());
-    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some(label),
-        layout: Some(&layout),
-        vertex: wgpu::VertexState {
-            module: &module,
-            entry_point: Some("vs_main"),
-            compilation_options: Default::default(),
-            buffers: &[Some(wgpu::VertexBufferLayout {
-                array_stride: vertex.stride,
-                step_mode: wgpu::VertexStepMode::Vertex,
-                attributes: &attributes,
-            })],
-        },
-        primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
-        depth_stencil: Some(depth_state()),
-        multisample: Default::default(),
-        fragment: (!targets.is_empty()).then(|| wgpu::FragmentState {
-            module: &module,
-            entry_point: Some("fs_main"),
-            compilation_options: Default::default(),
-            targets,
-        }),
-        multiview_mask: None,
-        cache: None,
-    })
+    let mask = mask_layout(device);
+    let pipeline = |masked: bool| {
+        let groups = [Some(&slots.layout), Some(&mask)];
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(label),
+            bind_group_layouts: if masked { &groups } else { &groups[..1] },
+            immediate_size: 0,
+        });
+        let attributes = vertex.attributes(!targets.is_empty(), masked);
+        let (vs, fs) = if masked { ("vs_masked", "fs_masked") } else { ("vs_main", "fs_main") };
+        let fragment = masked || !targets.is_empty();
+        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(label),
+            layout: Some(&layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some(vs),
+                compilation_options: Default::default(),
+                buffers: &[Some(wgpu::VertexBufferLayout {
+                    array_stride: vertex.stride,
+                    step_mode: wgpu::VertexStepMode::Vertex,
+                    attributes: &attributes,
+                })],
+            },
+            primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
+            depth_stencil: Some(depth_state()),
+            multisample: Default::default(),
+            fragment: fragment.then(|| wgpu::FragmentState {
+                module: &module,
+                entry_point: Some(fs),
+                compilation_options: Default::default(),
+                targets,
+            }),
+            multiview_mask: None,
+            cache: None,
+        })
+    };
+    Pipelines { opaque: pipeline(false), masked: vertex.uv_offset.map(|_| pipeline(true)) }
 }
 
 pub(crate) struct DepthLayers {
-    pipeline: wgpu::RenderPipeline,
+    pipelines: Pipelines,
     pub(crate) texture: wgpu::Texture,
     layer_views: Vec<wgpu::TextureView>,
     slots: UniformSlots,
@@ -112,7 +122,7 @@ impl DepthLayers {
         }
         device_call(device, || {
             let slots = UniformSlots::new(device, label, 64, layers, wgpu::ShaderStages::VERTEX);
-            let pipeline = shadow_pipeline(device, label, DEPTH_WGSL, &slots, vertex, &[]);
+            let pipelines = shadow_pipelines(device, label, DEPTH_WGSL, &slots, vertex, &[]);
             let texture = device.create_texture(&wgpu::TextureDescriptor {
                 label: Some(label),
                 size: wgpu::Extent3d { width: size, height: size, depth_or_array_layers: layers },
@@ -135,7 +145,7 @@ impl DepthLayers {
                     })
                 })
                 .collect();
-            Self { pipeline, texture, layer_views, slots, size }
+            Self { pipelines, texture, layer_views, slots, size }
         })
     }
 
@@ -152,6 +162,7 @@ impl DepthLayers {
         geometry: &Geometry<'_>,
         views: &[(u32, Mat4)],
     ) -> Result<(), ShadowError> {
+        geometry.validate(&self.pipelines)?;
         for (layer, m) in views {
             if !m.is_finite() {
                 return Err(ShadowError::NonFinite("shadow view-projection"));
@@ -169,9 +180,10 @@ impl DepthLayers {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            pass.set_pipeline(&self.pipeline);
-            pass.set_bind_group(0, &self.slots.group, &[self.slots.offset(*layer)]);
-            geometry.draw(&mut pass);
+            let offset = self.slots.offset(*layer);
+            geometry.draw(&mut pass, &self.pipelines, |pass, _| {
+                pass.set_bind_group(0, &self.slots.group, &[offset]);
+            });
         }
         Ok(())
     }

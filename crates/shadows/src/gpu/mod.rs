@@ -9,6 +9,9 @@
 //!   `cube.inc.wgsl` with hardware comparison;
 //! - [`ReflectiveShadowMap`]: depth, flux, normal and position targets.
 //!
+//! Alpha-tested draws (leaves, fences) carry an [`AlphaMask`] in [`Geometry::masks`]: every
+//! pass draws them with a second pipeline that discards the mask's holes.
+//!
 //! Reading back is a separate call (`read_back`) for tests and tools. [`DepthPass`] and
 //! [`RsmPass`] are one-call wrappers over CPU meshes (upload, record, read back).
 //!
@@ -21,6 +24,7 @@ mod cascades;
 mod cubes;
 mod depth_layers;
 mod geometry;
+mod mask;
 mod oneshot;
 pub mod readback;
 mod rsm_pass;
@@ -31,6 +35,7 @@ pub use crate::csm_lookup::CsmCascade;
 pub use cascades::{CascadeMaps, CascadeShadows, MAX_TAPS};
 pub use cubes::{CubeLight, CubeShadows};
 pub use geometry::{DrawRange, Geometry, VertexLayout};
+pub use mask::AlphaMask;
 pub use oneshot::{DepthPass, GpuMesh, RsmPass};
 pub use rsm_pass::ReflectiveShadowMap;
 pub use rsm_vpls::{GpuVplReduction, RSM_VPLS_WGSL};
@@ -65,11 +70,22 @@ pub const CSM_EVAL_WGSL: &str = concat!(
     include_str!("../../../../shaders/shadows/csm_eval.wgsl")
 );
 
-/// The depth-only shadow pass (`shaders/shadows/depth.wgsl`).
-pub const DEPTH_WGSL: &str = include_str!("../../../../shaders/shadows/depth.wgsl");
+/// The alpha-mask snippet of the masked pipelines (`shaders/shadows/mask.inc.wgsl`).
+pub const MASK_INC_WGSL: &str = include_str!("../../../../shaders/shadows/mask.inc.wgsl");
 
-/// The reflective shadow map pass (`shaders/shadows/rsm.wgsl`).
-pub const RSM_WGSL: &str = include_str!("../../../../shaders/shadows/rsm.wgsl");
+/// The depth-only shadow pass (`shaders/shadows/depth.wgsl` after the mask snippet).
+pub const DEPTH_WGSL: &str = concat!(
+    include_str!("../../../../shaders/shadows/mask.inc.wgsl"),
+    "\n",
+    include_str!("../../../../shaders/shadows/depth.wgsl")
+);
+
+/// The reflective shadow map pass (`shaders/shadows/rsm.wgsl` after the mask snippet).
+pub const RSM_WGSL: &str = concat!(
+    include_str!("../../../../shaders/shadows/mask.inc.wgsl"),
+    "\n",
+    include_str!("../../../../shaders/shadows/rsm.wgsl")
+);
 
 /// The `Eval` uniform of `pcss_eval.wgsl`.
 #[repr(C)]

@@ -2,8 +2,8 @@
 //! once at the map's resolution; each record writes the per-draw blocks (flux from each
 //! draw's albedo) and draws the caller's geometry.
 
-use super::depth_layers::{DEPTH_FORMAT, depth_attachment, shadow_pipeline};
-use super::geometry::{Geometry, VertexLayout};
+use super::depth_layers::{DEPTH_FORMAT, depth_attachment, shadow_pipelines};
+use super::geometry::{Geometry, Pipelines, VertexLayout};
 use super::slots::UniformSlots;
 use super::{RSM_WGSL, device_call, readback};
 use crate::depth_map::DepthMap;
@@ -34,7 +34,7 @@ const _: () = assert!(std::mem::size_of::<RsmDraw>() == 160);
 
 /// A reflective shadow map that lives on the GPU.
 pub struct ReflectiveShadowMap {
-    pipeline: wgpu::RenderPipeline,
+    pipelines: Pipelines,
     slots: UniformSlots,
     depth: wgpu::Texture,
     targets: [wgpu::Texture; 3],
@@ -87,11 +87,12 @@ impl ReflectiveShadowMap {
                     write_mask: wgpu::ColorWrites::ALL,
                 })
             });
-            let pipeline = shadow_pipeline(device, "shadows rsm", RSM_WGSL, &slots, vertex, &color);
+            let pipelines =
+                shadow_pipelines(device, "shadows rsm", RSM_WGSL, &slots, vertex, &color);
             let depth = target(device, resolution, DEPTH_FORMAT);
             let targets = RSM_FORMATS.map(|f| target(device, resolution, f));
             Self {
-                pipeline,
+                pipelines,
                 slots,
                 depth_view: depth.create_view(&Default::default()),
                 views: targets.each_ref().map(|t| t.create_view(&Default::default())),
@@ -123,6 +124,7 @@ impl ReflectiveShadowMap {
         light_colour: Vec3,
     ) -> Result<(), ShadowError> {
         finite3(light_colour, "light colour")?;
+        geometry.validate(&self.pipelines)?;
         if view.resolution != self.resolution || albedo.len() != geometry.draws.len() {
             return Err(ShadowError::InvalidParameter {
                 name: "rsm view",
@@ -166,13 +168,9 @@ impl ReflectiveShadowMap {
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_vertex_buffer(0, geometry.vertices.slice(..));
-        pass.set_index_buffer(geometry.indices.slice(..), geometry.index_format);
-        for (i, d) in geometry.draws.iter().enumerate() {
+        geometry.draw(&mut pass, &self.pipelines, |pass, i| {
             pass.set_bind_group(0, &self.slots.group, &[self.slots.offset(i as u32)]);
-            pass.draw_indexed(d.indices.clone(), d.base_vertex, 0..1);
-        }
+        });
         Ok(())
     }
 
