@@ -33,4 +33,6 @@ mod support;
 
 pub use context::{Binding, GpuContext, device_descriptor};
 pub use error::GpuError;
-pub use support::{SKIP_ENV, cast_vec, gpu_test_context, skip_requested};
+pub use support::{
+    LiveObjects, SKIP_ENV, cast_vec, gpu_test_context, live_objects, skip_requested,
+};

@@ -32,3 +32,25 @@ pub fn gpu_test_context() -> Option<GpuContext> {
         Err(e) => panic!("{e}"),
     }
 }
+
+/// GPU objects alive on a device, for tests that check a resident pass creates nothing per
+/// frame (read after the queue drained, so that no staging buffer is counted).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LiveObjects {
+    pub buffers: isize,
+    pub textures: isize,
+    pub texture_views: isize,
+    pub bind_groups: isize,
+}
+
+/// Waits for `device`'s queue to drain and counts its live [`LiveObjects`].
+pub fn live_objects(device: &wgpu::Device) -> LiveObjects {
+    device.poll(wgpu::PollType::wait_indefinitely()).expect("the device polls");
+    let c = device.get_internal_counters().hal;
+    LiveObjects {
+        buffers: c.buffers.read(),
+        textures: c.textures.read(),
+        texture_views: c.texture_views.read(),
+        bind_groups: c.bind_groups.read(),
+    }
+}

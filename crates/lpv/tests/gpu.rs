@@ -156,9 +156,8 @@ fn resident_update_from_rsm_textures_matches_the_cpu() {
         };
         // Live buffers and bind groups once the queue has drained (its staging is gone).
         let live = || {
-            ctx.device.poll(wgpu::PollType::wait_indefinitely()).unwrap();
-            let c = ctx.device.get_internal_counters().hal;
-            [c.buffers.read(), c.bind_groups.read()]
+            let l = gpu_harness::live_objects(&ctx.device);
+            [l.buffers, l.bind_groups]
         };
         record();
         let before = live();

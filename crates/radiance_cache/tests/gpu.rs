@@ -102,9 +102,8 @@ fn resident_lookup_follows_the_cache_without_allocating() {
     let n = pts.len() as u32;
     let mut binding = gpu.bind(&ctx.device, &data, &queries, &output, n);
     let live = || {
-        ctx.device.poll(wgpu::PollType::wait_indefinitely()).unwrap();
-        let c = ctx.device.get_internal_counters().hal;
-        [c.buffers.read(), c.bind_groups.read()]
+        let l = gpu_harness::live_objects(&ctx.device);
+        [l.buffers, l.bind_groups]
     };
     let mut grew = 0;
     for (frame, eye) in

@@ -1,11 +1,13 @@
 //! The GPU path (feature `gpu`), written resident: [`GpuGather`] is built once from a
 //! `wgpu::Device` and a [`RsmGi`] (it owns the pipelines, the sample pattern, the uniform
-//! blocks and the output buffers) and [`GpuGather::record`] adds the interleaved gather and
-//! the two geometry-aware blur passes to an encoder over GPU textures ([`GpuRsm`],
-//! [`GpuGBuffer`]: `Rgba32Float`, xyz used). [`GpuGather::splat`] builds the splat instead
-//! (`shaders/rsm_gi/splat.wgsl`, full resolution): [`GpuGather::record_splat`] uploads the
-//! caller's VPLs ([`RsmGi::splat_vpls`]) and records the splat and the same blur.
-//! Read-back ([`GpuGather::read_back`]) is a separate call for the parity tests.
+//! blocks and the output buffers), bound once to the caller's textures ([`GpuGather::bind`]
+//! over a [`GpuRsm`] and a [`GpuGBuffer`]: `Rgba32Float`, xyz used; a [`GatherBinding`]), and
+//! [`GpuGather::record_bound`] adds the interleaved gather and the two geometry-aware blur
+//! passes to an encoder each frame, creating nothing. [`GpuGather::splat`] builds the splat
+//! instead (`shaders/rsm_gi/splat.wgsl`, full resolution): [`GpuGather::record_splat_bound`]
+//! uploads the caller's VPLs ([`RsmGi::splat_vpls`]) and records the splat and the same blur.
+//! [`GpuGather::record`] and [`GpuGather::record_splat`] bind and record in one call (tests,
+//! tools). Read-back ([`GpuGather::read_back`]) is a separate call for the parity tests.
 //!
 //! The shaders (`shaders/rsm_gi/gather.wgsl`, `blur.wgsl`, `upsample.wgsl`, sharing
 //! `common.inc.wgsl` and `gather.inc.wgsl`) expect finite inputs: [`GpuRsm::upload`] and
@@ -164,6 +166,13 @@ impl GpuGBuffer {
     }
 }
 
+/// Runs `create` inside a validation error scope: the device's complaint becomes an error.
+fn gpu_call<T>(device: &wgpu::Device, create: impl FnOnce() -> T) -> Result<T, RsmGiError> {
+    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let value = create();
+    pollster::block_on(scope.pop()).map_or(Ok(value), |e| Err(RsmGiError::Gpu(e.to_string())))
+}
+
 fn storage(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
@@ -235,6 +244,8 @@ fn pipeline(
 /// The resident interleaved gather + blur (+ upsampling at `low_res` > 1) for one [`RsmGi`]
 /// and one image size.
 pub struct GpuGather {
+    /// Tells this gather's bindings from another's.
+    id: u64,
     gi: RsmGi,
     width: u32,
     height: u32,
@@ -243,18 +254,43 @@ pub struct GpuGather {
     /// The first pass: the gather, or for [`GpuGather::splat`] the splat.
     first: (wgpu::ComputePipeline, wgpu::BindGroupLayout),
     blur: (wgpu::ComputePipeline, wgpu::BindGroupLayout),
-    upsample: (wgpu::ComputePipeline, wgpu::BindGroupLayout),
-    samples: wgpu::Buffer,
-    ranges: wgpu::Buffer,
+    inputs: FirstInputs,
     /// Uniform blocks of the gather, the x blur, the y blur and the upsampling.
     views: [wgpu::Buffer; 4],
     /// On the low grid: the gather's output, the x blur's, the y blur's; then the full
     /// image (the upsampling's).
     images: [wgpu::Buffer; 4],
     readback: wgpu::Buffer,
-    /// The splat's VPLs (`vec4` position, normal, flux each) and how many fit.
-    splat_vpls: Option<(wgpu::Buffer, u32)>,
 }
+
+/// What the first pass reads besides the textures.
+enum FirstInputs {
+    /// The gather: the sample pattern's sub-buffers and their ranges, and at `low_res` > 1
+    /// the upsampling.
+    Gather {
+        samples: wgpu::Buffer,
+        ranges: wgpu::Buffer,
+        upsample: Option<(wgpu::ComputePipeline, wgpu::BindGroupLayout)>,
+    },
+    /// The splat's VPLs (`vec4` position, normal, flux each) and how many fit.
+    Splat { vpls: wgpu::Buffer, capacity: u32 },
+}
+
+/// The bind groups of one [`GpuGather`] over one RSM's and one G-buffer's textures: made once
+/// ([`GpuGather::bind`], [`GpuGather::bind_splat`]) and recorded every frame
+/// ([`GpuGather::record_bound`], [`GpuGather::record_splat_bound`]) without creating anything.
+/// Make a new one when the textures are recreated (a resize).
+pub struct GatherBinding {
+    owner: u64,
+    first: wgpu::BindGroup,
+    blur: [wgpu::BindGroup; 2],
+    /// The upsampling over the gathered image and over the blurred one.
+    upsample: Option<[wgpu::BindGroup; 2]>,
+    /// The RSM's size (the gather's uniform block carries it).
+    rsm_size: (u32, u32),
+}
+
+static NEXT_ID: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
 
 /// The pattern's sub-buffer subsets, then the whole pattern (the upsampling's fallback), as
 /// (samples, ranges): range `c` is cell `c`'s subset, range `cells` the whole pattern.
@@ -299,94 +335,38 @@ impl GpuGather {
         rsm_width: u32,
     ) -> Result<Self, RsmGiError> {
         let s = gi.settings();
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let gather = pipeline(
-            device,
-            "rsm_gi gather",
-            GATHER_WGSL,
-            "gather",
-            &gather_layout(&[storage(8, false)]),
-        );
-        let blur = pipeline(
-            device,
-            "rsm_gi blur",
-            BLUR_WGSL,
-            "blur",
-            &[uniform(0), tex(1), tex(2), storage(3, true), storage(4, false)],
-        );
-        let upsample = pipeline(
-            device,
-            "rsm_gi upsample",
-            UPSAMPLE_WGSL,
-            "upsample",
-            &gather_layout(&[storage(8, false), storage(9, true)]),
-        );
-        let (flat, ranges) = pattern_sets(gi, s.r_max * rsm_width as f32);
-        let init = |label: &str, contents: &[u8], usage| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents,
-                usage,
-            })
-        };
-        let samples =
-            init("rsm_gi samples", bytemuck::cast_slice(&flat), wgpu::BufferUsages::STORAGE);
-        let ranges =
-            init("rsm_gi ranges", bytemuck::cast_slice(&ranges), wgpu::BufferUsages::STORAGE);
-        let uni = |label| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: std::mem::size_of::<GpuView>() as u64,
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            })
-        };
-        let low = (width.div_ceil(s.low_res), height.div_ceil(s.low_res));
-        let img = |label, w: u32, h: u32| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: (w as u64 * h as u64 * 16).max(16),
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-                mapped_at_creation: false,
-            })
-        };
-        let bytes = (width as u64 * height as u64 * 16).max(16);
-        let readback = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("rsm_gi readback"),
-            size: bytes,
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let full = if s.low_res > 1 { (width, height) } else { (1, 1) };
-        let me = Self {
-            gi: gi.clone(),
-            width,
-            height,
-            low,
-            first: gather,
-            blur,
-            upsample,
-            samples,
-            ranges,
-            views: [
-                uni("rsm_gi gather view"),
-                uni("rsm_gi blur x view"),
-                uni("rsm_gi blur y view"),
-                uni("rsm_gi upsample view"),
-            ],
-            images: [
-                img("rsm_gi gathered", low.0, low.1),
-                img("rsm_gi blurred x", low.0, low.1),
-                img("rsm_gi blurred", low.0, low.1),
-                img("rsm_gi upsampled", full.0, full.1),
-            ],
-            readback,
-            splat_vpls: None,
-        };
-        if let Some(err) = pollster::block_on(scope.pop()) {
-            return Err(RsmGiError::Gpu(err.to_string()));
-        }
-        Ok(me)
+        gpu_call(device, || {
+            let first = pipeline(
+                device,
+                "rsm_gi gather",
+                GATHER_WGSL,
+                "gather",
+                &gather_layout(&[storage(8, false)]),
+            );
+            let upsample = (s.low_res > 1).then(|| {
+                pipeline(
+                    device,
+                    "rsm_gi upsample",
+                    UPSAMPLE_WGSL,
+                    "upsample",
+                    &gather_layout(&[storage(8, false), storage(9, true)]),
+                )
+            });
+            let (flat, ranges) = pattern_sets(gi, s.r_max * rsm_width as f32);
+            let init = |label: &str, contents: &[u8]| {
+                device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some(label),
+                    contents,
+                    usage: wgpu::BufferUsages::STORAGE,
+                })
+            };
+            let inputs = FirstInputs::Gather {
+                samples: init("rsm_gi samples", bytemuck::cast_slice(&flat)),
+                ranges: init("rsm_gi ranges", bytemuck::cast_slice(&ranges)),
+                upsample,
+            };
+            Self::build(device, gi, width, height, first, inputs)
+        })
     }
 
     /// The splat instead of the gather (and the same blur) for up to `max_vpls` VPLs per
@@ -408,45 +388,99 @@ impl GpuGather {
                 why,
             });
         }
-        let mut me = Self::new(device, gi, width, height, 1)?;
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let layout = [uniform(0), tex(1), tex(2), storage(3, true), storage(4, false)];
-        me.first = pipeline(device, "rsm_gi splat", SPLAT_WGSL, "splat", &layout);
-        let vpls = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("rsm_gi splat vpls"),
-            size: (max_vpls.max(1) as u64) * 48,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        me.splat_vpls = Some((vpls, max_vpls));
-        if let Some(err) = pollster::block_on(scope.pop()) {
-            return Err(RsmGiError::Gpu(err.to_string()));
-        }
-        Ok(me)
+        gpu_call(device, || {
+            let layout = [uniform(0), tex(1), tex(2), storage(3, true), storage(4, false)];
+            let first = pipeline(device, "rsm_gi splat", SPLAT_WGSL, "splat", &layout);
+            let vpls = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("rsm_gi splat vpls"),
+                size: (max_vpls.max(1) as u64) * 48,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            let inputs = FirstInputs::Splat { vpls, capacity: max_vpls };
+            Self::build(device, gi, width, height, first, inputs)
+        })
     }
 
-    /// Writes this frame's uniforms and records the gather, then (when the pattern
-    /// interleaves and `blur` is set) the x and y blur passes, then (at `low_res` > 1) the
-    /// upsampling. Returns the buffer holding the result (`vec4<f32>` per pixel of the full
-    /// image, row-major, rgb = irradiance).
-    pub fn record(
+    /// The blur, the uniform blocks and the images around a first pass.
+    fn build(
+        device: &wgpu::Device,
+        gi: &RsmGi,
+        width: u32,
+        height: u32,
+        first: (wgpu::ComputePipeline, wgpu::BindGroupLayout),
+        inputs: FirstInputs,
+    ) -> Self {
+        let s = gi.settings();
+        let blur = pipeline(
+            device,
+            "rsm_gi blur",
+            BLUR_WGSL,
+            "blur",
+            &[uniform(0), tex(1), tex(2), storage(3, true), storage(4, false)],
+        );
+        let uni = |label| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: std::mem::size_of::<GpuView>() as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        };
+        let low = (width.div_ceil(s.low_res), height.div_ceil(s.low_res));
+        let img = |label, w: u32, h: u32| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: (w as u64 * h as u64 * 16).max(16),
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            })
+        };
+        let readback = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("rsm_gi readback"),
+            size: (width as u64 * height as u64 * 16).max(16),
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let full = if s.low_res > 1 { (width, height) } else { (1, 1) };
+        Self {
+            id: NEXT_ID.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
+            gi: gi.clone(),
+            width,
+            height,
+            low,
+            first,
+            blur,
+            inputs,
+            views: [
+                uni("rsm_gi gather view"),
+                uni("rsm_gi blur x view"),
+                uni("rsm_gi blur y view"),
+                uni("rsm_gi upsample view"),
+            ],
+            images: [
+                img("rsm_gi gathered", low.0, low.1),
+                img("rsm_gi blurred x", low.0, low.1),
+                img("rsm_gi blurred", low.0, low.1),
+                img("rsm_gi upsampled", full.0, full.1),
+            ],
+            readback,
+        }
+    }
+
+    /// Binds a gather to `rsm`'s and `g`'s textures (of this gather's image size).
+    pub fn bind(
         &self,
         device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        encoder: &mut wgpu::CommandEncoder,
         rsm: &GpuRsm,
         g: &GpuGBuffer,
-        blur: bool,
-    ) -> Result<&wgpu::Buffer, RsmGiError> {
+    ) -> Result<GatherBinding, RsmGiError> {
         self.check_size(g)?;
-        if self.splat_vpls.is_some() {
-            return Err(RsmGiError::Gpu("this GpuGather splats: use record_splat".into()));
-        }
-        let s = self.gi.settings();
-        let sizes = [self.low.0, self.low.1, rsm.width, rsm.height];
-        self.write_views(queue, rsm.world_to_texel, g, sizes, s.vpl_offset);
+        let FirstInputs::Gather { samples, ranges, upsample } = &self.inputs else {
+            return Err(RsmGiError::Gpu("this GpuGather splats: use bind_splat".into()));
+        };
         let tv = wgpu::BindingResource::TextureView;
-        let gather_group = |layout, view: &wgpu::Buffer, extra: &[(u32, &wgpu::Buffer)]| {
+        let group = |layout, view: &wgpu::Buffer, extra: &[(u32, &wgpu::Buffer)]| {
             let mut entries = vec![
                 wgpu::BindGroupEntry { binding: 0, resource: view.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 1, resource: tv(&rsm.flux) },
@@ -454,8 +488,8 @@ impl GpuGather {
                 wgpu::BindGroupEntry { binding: 3, resource: tv(&rsm.position) },
                 wgpu::BindGroupEntry { binding: 4, resource: tv(&g.position) },
                 wgpu::BindGroupEntry { binding: 5, resource: tv(&g.normal) },
-                wgpu::BindGroupEntry { binding: 6, resource: self.samples.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 7, resource: self.ranges.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 6, resource: samples.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 7, resource: ranges.as_entire_binding() },
             ];
             entries.extend(extra.iter().map(|&(binding, b)| wgpu::BindGroupEntry {
                 binding,
@@ -467,29 +501,129 @@ impl GpuGather {
                 entries: &entries,
             })
         };
-        let bind = gather_group(&self.first.1, &self.views[0], &[(8, &self.images[0])]);
-        let mut pass = encoder.begin_compute_pass(&Default::default());
-        pass.set_pipeline(&self.first.0);
-        pass.set_bind_group(0, &bind, &[]);
-        let (gx, gy) = groups(self.low);
-        pass.dispatch_workgroups(gx, gy, 1);
-        let result = self.record_blur(device, &mut pass, g, blur);
-        if s.low_res == 1 {
-            return Ok(&self.images[result]);
-        }
-        let extra = [(8, &self.images[3]), (9, &self.images[result])];
-        let bind = gather_group(&self.upsample.1, &self.views[3], &extra);
-        pass.set_pipeline(&self.upsample.0);
-        pass.set_bind_group(0, &bind, &[]);
-        let (ux, uy) = groups((self.width, self.height));
-        pass.dispatch_workgroups(ux, uy, 1);
-        Ok(&self.images[3])
+        gpu_call(device, || {
+            let first = group(&self.first.1, &self.views[0], &[(8, &self.images[0])]);
+            // Two upsampling groups: over the gathered image and over the blurred one.
+            let upsample = upsample.as_ref().map(|(_, layout)| {
+                [0, 2].map(|src| {
+                    group(layout, &self.views[3], &[(8, &self.images[3]), (9, &self.images[src])])
+                })
+            });
+            self.binding(device, g, first, upsample, (rsm.width, rsm.height))
+        })
+    }
+
+    /// Binds a splat to `g`'s textures (of this splat's image size).
+    pub fn bind_splat(
+        &self,
+        device: &wgpu::Device,
+        g: &GpuGBuffer,
+    ) -> Result<GatherBinding, RsmGiError> {
+        self.check_size(g)?;
+        let FirstInputs::Splat { vpls, .. } = &self.inputs else {
+            return Err(RsmGiError::Gpu("this GpuGather gathers: use bind".into()));
+        };
+        let tv = wgpu::BindingResource::TextureView;
+        gpu_call(device, || {
+            let first = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("rsm_gi splat"),
+                layout: &self.first.1,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: self.views[0].as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry { binding: 1, resource: tv(&g.position) },
+                    wgpu::BindGroupEntry { binding: 2, resource: tv(&g.normal) },
+                    wgpu::BindGroupEntry { binding: 3, resource: vpls.as_entire_binding() },
+                    wgpu::BindGroupEntry {
+                        binding: 4,
+                        resource: self.images[0].as_entire_binding(),
+                    },
+                ],
+            });
+            self.binding(device, g, first, None, (0, 0))
+        })
+    }
+
+    /// A binding with the first pass's group `first`, the blur's over `g` and `upsample`.
+    fn binding(
+        &self,
+        device: &wgpu::Device,
+        g: &GpuGBuffer,
+        first: wgpu::BindGroup,
+        upsample: Option<[wgpu::BindGroup; 2]>,
+        rsm_size: (u32, u32),
+    ) -> GatherBinding {
+        let tv = wgpu::BindingResource::TextureView;
+        let blur = [(0usize, 1usize), (1, 2)].map(|(src, dst)| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("rsm_gi blur"),
+                layout: &self.blur.1,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: self.views[src + 1].as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry { binding: 1, resource: tv(&g.position) },
+                    wgpu::BindGroupEntry { binding: 2, resource: tv(&g.normal) },
+                    wgpu::BindGroupEntry {
+                        binding: 3,
+                        resource: self.images[src].as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 4,
+                        resource: self.images[dst].as_entire_binding(),
+                    },
+                ],
+            })
+        });
+        GatherBinding { owner: self.id, first, blur, upsample, rsm_size }
+    }
+
+    /// Writes this frame's uniforms and records the gather, then (when the pattern
+    /// interleaves and `blur` is set) the x and y blur passes, then (at `low_res` > 1) the
+    /// upsampling. Creates bind groups on every call: a renderer binds once
+    /// ([`GpuGather::bind`]) and records with [`GpuGather::record_bound`]. Returns the buffer
+    /// holding the result (`vec4<f32>` per pixel of the full image, row-major, rgb =
+    /// irradiance).
+    pub fn record(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        rsm: &GpuRsm,
+        g: &GpuGBuffer,
+        blur: bool,
+    ) -> Result<&wgpu::Buffer, RsmGiError> {
+        let binding = self.bind(device, rsm, g)?;
+        self.record_bound(queue, encoder, &binding, rsm.world_to_texel, g.view_proj, blur)
+    }
+
+    /// [`GpuGather::record`] over a binding made once: this frame's RSM projection
+    /// (`world_to_texel`) and camera (`view_proj`).
+    pub fn record_bound(
+        &self,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        binding: &GatherBinding,
+        world_to_texel: Mat4,
+        view_proj: Mat4,
+        blur: bool,
+    ) -> Result<&wgpu::Buffer, RsmGiError> {
+        self.check_binding(binding, false)?;
+        let s = self.gi.settings();
+        let (rw, rh) = binding.rsm_size;
+        let sizes = [self.low.0, self.low.1, rw, rh];
+        self.write_views(queue, world_to_texel, view_proj, sizes, s.vpl_offset);
+        Ok(&self.images[self.dispatch(encoder, binding, blur)])
     }
 
     /// For a [`GpuGather::splat`]: uploads `vpls` (with the energy scale of the settings) and
     /// records the splat, then (when the pattern interleaves and `blur` is set) the blur.
     /// Returns the buffer holding the result, as [`GpuGather::record`]. More VPLs than the
-    /// splat was made for is a typed error.
+    /// splat was made for is a typed error. Creates bind groups on every call, as
+    /// [`GpuGather::record`]; [`GpuGather::record_splat_bound`] does not.
     pub fn record_splat(
         &self,
         device: &wgpu::Device,
@@ -499,8 +633,22 @@ impl GpuGather {
         g: &GpuGBuffer,
         blur: bool,
     ) -> Result<&wgpu::Buffer, RsmGiError> {
-        self.check_size(g)?;
-        let Some((buffer, capacity)) = &self.splat_vpls else {
+        let binding = self.bind_splat(device, g)?;
+        self.record_splat_bound(queue, encoder, &binding, vpls, g.view_proj, blur)
+    }
+
+    /// [`GpuGather::record_splat`] over a binding made once.
+    pub fn record_splat_bound(
+        &self,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        binding: &GatherBinding,
+        vpls: &[crate::SplatVpl],
+        view_proj: Mat4,
+        blur: bool,
+    ) -> Result<&wgpu::Buffer, RsmGiError> {
+        self.check_binding(binding, true)?;
+        let FirstInputs::Splat { vpls: buffer, capacity } = &self.inputs else {
             return Err(RsmGiError::Gpu("this GpuGather gathers: use record".into()));
         };
         if vpls.len() > *capacity as usize {
@@ -524,25 +672,42 @@ impl GpuGather {
             queue.write_buffer(buffer, 0, bytemuck::cast_slice(&data));
         }
         let sizes = [self.width, self.height, vpls.len() as u32, s.pattern.cells()];
-        self.write_views(queue, Mat4::IDENTITY, g, sizes, s.splat_radius);
-        let tv = wgpu::BindingResource::TextureView;
-        let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("rsm_gi splat"),
-            layout: &self.first.1,
-            entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: self.views[0].as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: tv(&g.position) },
-                wgpu::BindGroupEntry { binding: 2, resource: tv(&g.normal) },
-                wgpu::BindGroupEntry { binding: 3, resource: buffer.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 4, resource: self.images[0].as_entire_binding() },
-            ],
-        });
+        self.write_views(queue, Mat4::IDENTITY, view_proj, sizes, s.splat_radius);
+        Ok(&self.images[self.dispatch(encoder, binding, blur)])
+    }
+
+    /// Records the first pass, the blur (when the pattern interleaves and `blur` is set) and
+    /// the upsampling (when bound); returns the index of the image holding the result.
+    fn dispatch(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        binding: &GatherBinding,
+        blur: bool,
+    ) -> usize {
         let mut pass = encoder.begin_compute_pass(&Default::default());
-        pass.set_pipeline(&self.first.0);
-        pass.set_bind_group(0, &bind, &[]);
         let (gx, gy) = groups(self.low);
+        pass.set_pipeline(&self.first.0);
+        pass.set_bind_group(0, &binding.first, &[]);
         pass.dispatch_workgroups(gx, gy, 1);
-        Ok(&self.images[self.record_blur(device, &mut pass, g, blur)])
+        let mut result = 0;
+        if blur && self.gi.settings().pattern.cells() > 1 {
+            pass.set_pipeline(&self.blur.0);
+            for group in &binding.blur {
+                pass.set_bind_group(0, group, &[]);
+                pass.dispatch_workgroups(gx, gy, 1);
+            }
+            result = 2;
+        }
+        let (FirstInputs::Gather { upsample: Some((upsample, _)), .. }, Some(groups_over)) =
+            (&self.inputs, &binding.upsample)
+        else {
+            return result;
+        };
+        pass.set_pipeline(upsample);
+        pass.set_bind_group(0, &groups_over[result / 2], &[]);
+        let (ux, uy) = groups((self.width, self.height));
+        pass.dispatch_workgroups(ux, uy, 1);
+        3
     }
 
     fn check_size(&self, g: &GpuGBuffer) -> Result<(), RsmGiError> {
@@ -557,6 +722,19 @@ impl GpuGather {
         Ok(())
     }
 
+    /// A binding made by another gather, or for the other first pass, is a typed error.
+    fn check_binding(&self, binding: &GatherBinding, splat: bool) -> Result<(), RsmGiError> {
+        let is_splat = matches!(self.inputs, FirstInputs::Splat { .. });
+        if binding.owner != self.id {
+            return Err(RsmGiError::Gpu("a GatherBinding made by another GpuGather".into()));
+        }
+        if splat != is_splat {
+            let what = if is_splat { "this GpuGather splats" } else { "this GpuGather gathers" };
+            return Err(RsmGiError::Gpu(what.into()));
+        }
+        Ok(())
+    }
+
     /// This frame's uniform blocks: the first pass's (`sizes`, `knobs.x` = `first_knob`: the
     /// VPL offset of the gather, the radius of the splat), the two blur directions' and the
     /// upsampling's.
@@ -564,7 +742,7 @@ impl GpuGather {
         &self,
         queue: &wgpu::Queue,
         world_to_texel: Mat4,
-        g: &GpuGBuffer,
+        view_proj: Mat4,
         sizes: [u32; 4],
         first_knob: f32,
     ) {
@@ -573,7 +751,7 @@ impl GpuGather {
         let (lw, lh) = self.low;
         let view = |sizes: [u32; 4], pattern: [u32; 4]| GpuView {
             world_to_texel: world_to_texel.to_cols_array(),
-            view_proj: g.view_proj.to_cols_array(),
+            view_proj: view_proj.to_cols_array(),
             sizes,
             pattern,
             knobs: [first_knob, s.depth_tolerance, s.normal_power, f as f32],
@@ -588,48 +766,6 @@ impl GpuGather {
         for (buf, v) in self.views.iter().zip(blocks) {
             queue.write_buffer(buf, 0, bytemuck::bytes_of(&v));
         }
-    }
-
-    /// Records the x and y blur passes over `images[0]` when the pattern interleaves and
-    /// `blur` is set; returns the index of the image holding the result.
-    fn record_blur(
-        &self,
-        device: &wgpu::Device,
-        pass: &mut wgpu::ComputePass<'_>,
-        g: &GpuGBuffer,
-        blur: bool,
-    ) -> usize {
-        if !blur || self.gi.settings().pattern.cells() <= 1 {
-            return 0;
-        }
-        let tv = wgpu::BindingResource::TextureView;
-        let (gx, gy) = groups(self.low);
-        for (k, (src, dst)) in [(0usize, 1usize), (1, 2)].into_iter().enumerate() {
-            let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("rsm_gi blur"),
-                layout: &self.blur.1,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: self.views[k + 1].as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry { binding: 1, resource: tv(&g.position) },
-                    wgpu::BindGroupEntry { binding: 2, resource: tv(&g.normal) },
-                    wgpu::BindGroupEntry {
-                        binding: 3,
-                        resource: self.images[src].as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 4,
-                        resource: self.images[dst].as_entire_binding(),
-                    },
-                ],
-            });
-            pass.set_pipeline(&self.blur.0);
-            pass.set_bind_group(0, &bind, &[]);
-            pass.dispatch_workgroups(gx, gy, 1);
-        }
-        2
     }
 
     /// Copies `result` (one of this struct's images, as [`GpuGather::record`] returned it)

@@ -212,3 +212,73 @@ fn gpu_splat_matches_the_cpu() {
         "the GPU splat is full resolution"
     );
 }
+
+/// A gather and a splat bound once and recorded frame after frame (the camera moving) give
+/// what the one-call `record` gives and create no buffer, texture, view or bind group; a
+/// binding of another gather, or of the other first pass, is refused.
+#[test]
+fn bound_passes_are_reused_without_allocating() {
+    let Some(ctx) = gpu_harness::gpu_test_context() else { return };
+    let (d, q) = (&ctx.device, &ctx.queue);
+    let scene = Scene::new();
+    let (rsm, g) = (scene.rsm(), scene.g());
+    let gpu_rsm = GpuRsm::upload(d, q, &rsm).unwrap();
+    let mut gpu_g = GpuGBuffer::upload(d, q, &g).unwrap();
+    for low_res in [1, 2] {
+        let s = Settings { vpls: 128, pattern: Interleave::P2X2, low_res, ..Settings::DEFAULT };
+        let gi = RsmGi::new(s).unwrap();
+        let gather = GpuGather::new(d, &gi, W, H, 64).unwrap();
+        let binding = gather.bind(d, &gpu_rsm, &gpu_g).unwrap();
+        let mut before = None;
+        for (frame, shift) in [0.0f32, 0.3, -0.2].into_iter().enumerate() {
+            gpu_g.view_proj = Mat4::from_translation(Vec3::new(shift, 0.0, 0.0));
+            let mut enc = d.create_command_encoder(&Default::default());
+            let out = gather
+                .record_bound(q, &mut enc, &binding, gpu_rsm.world_to_texel, gpu_g.view_proj, true)
+                .unwrap();
+            q.submit([enc.finish()]);
+            let bound = gather.read_back(d, q, out).unwrap();
+            if frame == 1 {
+                before = Some(gpu_harness::live_objects(d));
+            }
+            if frame == 2 {
+                assert_eq!(
+                    before,
+                    Some(gpu_harness::live_objects(d)),
+                    "a bound frame creates nothing"
+                );
+            }
+            let mut enc = d.create_command_encoder(&Default::default());
+            let out = gather.record(d, q, &mut enc, &gpu_rsm, &gpu_g, true).unwrap();
+            q.submit([enc.finish()]);
+            assert_eq!(bound, gather.read_back(d, q, out).unwrap(), "1/{low_res} frame {frame}");
+        }
+        let other = GpuGather::new(d, &gi, W, H, 64).unwrap();
+        let mut enc = d.create_command_encoder(&Default::default());
+        let m = Mat4::IDENTITY;
+        assert!(other.record_bound(q, &mut enc, &binding, m, m, true).is_err());
+        assert!(gather.bind_splat(d, &gpu_g).is_err());
+    }
+    let gi = RsmGi::new(Settings { vpls: 128, splat_radius: 3.0, ..Settings::DEFAULT }).unwrap();
+    let (vpls, _) = gi.splat_vpls(&rsm).unwrap();
+    let splat = GpuGather::splat(d, &gi, W, H, 256).unwrap();
+    let binding = splat.bind_splat(d, &gpu_g).unwrap();
+    let mut enc = d.create_command_encoder(&Default::default());
+    splat.record_splat_bound(q, &mut enc, &binding, &vpls, gpu_g.view_proj, true).unwrap();
+    q.submit([enc.finish()]);
+    let before = gpu_harness::live_objects(d);
+    let mut enc = d.create_command_encoder(&Default::default());
+    let out =
+        splat.record_splat_bound(q, &mut enc, &binding, &vpls, gpu_g.view_proj, true).unwrap();
+    q.submit([enc.finish()]);
+    let bound = splat.read_back(d, q, out).unwrap();
+    assert_eq!(before, gpu_harness::live_objects(d), "a bound splat creates nothing");
+    let mut enc = d.create_command_encoder(&Default::default());
+    let out = splat.record_splat(d, q, &mut enc, &vpls, &gpu_g, true).unwrap();
+    q.submit([enc.finish()]);
+    assert_eq!(bound, splat.read_back(d, q, out).unwrap());
+    assert!(splat.bind(d, &gpu_rsm, &gpu_g).is_err());
+    let m = Mat4::IDENTITY;
+    let mut enc = d.create_command_encoder(&Default::default());
+    assert!(splat.record_bound(q, &mut enc, &binding, m, m, true).is_err());
+}

@@ -12,15 +12,16 @@ use crate::gpu::{GBufferTargets, Gpu, SceneBuffers};
 use crate::state::SunLight;
 use crate::{EngineError, Settings};
 use glam::Vec3;
-use rsm_gi::gpu::{GpuGBuffer, GpuGather, GpuRsm};
+use rsm_gi::gpu::{GatherBinding, GpuGBuffer, GpuGather, GpuRsm};
 
 pub struct RsmGatherState {
     rsm: SunRsm,
     gather: GpuGather,
-    maps: GpuRsm,
-    /// World positions and shading normals of the view.
-    positions: wgpu::TextureView,
-    normals: wgpu::TextureView,
+    /// The gather bound once to the RSM's targets and the view's world positions and
+    /// shading normals.
+    binding: GatherBinding,
+    /// The RSM's projection at its last render.
+    world_to_texel: glam::Mat4,
     /// The sphere the RSM covers: the scene's bounding sphere when it is at most
     /// `Settings::rsm_gather_radius` (then fixed), else that radius around the camera.
     region: Region,
@@ -53,9 +54,17 @@ impl RsmGatherState {
             height: res,
             world_to_texel: glam::Mat4::IDENTITY,
         };
+        let gbuffer = GpuGBuffer {
+            position: targets.positions.clone(),
+            normal: targets.normal.clone(),
+            width: w,
+            height: h,
+            view_proj: glam::Mat4::IDENTITY,
+        };
+        let binding = gather.bind(&gpu.device, &maps, &gbuffer).map_err(tech)?;
         let region = Region::of(&scene.bounds(), settings.rsm_gather_radius as f64);
-        let (positions, normals) = (targets.positions.clone(), targets.normal.clone());
-        Ok(Self { rsm, gather, maps, positions, normals, region, ready: false })
+        let world_to_texel = maps.world_to_texel;
+        Ok(Self { rsm, gather, binding, world_to_texel, region, ready: false })
     }
 
     /// Renders the sun's RSM around `eye`.
@@ -69,7 +78,7 @@ impl RsmGatherState {
         let view = self.rsm.render(gpu, scene, self.region.sphere(eye), sun)?;
         let res = self.rsm.resolution();
         let projection = rsm_gi::RsmProjection::from_view_proj(view.view_proj(), res, res);
-        self.maps.world_to_texel = projection.world_to_texel;
+        self.world_to_texel = projection.world_to_texel;
         self.ready = true;
         Ok(())
     }
@@ -82,14 +91,8 @@ impl RsmGatherState {
         enc: &mut wgpu::CommandEncoder,
         view_proj: glam::Mat4,
     ) -> Result<&wgpu::Buffer, EngineError> {
-        let size = self.positions.texture().size();
-        let gbuffer = GpuGBuffer {
-            position: self.positions.clone(),
-            normal: self.normals.clone(),
-            width: size.width,
-            height: size.height,
-            view_proj,
-        };
-        self.gather.record(&gpu.device, &gpu.queue, enc, &self.maps, &gbuffer, true).map_err(tech)
+        self.gather
+            .record_bound(&gpu.queue, enc, &self.binding, self.world_to_texel, view_proj, true)
+            .map_err(tech)
     }
 }
