@@ -220,8 +220,7 @@ impl CausticSource {
             first = false;
             let m = world.shade(&h);
             let wo = -dir;
-            let front = h.normal.dot(wo) >= 0.0;
-            let n = if front { h.normal } else { -h.normal };
+            let (n, front) = crate::integrator::facing(&h, wo);
             let sharp = sharp(&m);
             if bounces >= 1 && m.base_weight() > 0.0 && !sharp {
                 out.push(Photon { position: h.position, dir, normal: n, power, bounces });

@@ -1,7 +1,9 @@
 //! Building a [`World`] and a [`Camera`] from a `scene::Scene`.
 //!
-//! - Geometry: every mesh in world space, one material per mesh; geometric normals (the
-//!   scene's shading normals and normal maps are not used).
+//! - Geometry: every mesh in world space, one material per mesh; surfaces are shaded with
+//!   the mesh's vertex normals interpolated (as the engine's G-buffer shades them; a smooth
+//!   statue's highlights sit where the engine puts them, not on single facets), geometric
+//!   normals where a mesh has none; normal maps are not used.
 //! - Materials: albedo, glossiness, specular power, reflectivity, transparency + IOR,
 //!   emission (one-sided unless the material is `double_sided`) and the alpha mask (its
 //!   texture's alpha, bilinear on level 0, at the interpolated UV) map one to one; the
@@ -96,7 +98,9 @@ pub fn world_from_scene(scene: &scene::Scene, lighting: &SceneLighting) -> Resul
     }
     for m in &scene.meshes {
         let p: Vec<Vec3> = m.positions.iter().map(|&p| m.transform.transform_point3(p)).collect();
-        b.triangles(&p, &m.indices, m.material.0);
+        let nm = m.normal_matrix();
+        let n: Vec<Vec3> = m.normals.iter().map(|&n| nm * n).collect();
+        b.smooth_triangles(&p, &n, &m.indices, m.material.0);
     }
     let sun_dir = match &scene.sun {
         Some(s) => Some(s.direction().map_err(scene_err)?),

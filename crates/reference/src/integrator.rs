@@ -132,11 +132,11 @@ impl Default for PathSettings {
     }
 }
 
-/// Shading frame at a hit seen from `wo`: the normal flipped to the viewer's side, and
-/// whether the viewer is on the wound front side.
-fn facing(h: &SurfaceHit, wo: Vec3) -> (Vec3, bool) {
+/// Shading frame at a hit seen from `wo`: the shading normal flipped to the viewer's side
+/// (the side is the geometric normal's), and whether the viewer is on the wound front side.
+pub(crate) fn facing(h: &SurfaceHit, wo: Vec3) -> (Vec3, bool) {
     let front = h.normal.dot(wo) >= 0.0;
-    (if front { h.normal } else { -h.normal }, front)
+    (if front { h.shading_normal } else { -h.shading_normal }, front)
 }
 
 /// Sun irradiance at `p` on a surface with normal `n` (the disk sampled uniformly, one

@@ -68,6 +68,8 @@ pub struct PointLight {
 #[derive(Default)]
 pub struct WorldBuilder {
     positions: Vec<Vec3>,
+    /// Per vertex: the unit shading normal, zero where there is none.
+    vertex_normals: Vec<Vec3>,
     indices: Vec<[u32; 3]>,
     tri_material: Vec<u32>,
     materials: Vec<Material>,
@@ -96,8 +98,28 @@ impl WorldBuilder {
     ) -> &mut Self {
         let base = self.positions.len() as u32;
         self.positions.extend_from_slice(positions);
+        self.vertex_normals.resize(self.positions.len(), Vec3::ZERO);
         self.indices.extend(indices.iter().map(|t| t.map(|i| i.saturating_add(base))));
         self.tri_material.extend(std::iter::repeat_n(material, indices.len()));
+        self
+    }
+
+    /// Adds indexed world-space triangles whose surface is shaded with the per-vertex
+    /// `normals` interpolated across each triangle (a smooth surface approximated by flat
+    /// triangles). A normal that is missing, zero or not finite leaves its triangles shaded
+    /// with their geometric normal.
+    pub fn smooth_triangles(
+        &mut self,
+        positions: &[Vec3],
+        normals: &[Vec3],
+        indices: &[[u32; 3]],
+        material: u32,
+    ) -> &mut Self {
+        let base = self.vertex_normals.len();
+        self.triangles(positions, indices, material);
+        for (v, n) in self.vertex_normals[base..].iter_mut().zip(normals) {
+            *v = n.try_normalize().unwrap_or(Vec3::ZERO);
+        }
         self
     }
 
@@ -167,6 +189,11 @@ impl WorldBuilder {
                 (b - a).cross(c - a).try_normalize().unwrap_or(Vec3::Y)
             })
             .collect();
+        let shading = if self.vertex_normals.iter().any(|n| *n != Vec3::ZERO) {
+            self.indices.iter().map(|t| t.map(|i| self.vertex_normals[i as usize])).collect()
+        } else {
+            Vec::new()
+        };
         let any_alpha = self.materials.iter().any(|m| m.alpha.is_some());
         let extent =
             mesh.bounds().map_or(1.0, |(lo, hi)| lo.abs().max(hi.abs()).max_element().max(1.0));
@@ -179,6 +206,7 @@ impl WorldBuilder {
             mesh,
             tree,
             normals,
+            shading,
             tri_material: self.tri_material,
             materials: self.materials,
             sun,
@@ -198,6 +226,9 @@ pub struct SurfaceHit {
     pub position: Vec3,
     /// Unit geometric normal as wound (`(p1 - p0) x (p2 - p0)`).
     pub normal: Vec3,
+    /// Unit shading normal: the corners' normals interpolated and turned to the side of
+    /// `normal` (`normal` itself for triangles without vertex normals).
+    pub shading_normal: Vec3,
     pub triangle: u32,
     pub material: u32,
     pub barycentrics: Vec2,
@@ -208,6 +239,8 @@ pub struct World {
     mesh: Mesh,
     tree: KdTree,
     normals: Vec<Vec3>,
+    /// Per triangle: its corners' shading normals (empty when no triangle has any).
+    shading: Vec<[Vec3; 3]>,
     tri_material: Vec<u32>,
     materials: Vec<Material>,
     sun: Option<Sun>,
@@ -267,6 +300,19 @@ impl World {
     /// Unit geometric normal of triangle `t` as wound.
     pub(crate) fn normal(&self, t: u32) -> Vec3 {
         self.normals[t as usize]
+    }
+
+    /// The interpolated shading normal of triangle `t` at `bary` turned to the side of
+    /// `geometric`, or `geometric` where the triangle has none.
+    fn shading_normal(&self, t: u32, bary: Vec2, geometric: Vec3) -> Vec3 {
+        let Some([a, b, c]) = self.shading.get(t as usize) else { return geometric };
+        if *a == Vec3::ZERO || *b == Vec3::ZERO || *c == Vec3::ZERO {
+            return geometric;
+        }
+        let n = *a * (1.0 - bary.x - bary.y) + *b * bary.x + *c * bary.y;
+        // Vertex normals need not follow the winding: turn the normal to the wound side.
+        let n = if n.dot(geometric) < 0.0 { -n } else { n };
+        n.try_normalize().unwrap_or(geometric)
     }
 
     /// Material id of triangle `t`.
@@ -338,10 +384,12 @@ impl World {
             let ray = Ray::new(origin, dir).with_t_min(t_min);
             let h = self.tree.intersect(&ray, t_max)?;
             if !self.any_alpha || self.passes_alpha(h.triangle, h.barycentrics) {
+                let normal = self.normals[h.triangle as usize];
                 return Some(SurfaceHit {
                     t: h.t,
                     position: origin + dir * h.t,
-                    normal: self.normals[h.triangle as usize],
+                    normal,
+                    shading_normal: self.shading_normal(h.triangle, h.barycentrics, normal),
                     triangle: h.triangle,
                     material: self.tri_material[h.triangle as usize],
                     barycentrics: h.barycentrics,

@@ -81,3 +81,36 @@ fn cornell_area_light_sampling_is_unbiased_and_far_less_noisy() {
     let ratio = (old.mean_rel_std_error() / new.mean_rel_std_error()).powi(2);
     assert!(ratio > 10.0, "variance ratio {ratio}");
 }
+
+/// Vertex normals shade: a triangle whose corners lean its normals is hit with the
+/// interpolated normal (on the geometric side), a triangle without them with its geometric
+/// normal, and the generated city's statue (a smooth torus knot wound inwards: its vertex
+/// normals are turned to the wound side) carries its own.
+#[test]
+fn hits_carry_interpolated_shading_normals() {
+    let mut b = reference::World::builder();
+    let m = b.material(reference::Material::diffuse(Vec3::splat(0.5)));
+    let p = [Vec3::ZERO, Vec3::X, Vec3::Z];
+    let lean = [Vec3::new(1.0, 1.0, 0.0), Vec3::new(-1.0, 1.0, 0.0), Vec3::Y];
+    b.smooth_triangles(&p, &lean, &[[0, 2, 1]], m);
+    b.triangles(&p.map(|v| v + Vec3::X * 3.0), &[[0, 2, 1]], m);
+    let w = b.build().unwrap();
+    let down = Vec3::NEG_Y;
+    let h = w.intersect(Vec3::new(0.25, 1.0, 0.25), down, 10.0).unwrap();
+    assert!((h.normal - Vec3::Y).length() < 1e-6, "geometric {}", h.normal);
+    // Barycentrics (0.25, 0.25) along the corners as indexed (0, 2, 1).
+    let want =
+        (lean[0].normalize() * 0.5 + lean[2] * 0.25 + lean[1].normalize() * 0.25).normalize();
+    assert!((h.shading_normal - want).length() < 1e-4, "{} vs {want}", h.shading_normal);
+    let flat = w.intersect(Vec3::new(3.25, 1.0, 0.25), down, 10.0).unwrap();
+    assert_eq!(flat.shading_normal, flat.normal);
+
+    let scene = scene::Generated::City.build(1);
+    let world = reference::world_from_scene(&scene, &reference::SceneLighting::DEFAULT).unwrap();
+    let statue = scene.meshes.iter().find(|m| m.name == "statue").expect("the city has a statue");
+    let c = statue.transform.transform_point3(statue.positions[0]);
+    let n = statue.normal_matrix() * statue.normals[0];
+    let h = world.intersect(c + n * 0.05, -n, 1.0).expect("the statue is hit along its normal");
+    assert!(h.shading_normal.dot(h.normal) > 0.0);
+    assert!(h.shading_normal != h.normal, "the statue is shaded smooth: {h:?}");
+}
