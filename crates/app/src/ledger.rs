@@ -16,7 +16,7 @@
 //! `rel_rms` is `abs_rms / lit mean`, with the lit mean the component's mean reference
 //! luminance over the whole image (`normaliser`; 1 when the whole component is black).
 
-use crate::compare::{ReferenceRender, reference_component};
+use crate::compare::{FIREFLY_CLAMP, ReferenceRender, reference_component};
 use crate::contact_sheet::{Tile, write_contact_sheet};
 use crate::io_err;
 use crate::regions::{RegionMap, region_map};
@@ -24,6 +24,7 @@ use engine::Component;
 use engine::components::{ComponentImage, passes, passes_ms, render_components};
 use engine::{EngineError, Renderer};
 use frame_scheduler::FrameReport;
+use glam::Vec3;
 use reference::{Image, luminance};
 use std::fmt::Write;
 use std::path::Path;
@@ -43,6 +44,13 @@ pub struct Figures {
     /// True when the region's reference is black: ratio and rel RMS are then over `normaliser`.
     pub black_truth: bool,
     pub normaliser: f64,
+    /// The region's share of the whole image's squared error `sum |e - r|²` (1 for a set of
+    /// pixels measured on its own): which region the component's error comes from.
+    pub error_share: f64,
+    /// The same with both images clamped as the frame's `rel_rms_clamped` clamps them (at
+    /// [`FIREFLY_CLAMP`] times the reference's mean luminance), so that a few glints and
+    /// fireflies do not hide where the rest of the error lies.
+    pub error_share_clamped: f64,
 }
 
 /// One component's row of the ledger.
@@ -52,7 +60,8 @@ pub struct ComponentLedger {
     pub passes: Vec<String>,
     pub passes_ms: f64,
     pub reference_ms: f64,
-    /// The whole image first, then the regions (largest first).
+    /// The whole image first, then the regions and the pixels in none, by their share of the
+    /// clamped error (largest first).
     pub regions: Vec<Figures>,
 }
 
@@ -103,8 +112,33 @@ pub fn figures(
         abs_rms,
         black_truth,
         normaliser,
+        error_share: 1.0,
+        error_share_clamped: 1.0,
     }
 }
+
+/// `sum |e - r|²` over the pixels `idx`, plain and with both images' luminance clamped at
+/// `cap`.
+fn squared_errors(
+    engine: &Image,
+    reference: &Image,
+    idx: impl Iterator<Item = usize>,
+    cap: f32,
+) -> (f64, f64) {
+    let clamp = |p: Vec3| {
+        let l = luminance(p);
+        if l > cap { p * (cap / l) } else { p }
+    };
+    idx.fold((0.0, 0.0), |(d2, c2), i| {
+        let (e, r) = (engine.pixels[i], reference.pixels[i]);
+        let clamped = (clamp(e) - clamp(r)).length_squared() as f64;
+        (d2 + (e - r).length_squared() as f64, c2 + clamped)
+    })
+}
+
+/// The name of the row of pixels in no named region (regions under
+/// [`MIN_SHARE`](crate::regions::MIN_SHARE) of the image).
+pub const OTHER_REGIONS: &str = "other (regions under 0.5%)";
 
 /// A component's figures over the whole image and every region of `regions`.
 pub fn component_ledger(
@@ -114,20 +148,46 @@ pub fn component_ledger(
     regions: &RegionMap,
     report: &FrameReport,
 ) -> ComponentLedger {
-    let all = 0..engine.pixels.len();
-    let lit = figures("all", engine, reference, all.clone(), 1.0).reference_luminance;
-    let norm = if lit > 0.0 { lit } else { 1.0 };
-    let mut rows = vec![figures("all", engine, reference, all, norm)];
-    for (id, name) in regions.names.iter().enumerate() {
-        rows.push(figures(name, engine, reference, regions.pixels(id as u32), norm));
-    }
     ComponentLedger {
         component: c.name().to_string(),
         passes: passes(c).iter().map(|p| p.to_string()).collect(),
         passes_ms: passes_ms(report, c),
         reference_ms: reference.ms,
-        regions: rows,
+        regions: region_rows(engine, reference, regions),
     }
+}
+
+/// The figures of the whole image, then of every region and of the pixels in none, by their
+/// share of the clamped squared error (largest first).
+pub fn region_rows(
+    engine: &Image,
+    reference: &ReferenceRender,
+    regions: &RegionMap,
+) -> Vec<Figures> {
+    let all = 0..engine.pixels.len();
+    let lit = figures("all", engine, reference, all.clone(), 1.0).reference_luminance;
+    let norm = if lit > 0.0 { lit } else { 1.0 };
+    let cap = FIREFLY_CLAMP * lit.max(0.0) as f32;
+    let total = squared_errors(engine, &reference.mean, all.clone(), cap);
+    let share = |part: f64, whole: f64| if whole > 0.0 { part / whole } else { 0.0 };
+    let row = |name: &str, idx: Vec<usize>| {
+        let (d2, c2) = squared_errors(engine, &reference.mean, idx.iter().copied(), cap);
+        Figures {
+            error_share: share(d2, total.0),
+            error_share_clamped: share(c2, total.1),
+            ..figures(name, engine, reference, idx.into_iter(), norm)
+        }
+    };
+    let mut rows = vec![row("all", all.collect())];
+    for (id, name) in regions.names.iter().enumerate() {
+        rows.push(row(name, regions.pixels(id as u32).collect()));
+    }
+    let unnamed: Vec<usize> = regions.unnamed().collect();
+    if !unnamed.is_empty() {
+        rows.push(row(OTHER_REGIONS, unnamed));
+    }
+    rows[1..].sort_by(|a, b| b.error_share_clamped.total_cmp(&a.error_share_clamped));
+    rows
 }
 
 /// Renders every component of the renderer's current view on both sides and measures them;
@@ -176,15 +236,19 @@ impl Ledger {
         let mut s = format!(
             "{}x{}, reference {} spp. Ratio: engine / reference mean luminance; rel RMS over \
              RGB; ref s.e.: the reference's standard error of the region's mean luminance, \
-             relative. `sky_irradiance` is irradiance at the first surface on both sides.\n",
+             relative; err share: the region's share of the component's squared error over \
+             the whole image, plain and with both images clamped at {FIREFLY_CLAMP} times the \
+             reference's mean (regions are listed by the clamped share). `sky_irradiance` is \
+             irradiance at the first surface on both sides.\n",
             self.width, self.height, self.reference_spp
         );
         for c in &self.components {
             let _ = write!(
                 s,
                 "\n### {}\n\npasses: {} = {:.2} ms; reference {:.0} ms\n\n\
-                 | region | pixels | engine Y | reference Y | ratio | rel RMS | ref s.e. |\n\
-                 |---|---:|---:|---:|---:|---:|---:|\n",
+                 | region | pixels | engine Y | reference Y | ratio | rel RMS | ref s.e. | \
+                 err share | err share (clamped) |\n\
+                 |---|---:|---:|---:|---:|---:|---:|---:|---:|\n",
                 c.component,
                 c.passes.join(" + "),
                 c.passes_ms,
@@ -194,14 +258,16 @@ impl Ledger {
                 let flag = if r.black_truth { " (black truth: over lit mean)" } else { "" };
                 let _ = writeln!(
                     s,
-                    "| {}{flag} | {} | {:.4} | {:.4} | {:.3} | {:.3} | {:.3} |",
+                    "| {}{flag} | {} | {:.4} | {:.4} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} |",
                     r.region,
                     r.pixels,
                     r.engine_luminance,
                     r.reference_luminance,
                     r.luminance_ratio,
                     r.rel_rms,
-                    r.reference_rel_std_error
+                    r.reference_rel_std_error,
+                    r.error_share,
+                    r.error_share_clamped
                 );
             }
         }
@@ -237,5 +303,34 @@ mod tests {
         let f = figures("lit", &e, &r, 0..4, 2.0);
         assert!(!f.black_truth);
         assert!((f.luminance_ratio - 2.0).abs() < 1e-6 && (f.rel_rms - 1.0).abs() < 1e-6);
+    }
+
+    /// The regions' and the unnamed pixels' shares of the squared error add up to 1, plain
+    /// and clamped, the rows come by clamped share, and one firefly owns the plain error but
+    /// not the clamped one.
+    #[test]
+    fn error_shares_add_up_and_the_clamp_sets_a_firefly_aside() {
+        // 10 x 10: region a the left half, b the right half but its last pixel, which is
+        // in none and holds a firefly of the reference.
+        let (mut e, mut r) = (Image::new(10, 10), Image::new(10, 10));
+        e.pixels.fill(Vec3::splat(0.3));
+        r.pixels.fill(Vec3::splat(0.25));
+        e.pixels[7] = Vec3::splat(0.5);
+        r.pixels[99] = Vec3::splat(400.0);
+        let std_error = Image::new(10, 10);
+        let r = ReferenceRender { mean: r, std_error, rel_std_error: 0.0, spp: 1, ms: 0.0 };
+        let ids = (0..100).map(|i| (i < 99).then_some(u32::from(i % 10 >= 5))).collect();
+        let regions = RegionMap { width: 10, height: 10, names: vec!["a".into(), "b".into()], ids };
+        let rows = region_rows(&e, &r, &regions);
+        assert_eq!(rows[0].region, "all");
+        assert_eq!(rows.len(), 4);
+        let sum = |f: fn(&Figures) -> f64| rows[1..].iter().map(f).sum::<f64>();
+        assert!((sum(|f| f.error_share) - 1.0).abs() < 1e-9);
+        assert!((sum(|f| f.error_share_clamped) - 1.0).abs() < 1e-9);
+        let firefly = rows.iter().find(|f| f.region == OTHER_REGIONS).unwrap();
+        assert!(firefly.error_share > 0.99, "{}", firefly.error_share);
+        assert!(firefly.error_share_clamped < firefly.error_share);
+        let shares: Vec<f64> = rows[1..].iter().map(|f| f.error_share_clamped).collect();
+        assert!(shares.windows(2).all(|w| w[0] >= w[1]), "{shares:?}");
     }
 }

@@ -6,12 +6,16 @@
 //! `south` (+Z) or `north`. The scene's mesh names are the region names: the generated city
 //! names each building's parts (`building_1_0_facade`, `building_0_0_glass`, ...), `street`,
 //! `pedestal`, `statue`; a closed room made of one mesh falls apart into its floor (`up`),
-//! ceiling (`down`) and walls by the axis. Regions covering less than [`MIN_SHARE`] of the
-//! image are merged into no region (too few pixels for a figure).
+//! ceiling (`down`) and walls by the axis. Pixels that see no surface are the region
+//! [`BACKGROUND`]. Regions covering less than [`MIN_SHARE`] of the image are merged into no
+//! region (too few pixels for a figure).
 
 use engine::EngineError;
 use glam::Vec3;
 use reference::{SceneLighting, World};
+
+/// The region of the pixels whose primary ray leaves the scene (the sky seen directly).
+pub const BACKGROUND: &str = "background";
 
 /// The smallest share of the image a region must cover to be reported.
 pub const MIN_SHARE: f64 = 0.005;
@@ -23,8 +27,8 @@ pub struct RegionMap {
     pub height: u32,
     /// Region names, indexed by id.
     pub names: Vec<String>,
-    /// Per pixel (row-major, top row first): the region id, or `None` (background, or a
-    /// region under [`MIN_SHARE`]).
+    /// Per pixel (row-major, top row first): the region id, or `None` (a region under
+    /// [`MIN_SHARE`]).
     pub ids: Vec<Option<u32>>,
 }
 
@@ -32,6 +36,11 @@ impl RegionMap {
     /// Pixels of region `id`.
     pub fn pixels(&self, id: u32) -> impl Iterator<Item = usize> + '_ {
         self.ids.iter().enumerate().filter(move |(_, r)| **r == Some(id)).map(|(i, _)| i)
+    }
+
+    /// Pixels in no region (regions under [`MIN_SHARE`]).
+    pub fn unnamed(&self) -> impl Iterator<Item = usize> + '_ {
+        self.ids.iter().enumerate().filter(|(_, r)| r.is_none()).map(|(i, _)| i)
     }
 
     /// The id of the region called `name`.
@@ -89,20 +98,23 @@ fn build(
     for y in 0..height {
         for x in 0..width {
             let d = cam.direction(x as f32 + 0.5, y as f32 + 0.5, width, height);
-            let id = world.intersect(cam.position, d, f32::INFINITY).map(|h| {
-                let mesh = starts.partition_point(|&s| s <= h.triangle).saturating_sub(1);
-                let n = if h.normal.dot(d) > 0.0 { -h.normal } else { h.normal };
-                let mesh_name = scene.meshes.get(mesh).map_or("?", |m| m.name.as_str());
-                let name = format!("{mesh_name} {}", facing_name(n));
-                match names.iter().position(|k| *k == name) {
-                    Some(i) => i as u32,
-                    None => {
-                        names.push(name);
-                        names.len() as u32 - 1
-                    }
+            let name = world.intersect(cam.position, d, f32::INFINITY).map_or_else(
+                || BACKGROUND.to_string(),
+                |h| {
+                    let mesh = starts.partition_point(|&s| s <= h.triangle).saturating_sub(1);
+                    let n = if h.normal.dot(d) > 0.0 { -h.normal } else { h.normal };
+                    let mesh_name = scene.meshes.get(mesh).map_or("?", |m| m.name.as_str());
+                    format!("{mesh_name} {}", facing_name(n))
+                },
+            );
+            let id = match names.iter().position(|k| *k == name) {
+                Some(i) => i as u32,
+                None => {
+                    names.push(name);
+                    names.len() as u32 - 1
                 }
-            });
-            raw.push(id);
+            };
+            raw.push(Some(id));
         }
     }
     // Drop small regions, renumber by size (largest first).
