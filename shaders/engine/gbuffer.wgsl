@@ -47,6 +47,16 @@ fn fs_main(v: VOut) -> GBuffer {
     let alpha = textureSample(alpha_tex, material_sampler, v.uv).a;
     let dx = dpdx(v.world);
     let dy = dpdy(v.world);
+    // Specular anti-aliasing: across the pixel the normal turns by its screen derivatives, so
+    // the pixel sees the highlights of a range of normals. A Phong lobe of power p has an
+    // angular variance of about 1/p; the reflected direction's variance over a box pixel is
+    // 4 s2 (s2 = the normal's, |dn/dx|^2 / 12 + |dn/dy|^2 / 12). The widened lobe of power
+    // p / (1 + 4 p s2), still normalised, spreads a highlight's energy over the pixels it
+    // covers instead of point-sampling it.
+    let shading = normalize(v.normal);
+    let dnx = dpdx(shading);
+    let dny = dpdy(shading);
+    let s2 = (dot(dnx, dnx) + dot(dny, dny)) / 12.0;
     let m = materials[v.material];
     if m.flags.y != 0u && alpha < m.emission.w {
         discard;
@@ -67,7 +77,7 @@ fn fs_main(v: VOut) -> GBuffer {
     let albedo = m.albedo.rgb * select(vec3<f32>(1.0), tex.rgb, m.flags.x != 0u);
     var o: GBuffer;
     o.albedo = vec4<f32>(albedo, m.albedo.w);
-    o.normal = vec4<f32>(n, m.params.x);
+    o.normal = vec4<f32>(n, m.params.x / (1.0 + 4.0 * m.params.x * s2));
     o.geometry = vec4<f32>(g, f32(v.material));
     o.depth = dot(v.world - frame.camera_pos.xyz, frame.camera_fwd.xyz);
     return o;
