@@ -22,7 +22,8 @@
 //!   maps", I3D 2005) and [`Vpl`] extraction for light propagation volumes.
 //! - A CPU triangle rasteriser ([`rasterize`]) so all of the above runs without a GPU, and
 //!   behind feature `gpu` resident wgpu passes that record into the caller's encoder over
-//!   the caller's buffers, with the WGSL snippets their consumers include (module `gpu`).
+//!   the caller's buffers (alpha-tested casters with their masks), with the WGSL snippets
+//!   their consumers include (module `gpu`).
 //!
 //! ```
 //! use shadows::{PcssSettings, Pcss, plane_box::PlaneBox};

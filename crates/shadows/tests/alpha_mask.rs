@@ -43,13 +43,21 @@ fn scene(device: &wgpu::Device) -> (wgpu::Buffer, wgpu::Buffer, Vec<DrawRange>) 
     )
 }
 
-/// A 2 x 1 mask: opaque where u < 0.5, a hole where u > 0.5 (nearest filtering).
-fn half_mask(device: &wgpu::Device, queue: &wgpu::Queue) -> AlphaMask {
+/// A one-row RGBA8 texture of `texels`.
+fn row_texture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    texels: &[[u8; 4]],
+) -> wgpu::TextureView {
     let texture = device.create_texture_with_data(
         queue,
         &wgpu::TextureDescriptor {
             label: None,
-            size: wgpu::Extent3d { width: 2, height: 1, depth_or_array_layers: 1 },
+            size: wgpu::Extent3d {
+                width: texels.len() as u32,
+                height: 1,
+                depth_or_array_layers: 1,
+            },
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
@@ -58,10 +66,16 @@ fn half_mask(device: &wgpu::Device, queue: &wgpu::Queue) -> AlphaMask {
             view_formats: &[],
         },
         Default::default(),
-        &[255, 255, 255, 255, 255, 255, 255, 0],
+        texels.as_flattened(),
     );
+    texture.create_view(&Default::default())
+}
+
+/// A 2 x 1 mask: opaque where u < 0.5, a hole where u > 0.5 (nearest filtering).
+fn half_mask(device: &wgpu::Device, queue: &wgpu::Queue) -> AlphaMask {
+    let view = row_texture(device, queue, &[[255; 4], [255, 255, 255, 0]]);
     let sampler = device.create_sampler(&Default::default());
-    AlphaMask::new(device, &texture.create_view(&Default::default()), &sampler, 0.5).unwrap()
+    AlphaMask::new(device, &view, &sampler, 0.5).unwrap()
 }
 
 fn geometry<'a>(
@@ -145,17 +159,7 @@ fn bad_masks_are_typed_errors() {
     let Some(ctx) = gpu_test_context() else { return };
     let (d, q) = (&ctx.device, &ctx.queue);
     let (vertices, indices, draws) = scene(d);
-    let texture = d.create_texture(&wgpu::TextureDescriptor {
-        label: None,
-        size: wgpu::Extent3d { width: 1, height: 1, depth_or_array_layers: 1 },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba8Unorm,
-        usage: wgpu::TextureUsages::TEXTURE_BINDING,
-        view_formats: &[],
-    });
-    let view = texture.create_view(&Default::default());
+    let view = row_texture(d, q, &[[255; 4]]);
     let sampler = d.create_sampler(&Default::default());
     assert!(matches!(
         AlphaMask::new(d, &view, &sampler, f32::NAN),
