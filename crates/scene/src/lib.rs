@@ -7,7 +7,8 @@
 //! with what its ray tracer needs (mirror reflectivity, transparency with an index of
 //! refraction, alpha testing), the sun (a direction, or a date, time and place through
 //! [`atmosphere::solar_position`]), point lights, occlusion quads (thesis 5.3.3, with the
-//! opacity and tint its future work proposes), and where the sky volume and LPV cascades go.
+//! opacity and tint its future work proposes; derived from the geometry for scenes that
+//! author none, [`Scene::sky_occluders`]), and where the sky volume and LPV cascades go.
 //!
 //! It loads glTF 2.0 ([`load_gltf`]; the metallic-roughness mapping is documented there), OBJ
 //! with MTL ([`load_obj`]) and a TOML scene file ([`load_scene_file`]); textures are decoded from
@@ -61,6 +62,7 @@ mod load;
 mod material;
 mod mesh;
 mod needs;
+mod occluders;
 mod quad;
 mod scene;
 mod texture;
@@ -83,6 +85,7 @@ pub use load::{LoadOptions, load, load_with};
 pub use material::{AlphaMask, Material, MaterialId, RAY_TRACE_THRESHOLD};
 pub use mesh::{Cleanup, Mesh, MeshData};
 pub use needs::{Need, SKY_DARK_ELEVATION_DEG, SceneNeeds};
+pub use occluders::{DeriveSettings, derive_occlusion_quads};
 pub use quad::OcclusionQuad;
 pub use scene::{Scene, SceneStats, SceneTriangles};
 pub use texture::{

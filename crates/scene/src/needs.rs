@@ -151,7 +151,10 @@ impl SceneNeeds {
                 )),
                 Some(e) => Need::yes(format!(
                     "sky visible, sun at {e:.1}°, {} shape the sky light",
-                    plural(scene.occlusion_quads.len(), "occlusion quad", "occlusion quads")
+                    match scene.occlusion_quads.len() {
+                        0 => "occlusion quads derived from the geometry".to_string(),
+                        n => plural(n, "occlusion quad", "occlusion quads"),
+                    }
                 )),
             }
         };

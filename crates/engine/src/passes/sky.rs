@@ -37,8 +37,10 @@ impl SkyState {
         let sky = Sky::earth().map_err(|e| EngineError::technique("atmosphere", e))?;
         let p = &scene.sky_volume;
         let grid = VolumeGrid::new(p.bounds.min, p.resolution, p.spacing());
+        // The authored quads, or for a scene without any (a glTF or OBJ file) quads derived
+        // from its planar surfaces, so that its rooms are not flooded with sky light.
         let quads: Vec<OcclusionQuad> = scene
-            .occlusion_quads
+            .sky_occluders()
             .iter()
             .map(|q| {
                 OcclusionQuad::new(q.center, q.axis_u, q.axis_v, q.half_u, q.half_v)

@@ -1,0 +1,68 @@
+//! Sky light in a scene that authors no occlusion quads (as a glTF or OBJ file loads): the
+//! engine derives them from the geometry (`scene::Scene::sky_occluders`), so a closed room
+//! stays dark under the sky instead of seeing all of it.
+
+mod common;
+
+use engine::Component;
+
+/// Mean luminance of the sky-irradiance image once the sky volume is filled.
+fn sky_irradiance(r: &mut engine::Renderer) -> f64 {
+    r.set_component(Some(Component::SkyIrradiance));
+    let mut frame = r.render_frame().expect("frame");
+    for _ in 0..64 {
+        if r.sky_volume_complete() {
+            break;
+        }
+        frame = r.render_frame().expect("frame");
+    }
+    assert!(r.sky_volume_complete(), "the sky volume fills");
+    let n = frame.hdr.pixels.len() as f64;
+    frame
+        .hdr
+        .pixels
+        .iter()
+        .map(|p| 0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64)
+        .sum::<f64>()
+        / n
+}
+
+/// Sky irradiance (mean luminance) in `two_rooms`' closed east room (the scene camera's
+/// view) and in its windowed west room, with the authored quads or, `strip`ped of them,
+/// with quads derived from the geometry.
+fn rooms(strip: bool) -> Option<(f64, f64)> {
+    let mut scene = scene::Generated::TwoRooms.build(common::SEED);
+    if strip {
+        scene.occlusion_quads.clear();
+        assert!(scene.needs().sky_lighting.reason.contains("derived from the geometry"));
+    }
+    let settings = engine::Settings::preset(engine::Preset::Low, 64, 36);
+    let mut r = common::renderer(scene, settings)?;
+    let closed = sky_irradiance(&mut r);
+    // The west room from its north-west corner, looking at the floor under the window.
+    let west = scene::Camera::look_at(
+        glam::Vec3::new(0.4, 2.2, -3.6),
+        glam::Vec3::new(2.0, 0.0, -0.8),
+        70.0,
+        16.0 / 9.0,
+    );
+    r.set_camera(west).expect("camera");
+    Some((closed, sky_irradiance(&mut r)))
+}
+
+/// `two_rooms` stripped of its authored quads: the closed east room (its truth is black) gets
+/// under 5% of the sky irradiance the windowed west room gets, and the west room gets what
+/// the authored quads give it within a factor of 1.5. (Without any quads both rooms see the
+/// whole sky: the closed room got 95% of the west room's irradiance, the west room 34x what
+/// the authored quads give.)
+#[test]
+fn derived_occluders_keep_a_closed_room_dark() {
+    let (Some((closed, lit)), Some((_, authored))) = (rooms(true), rooms(false)) else { return };
+    eprintln!(
+        "sky irradiance, mean luminance: closed room {closed}, windowed room {lit} \
+         (authored quads: {authored})"
+    );
+    assert!(lit > 0.0, "the windowed room sees the sky");
+    assert!(closed < 0.05 * lit, "closed room {closed} against the lit room's {lit}");
+    assert!(lit / authored > 0.67 && lit / authored < 1.5, "derived {lit}, authored {authored}");
+}
