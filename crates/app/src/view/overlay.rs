@@ -1,6 +1,6 @@
 //! The overlay (egui): the adapter and its warning, frame time and its rolling graph, the
-//! controls (time of day and date, effect switches, preset, view shown, fly-through), and
-//! the last frame's pass table. It only reads and edits [`Controls`]; the window applies them.
+//! controls (time of day and date, effect switches, indirect technique with the radiance
+//! cache's state, preset, view shown, fly-through), and the last frame's pass table. It only reads and edits [`Controls`]; the window applies them.
 
 use super::controls::{Controls, views};
 use engine::{Effect, FrameStats, Indirect, Preset, View};
@@ -17,6 +17,8 @@ pub struct OverlayInfo<'a> {
     pub overlay_ms: f32,
     pub last: Option<&'a FrameStats>,
     pub message: Option<&'a str>,
+    /// The radiance cache's last update, while it is the indirect technique.
+    pub cache: Option<engine::CacheSummary>,
 }
 
 /// Buttons pressed this frame.
@@ -102,6 +104,9 @@ pub fn draw(
                     ui.selectable_value(&mut controls.indirect, i, i.name());
                 }
             });
+        if let Some(c) = &info.cache {
+            ui.label(format!("radiance cache: {c}"));
+        }
         egui::ComboBox::from_label("[C] shown").selected_text(view_label(controls.view)).show_ui(
             ui,
             |ui| {

@@ -7,7 +7,7 @@ use super::fly::{FlyCamera, FlyInput};
 use super::overlay::{self, OverlayInfo};
 use super::present::Presenter;
 use super::script::{Script, ScriptLog};
-use engine::{Effect, EngineError, FrameStats, Preset, Renderer, Settings};
+use engine::{Effect, EngineError, FrameStats, Indirect, Preset, Renderer, Settings};
 use std::collections::VecDeque;
 use std::sync::Arc;
 use std::time::Instant;
@@ -230,6 +230,7 @@ impl Viewer {
             overlay_ms: self.overlay_ms,
             last: Some(&stats),
             message: self.message.as_deref(),
+            cache: renderer.radiance_cache().filter(|_| renderer.indirect() == Indirect::Cache),
         };
         let show = self.controls.overlay;
         let controls = &mut self.controls;
