@@ -56,6 +56,7 @@ impl SceneCase {
                     t: 0.0,
                     position: Vec3::ZERO,
                     normal: Vec3::Y,
+                    shading_normal: Vec3::Y,
                     triangle: t as u32,
                     material,
                     barycentrics: Vec2::splat(1.0 / 3.0),
