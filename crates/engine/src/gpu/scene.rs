@@ -219,6 +219,8 @@ impl MaterialTextures {
             .map(|d| {
                 let mask = scene.materials.get(d.material as usize)?.alpha_mask?;
                 let view = self.view(Some(mask.texture));
+                // The scene validated the cutoff (in (0, 1]) and the view and sampler are the
+                // G-buffer's own, so the mask cannot fail; were it to, the draw stays opaque.
                 shadows::gpu::AlphaMask::new(device, view, &self.sampler, mask.cutoff).ok()
             })
             .collect()
