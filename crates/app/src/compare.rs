@@ -84,13 +84,16 @@ fn luminance(p: glam::Vec3) -> f32 {
     0.2126 * p.x + 0.7152 * p.y + 0.0722 * p.z
 }
 
+/// `p` scaled down so that its luminance is at most `cap` (the firefly clamp).
+pub fn clamp_luminance(p: glam::Vec3, cap: f32) -> glam::Vec3 {
+    let l = luminance(p);
+    if l > cap { p * (cap / l) } else { p }
+}
+
 fn clamped(im: &Image, cap: f32) -> Image {
     let mut out = im.clone();
     for p in &mut out.pixels {
-        let l = luminance(*p);
-        if l > cap {
-            *p *= cap / l;
-        }
+        *p = clamp_luminance(*p, cap);
     }
     out
 }

@@ -16,7 +16,7 @@
 //! `rel_rms` is `abs_rms / lit mean`, with the lit mean the component's mean reference
 //! luminance over the whole image (`normaliser`; 1 when the whole component is black).
 
-use crate::compare::{FIREFLY_CLAMP, ReferenceRender, reference_component};
+use crate::compare::{FIREFLY_CLAMP, ReferenceRender, clamp_luminance, reference_component};
 use crate::contact_sheet::{Tile, write_contact_sheet};
 use crate::io_err;
 use crate::regions::{RegionMap, region_map};
@@ -24,7 +24,6 @@ use engine::Component;
 use engine::components::{ComponentImage, passes, passes_ms, render_components};
 use engine::{EngineError, Renderer};
 use frame_scheduler::FrameReport;
-use glam::Vec3;
 use reference::{Image, luminance};
 use std::fmt::Write;
 use std::path::Path;
@@ -125,10 +124,7 @@ fn squared_errors(
     idx: impl Iterator<Item = usize>,
     cap: f32,
 ) -> (f64, f64) {
-    let clamp = |p: Vec3| {
-        let l = luminance(p);
-        if l > cap { p * (cap / l) } else { p }
-    };
+    let clamp = |p| clamp_luminance(p, cap);
     idx.fold((0.0, 0.0), |(d2, c2), i| {
         let (e, r) = (engine.pixels[i], reference.pixels[i]);
         let clamped = (clamp(e) - clamp(r)).length_squared() as f64;
