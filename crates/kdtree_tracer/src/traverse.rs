@@ -72,7 +72,16 @@ impl KdTree {
     /// True when anything is hit with `t` in `[max(ray.t_min, 0), t_max]`.
     #[inline]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
-        self.traverse::<true>(ray, t_max).is_some()
+        self.any_hit(ray, t_max).is_some()
+    }
+
+    /// Some hit with `t` in `[max(ray.t_min, 0), t_max]`, not necessarily the closest: the
+    /// first one the traversal meets (the early out of [`KdTree::occluded`], with the hit).
+    /// A caller that filters hits (alpha-tested holes) can accept it when it passes and fall
+    /// back to [`KdTree::intersect`] when it does not.
+    #[inline]
+    pub fn any_hit(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        self.traverse::<true>(ray, t_max)
     }
 
     #[inline(always)]

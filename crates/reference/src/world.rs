@@ -404,11 +404,19 @@ impl World {
     }
 
     /// True when something opaque lies along `origin + t dir`, `t` in `(0, t_max)`.
+    ///
+    /// With alpha-tested materials the first hit the traversal meets decides when it is
+    /// opaque (most shadow rays); only a ray whose first-met hit is a hole is traced again
+    /// hit by hit in order ([`World::intersect`]), so the answer is the same either way.
     pub fn occluded(&self, origin: Vec3, dir: Vec3, t_max: f32) -> bool {
-        if self.any_alpha {
-            self.intersect(origin, dir, t_max).is_some()
-        } else {
-            self.tree.occluded(&Ray::new(origin, dir), t_max)
+        let ray = Ray::new(origin, dir);
+        if !self.any_alpha {
+            return self.tree.occluded(&ray, t_max);
+        }
+        match self.tree.any_hit(&ray, t_max) {
+            None => false,
+            Some(h) if self.passes_alpha(h.triangle, h.barycentrics) => true,
+            Some(_) => self.intersect(origin, dir, t_max).is_some(),
         }
     }
 }

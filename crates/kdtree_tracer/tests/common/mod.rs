@@ -53,6 +53,31 @@ pub fn agree(
     Ok(())
 }
 
+/// `KdTree::any_hit` finds a hit exactly when brute force does, and the hit it reports is
+/// real: its triangle is hit at its `t` (within 1e-5 relative), inside `[t_min, t_max]`.
+pub fn any_hit_agrees(
+    tree: &KdTree,
+    brute: &BruteForce,
+    ray: &Ray,
+    t_max: f32,
+) -> Result<(), String> {
+    let theirs = brute.intersect(ray, t_max);
+    match tree.any_hit(ray, t_max) {
+        None if theirs.is_none() => Ok(()),
+        None => Err(format!("{ray:?} t_max {t_max}: any_hit none vs brute {theirs:?}")),
+        Some(h) => {
+            let again = brute.intersect_triangle(ray, t_max, h.triangle);
+            if theirs.is_none() || !again.is_some_and(|b| close(b.t, h.t)) {
+                return Err(format!("{ray:?} t_max {t_max}: any_hit {h:?}, brute {again:?}"));
+            }
+            if h.t < ray.t_min.max(0.0) || h.t > t_max {
+                return Err(format!("{ray:?}: any_hit t {} outside [{}, {t_max}]", h.t, ray.t_min));
+            }
+            Ok(())
+        }
+    }
+}
+
 /// Builds, validates, and checks every ray at several `t_max`.
 pub fn check_all(mesh: &Mesh, settings: &Settings, rays: &[Ray]) -> Result<KdTree, String> {
     let tree = KdTree::build(mesh, settings).map_err(|e| e.to_string())?;
@@ -61,9 +86,11 @@ pub fn check_all(mesh: &Mesh, settings: &Settings, rays: &[Ray]) -> Result<KdTre
     for ray in rays {
         for t_max in [f32::INFINITY, 1.0, 0.37, 0.0] {
             agree(&tree, &brute, ray, t_max)?;
+            any_hit_agrees(&tree, &brute, ray, t_max)?;
         }
         if let Some(h) = brute.intersect(ray, f32::INFINITY) {
             agree(&tree, &brute, ray, h.t)?;
+            any_hit_agrees(&tree, &brute, ray, h.t)?;
         }
     }
     Ok(tree)
