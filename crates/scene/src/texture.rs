@@ -178,11 +178,18 @@ impl Texture {
     pub fn texel(&self, level: usize, x: i64, y: i64) -> Vec4 {
         let l = &self.levels[level.min(self.levels.len() - 1)];
         let (w, h) = (l.width as i64, l.height as i64);
-        let (x, y) = match self.wrap {
-            Wrap::Repeat => (x.rem_euclid(w), y.rem_euclid(h)),
-            Wrap::Clamp => (x.clamp(0, w - 1), y.clamp(0, h - 1)),
-        };
-        l.texels[(y * w + x) as usize]
+        l.texels[(self.wrapped(y, h) * w + self.wrapped(x, w)) as usize]
+    }
+
+    /// Integer coordinate `i` on an axis of `n` texels under the wrap mode (the division of
+    /// `rem_euclid` only where `i` is outside, as for one neighbour of a bilinear sample).
+    #[inline]
+    fn wrapped(&self, i: i64, n: i64) -> i64 {
+        match self.wrap {
+            Wrap::Repeat if (0..n).contains(&i) => i,
+            Wrap::Repeat => i.rem_euclid(n),
+            Wrap::Clamp => i.clamp(0, n - 1),
+        }
     }
 
     /// Bilinear sample of one mip level at `uv` (`(0,0)` top-left corner of the image).
