@@ -6,14 +6,18 @@
 //! emitter sampling for as long as the estimator without it took; the variance ratio at
 //! equal time), `reference/furnace` (error against the analytic furnace radiance) and
 //! `reference/city_320x180_caustics_{on,off}` (two independent renders with and without the
-//! caustic estimator; error = their relative RMS against each other). Also: the image
+//! caustic estimator; error = their relative RMS against each other),
+//! `reference/city_320x180_refined` (two independent renders, each `spp` samples per pixel
+//! and then `Refinement::DEFAULT`'s second stage where the image is noisiest; error = their
+//! relative RMS against each other, unclamped; the first stage's figures beside it; 64 spp
+//! quick, 1024 full: the issue's "two minutes" render). Also: the image
 //! error of low sample counts against a higher-sample render (the comparison helpers every
 //! crate uses), and the camera-path throughput.
 
 use gi_report::{Entry, Sweep, time_ms};
 use reference::{
-    Component, Estimate, QuerySettings, RenderSettings, Renderer, SceneLighting, camera_from_scene,
-    compare, radiance, render, world_from_scene,
+    Component, Estimate, QuerySettings, Refinement, RenderSettings, Renderer, SceneLighting,
+    camera_from_scene, compare, radiance, render, world_from_scene,
 };
 use std::time::Instant;
 
@@ -104,6 +108,7 @@ fn main() {
     }
 
     city_caustics(&mut sweep, &world, cam, quick);
+    city_refined(&mut sweep, &world, cam, quick);
     cornell_area_equal_time(&mut sweep, quick);
 
     sweep.stage("furnace");
@@ -171,6 +176,58 @@ fn city_caustics(sweep: &mut Sweep, world: &reference::World, cam: reference::Ca
                 .threads(threads()),
         );
     }
+}
+
+/// The city at 320x180, two independent renders (seeds 1 and 2) each refined where it is
+/// noisiest; the error is their whole-frame relative RMS against each other, unclamped; the
+/// time is one render with its refinement. The first stage's own figures are settings.
+fn city_refined(sweep: &mut Sweep, world: &reference::World, cam: reference::Camera, quick: bool) {
+    let spp = if quick { 64 } else { 1024 };
+    sweep.stage(&format!("city refined, {spp} spp"));
+    let mut first = Vec::new();
+    let mut refined = Vec::new();
+    let (mut ms, mut pixels, mut extra) = (Vec::new(), 0usize, 0.0f64);
+    let mut worst = (0.0f64, 0.0f64);
+    for seed in [1u64, 2] {
+        let s = RenderSettings { spp, seed, ..RenderSettings::DEFAULT };
+        let t0 = Instant::now();
+        let mut r = render(world, cam, s, false).expect("render");
+        first.push(r.mean());
+        worst.0 = worst.0.max(r.worst_block_rel_std_error(8));
+        let chosen = r.refine(&Refinement::DEFAULT).expect("refine");
+        ms.push(t0.elapsed().as_secs_f64() * 1e3);
+        let est = r.estimates();
+        pixels = pixels.max(chosen.len());
+        let more: u64 = chosen.iter().map(|&p| (est[p as usize].samples - spp) as u64).sum();
+        extra = extra.max(more as f64 / est.len() as f64);
+        worst.1 = worst.1.max(r.worst_block_rel_std_error(8));
+        refined.push(r);
+    }
+    let e_first = compare(&first[0], &first[1], None).expect("same size").rel_rms;
+    let e = compare(&refined[0].mean(), &refined[1].mean(), None).expect("same size").rel_rms;
+    let rse = refined.iter().map(|r| r.mean_rel_std_error()).fold(0.0, f64::max);
+    sweep.entry(
+        Entry::new("reference/city_320x180_refined", "path_tracing", ms[0])
+            .setting("spp", spp)
+            .setting("refined_pixels", pixels)
+            .setting("refinement_extra_spp", extra)
+            .setting("mean_rel_std_error", rse)
+            .setting("worst_8x8_block_rel_std_error", worst.1)
+            .setting("rel_rms_between_seeds_first_stage", e_first)
+            .setting("worst_8x8_block_rel_std_error_first_stage", worst.0)
+            .error("rel_rms_between_seeds", e, "independent_render_same_settings")
+            .note(format!(
+                "two renders (seeds 1, 2) of {spp} spp + refinement in {:.1} and {:.1} s; up \
+                 to {pixels} pixels refined ({extra:.1} spp more on average); rel_rms between \
+                 them {e:.4} (first stage {e_first:.4}); worst 8x8 block {:.4} (first stage \
+                 {:.4}); mean relative standard error {rse:.4}",
+                ms[0] * 1e-3,
+                ms[1] * 1e-3,
+                worst.1,
+                worst.0
+            ))
+            .threads(threads()),
+    );
 }
 
 /// The area-lit Cornell box at 320x180: first without emitter sampling (`spp` samples, time

@@ -2,13 +2,14 @@
 //! 2) with and without photons, their whole-frame relative RMS against each other
 //! (unclamped), the mean relative standard error, the worst 8 x 8 block and the time.
 //!
-//! `cargo run --release -p reference --example caustics -- --spp 64 --baseline`
+//! `cargo run --release -p reference --example caustics -- --spp 64 --baseline` (add
+//! `--refine` for the second sampling stage where the image is noisiest)
 
 use anyhow::{Result, bail};
 use clap::Parser;
 use reference::{
-    PathSettings, RenderSettings, Renderer, SceneLighting, camera_from_scene, compare, luminance,
-    render, world_from_scene,
+    PathSettings, Refinement, RenderSettings, Renderer, SceneLighting, camera_from_scene, compare,
+    luminance, render, world_from_scene,
 };
 use std::time::Instant;
 
@@ -37,6 +38,18 @@ struct Args {
     variant: Option<String>,
     #[arg(long, default_value = "full")]
     component: String,
+    /// Refines the render where it is noisiest ([`reference::Renderer::refine`]).
+    #[arg(long)]
+    refine: bool,
+    /// Refinement: largest standard error of a pixel relative to its 8 x 8 block's light.
+    #[arg(long, default_value_t = Refinement::DEFAULT.target)]
+    refine_target: f32,
+    /// Refinement: extra samples per round as a share of the first stage's.
+    #[arg(long, default_value_t = Refinement::DEFAULT.budget)]
+    refine_budget: f32,
+    /// Refinement: rounds.
+    #[arg(long, default_value_t = Refinement::DEFAULT.rounds)]
+    refine_rounds: u32,
     /// Writes the seed-1 mean images as PNG to this folder.
     #[arg(long)]
     png: Option<std::path::PathBuf>,
@@ -44,25 +57,43 @@ struct Args {
 
 /// Worst 8 x 8 block of `sum Y(se) / sum Y(mean)`.
 fn worst_block(r: &Renderer) -> f64 {
-    let (w, h) = (r.settings().width as usize, r.settings().height as usize);
+    r.worst_block_rel_std_error(8)
+}
+
+/// The worst 8 x 8 block's corner and its three noisiest pixels (mean, error, samples).
+fn print_worst_block(r: &Renderer) {
+    let (w, h) = (r.settings().width, r.settings().height);
     let est = r.estimates();
-    let mut worst = 0.0f64;
-    for by in (0..h).step_by(8) {
-        for bx in (0..w).step_by(8) {
-            let (mut se, mut mean) = (0.0f64, 0.0f64);
-            for y in by..(by + 8).min(h) {
-                for x in bx..(bx + 8).min(w) {
-                    let e = est[y * w + x];
-                    se += luminance(e.std_error) as f64;
-                    mean += luminance(e.mean) as f64;
-                }
-            }
-            if mean > 0.0 {
-                worst = worst.max(se / mean);
-            }
-        }
+    let block = |bx: u32, by: u32| {
+        let px: Vec<u32> = (by..(by + 8).min(h))
+            .flat_map(|y| (bx..(bx + 8).min(w)).map(move |x| y * w + x))
+            .collect();
+        let se: f64 = px.iter().map(|&p| luminance(est[p as usize].std_error) as f64).sum();
+        let mean: f64 = px.iter().map(|&p| luminance(est[p as usize].mean) as f64).sum();
+        (if mean > 0.0 { se / mean } else { 0.0 }, px)
+    };
+    let corners = (0..h).step_by(8).flat_map(|y| (0..w).step_by(8).map(move |x| (x, y)));
+    let Some((x, y)) = corners.max_by(|a, b| block(a.0, a.1).0.total_cmp(&block(b.0, b.1).0))
+    else {
+        return;
+    };
+    let (worst, mut px) = block(x, y);
+    px.sort_by(|&a, &b| {
+        luminance(est[b as usize].std_error).total_cmp(&luminance(est[a as usize].std_error))
+    });
+    print!("  worst block ({x}, {y}) {worst:.4}:");
+    for &p in &px[..3] {
+        let e = est[p as usize];
+        print!(
+            " ({}, {}) Y {:.3} +- {:.3} at {} spp;",
+            p % w,
+            p / w,
+            luminance(e.mean),
+            luminance(e.std_error),
+            e.samples
+        );
     }
-    worst
+    println!();
 }
 
 fn main() -> Result<()> {
@@ -116,13 +147,36 @@ fn main() -> Result<()> {
                 component: reference::Component::from_name(&args.component).expect("component"),
             };
             let t0 = Instant::now();
-            let r = render(&world, cam, s, false)?;
+            let mut r = render(&world, cam, s, false)?;
             let secs = t0.elapsed().as_secs_f64();
             println!(
                 "{name} seed {seed}: {secs:.2} s, mean rel std error {:.4}, worst 8x8 block {:.4}",
                 r.mean_rel_std_error(),
                 worst_block(&r)
             );
+            if args.refine {
+                let refinement = Refinement {
+                    target: args.refine_target,
+                    budget: args.refine_budget,
+                    rounds: args.refine_rounds,
+                    ..Refinement::DEFAULT
+                };
+                let t1 = Instant::now();
+                let pixels = r.refine(&refinement)?;
+                let est = r.estimates();
+                let extra: u64 = pixels.iter().map(|&p| est[p as usize].samples as u64).sum();
+                println!(
+                    "{name} seed {seed} refined: {} pixels, {:.1} spp more on average, in \
+                     {:.2} s ({:.2} s in all), mean rel std error {:.4}, worst 8x8 block {:.4}",
+                    pixels.len(),
+                    extra as f64 / est.len() as f64,
+                    t1.elapsed().as_secs_f64(),
+                    t0.elapsed().as_secs_f64(),
+                    r.mean_rel_std_error(),
+                    worst_block(&r)
+                );
+                print_worst_block(&r);
+            }
             renders.push(r);
         }
         let (a, b) = (renders[0].mean(), renders[1].mean());

@@ -26,6 +26,13 @@
 //!   path tracer then leaves exactly those paths out (each light path is counted once),
 //!   which removes the fireflies of the sun found by chance through a chain of specular
 //!   bounces (see the `caustics` module for the partition of paths);
+//! - **refinement where the image is noisiest** ([`Renderer::refine`], [`Refinement`]): a
+//!   second stage of fresh samples, which replace the first stage's, for the pixels whose
+//!   standard error is above a share of their 8 x 8 block's light and for the pixels a
+//!   deterministic probe ([`glint_pixels`]) finds the sun's disk in a mirror reflection of
+//!   (a smooth mirror's glint of the sun is a dot far smaller than a pixel that a plain
+//!   render finds a few times in a thousand samples); each chosen pixel's sample count is
+//!   fixed before its samples are drawn, so its estimate stays unbiased;
 //! - **Russian roulette** on the path throughput;
 //! - **materials**: Lambert + energy-normalised Phong (Lafortune and Willems 1994), perfect
 //!   mirror, smooth glass with Fresnel, alpha test ([`Material`]);
@@ -73,6 +80,7 @@ mod integrator;
 mod lights;
 mod material;
 mod query;
+mod refine;
 mod render;
 mod rng;
 mod sampling;
@@ -87,7 +95,8 @@ pub use image::Image;
 pub use integrator::{Component, PathSettings};
 pub use material::{AlbedoTexture, AlphaTest, CoverageFn, Material, Sample, TextureFn};
 pub use query::{QueryPoint, QuerySettings, ambient_occlusion, irradiance, radiance};
-pub use render::{RenderSettings, Renderer, TILE, render};
+pub use refine::{GLINT_BOUNCES, Refinement, glint_pixels};
+pub use render::{CAUSTIC_BATCH, RenderSettings, Renderer, TILE, render};
 pub use rng::Rng;
 pub use sampling::luminance;
 pub use stats::{Estimate, Moments};

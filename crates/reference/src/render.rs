@@ -4,7 +4,8 @@ use crate::camera::Camera;
 use crate::caustics::{CausticSource, PhotonMap};
 use crate::image::Image;
 use crate::integrator::{self, Component, PathSettings};
-use crate::rng::{Rng, pixel_jitter};
+use crate::refine::{Refinement, glint_pixels};
+use crate::rng::{Rng, mix64, pixel_jitter};
 use crate::stats::{Estimate, Moments};
 use crate::world::World;
 use crate::{Error, sampling::luminance};
@@ -15,7 +16,13 @@ use rayon::prelude::*;
 pub const TILE: u32 = 16;
 
 /// Samples per pixel whose photon maps are held at once (caustic estimator).
-const CAUSTIC_BATCH: u32 = 8;
+pub const CAUSTIC_BATCH: u32 = 8;
+
+/// Salt that gives [`Renderer::refine`]'s samples streams of their own (one per round).
+const REFINE_SALT: u64 = 0x7E5A_11CE_D0DE_CADE;
+
+/// Samples of one pixel per unit of parallel work in [`Renderer::refine`].
+const REFINE_CHUNK: u32 = 2048;
 
 /// What to render and how many samples.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -149,7 +156,7 @@ impl<'w> Renderer<'w> {
         let tiles = tiles_x * h.div_ceil(TILE);
         let bar = self.progress_bar(count);
         let first = self.samples;
-        let (world, camera, s) = (self.world, self.camera, self.settings);
+        let (world, s) = (self.world, self.settings);
         // Per tile, the moments of this call's samples, in pixel order.
         let mut results: Vec<(u32, Vec<Moments>)> = (0..tiles)
             .map(|t| {
@@ -177,23 +184,8 @@ impl<'w> Renderer<'w> {
                 let mut i = 0;
                 for y in y0..y1 {
                     for x in x0..x1 {
-                        let pixel = (y * w + x) as u64;
-                        let m = &mut out[i];
+                        self.sample_pixel(&mut out[i], y * w + x, s.seed, k0..k1, &maps);
                         i += 1;
-                        for k in k0..k1 {
-                            let mut rng = Rng::for_sample(s.seed, pixel, k as u64);
-                            let (jx, jy) = pixel_jitter(s.seed, pixel, k as u64);
-                            let dir = camera.direction(x as f32 + jx, y as f32 + jy, w, h);
-                            m.add(integrator::radiance(
-                                world,
-                                s.component,
-                                camera.position,
-                                dir,
-                                &s.path,
-                                maps.get((k - k0) as usize),
-                                &mut rng,
-                            ));
-                        }
                     }
                 }
                 if last {
@@ -214,24 +206,131 @@ impl<'w> Renderer<'w> {
         self.samples += count;
     }
 
+    /// Adds samples `ks` of `pixel` (row-major index) to `m`: sample `k` from the streams of
+    /// `(seed, pixel, k)`, with photon map `maps[(k - ks.start) % maps.len()]` when there are
+    /// maps.
+    fn sample_pixel(
+        &self,
+        m: &mut Moments,
+        pixel: u32,
+        seed: u64,
+        ks: std::ops::Range<u32>,
+        maps: &[PhotonMap],
+    ) {
+        let (w, h) = (self.settings.width, self.settings.height);
+        let (x, y) = ((pixel % w) as f32, (pixel / w) as f32);
+        let (camera, s) = (&self.camera, &self.settings);
+        let k0 = ks.start;
+        for k in ks {
+            let mut rng = Rng::for_sample(seed, pixel as u64, k as u64);
+            let (jx, jy) = pixel_jitter(seed, pixel as u64, k as u64);
+            let dir = camera.direction(x + jx, y + jy, w, h);
+            let map = if maps.is_empty() { None } else { maps.get((k - k0) as usize % maps.len()) };
+            m.add(integrator::radiance(
+                self.world,
+                s.component,
+                camera.position,
+                dir,
+                &s.path,
+                map,
+                &mut rng,
+            ));
+        }
+    }
+
+    /// Second-stage sampling where the image is noisiest (see [`Refinement`] for the rule):
+    /// [`Refinement::rounds`] rounds, each choosing pixels and their sample counts from the
+    /// estimates so far (and, before the first, from the glint probe when the component
+    /// sees the sun through mirrors and glass); a chosen pixel is rendered again with that
+    /// many fresh samples from streams independent of every earlier sample, which
+    /// **replace** its earlier ones, so its estimate stays unbiased (keeping the earlier
+    /// ones would not: a pixel is chosen because its samples came out high). Photon maps
+    /// (caustic estimator): the [`CAUSTIC_BATCH`] passes after the samples so far, used in
+    /// turn. Returns the refined pixels (row-major indices, ascending).
+    /// [`Renderer::samples`] stays the first stage's count; a refined pixel's is its
+    /// [`Estimate::samples`].
+    pub fn refine(&mut self, refinement: &Refinement) -> Result<Vec<u32>, Error> {
+        refinement.validate()?;
+        if self.samples == 0 {
+            return Err(Error::InvalidSettings("refining a render with no samples".into()));
+        }
+        let (w, h) = (self.settings.width, self.settings.height);
+        let sees_sun = matches!(self.settings.component, Component::Full | Component::Reflections);
+        let glints = if refinement.glint_probe && sees_sun {
+            glint_pixels(self.world, &self.camera, w, h)
+        } else {
+            Vec::new()
+        };
+        let maps: Vec<PhotonMap> = match self.caustic_source() {
+            Some(src) => (self.samples..self.samples + CAUSTIC_BATCH)
+                .map(|k| src.map(self.world, k as u64, self.settings.path.max_bounces))
+                .collect(),
+            None => Vec::new(),
+        };
+        let mut refined = Vec::new();
+        for round in 0..refinement.rounds {
+            let probe: &[u32] = if round == 0 { &glints } else { &[] };
+            let chosen = refinement.select(&self.estimates(), (w, h), self.samples, probe);
+            if chosen.is_empty() {
+                break;
+            }
+            // Work in chunks of samples so that one pixel of a million samples does not
+            // run on one thread; the chunks are merged in order (the same sums on any
+            // number of threads).
+            let chunks: Vec<(usize, u32, u32)> = chosen
+                .iter()
+                .enumerate()
+                .flat_map(|(i, &(_, n))| {
+                    (0..n.div_ceil(REFINE_CHUNK))
+                        .map(move |c| (i, c * REFINE_CHUNK, ((c + 1) * REFINE_CHUNK).min(n)))
+                })
+                .collect();
+            let msg = format!("refining {} pixels, round {}", chosen.len(), round + 1);
+            let bar = self.bar(chunks.len() as u64, "chunks", msg);
+            let seed = self.settings.seed ^ mix64(REFINE_SALT ^ round as u64);
+            let fresh: Vec<Moments> = chunks
+                .par_iter()
+                .map(|&(i, k0, k1)| {
+                    let mut m = Moments::default();
+                    self.sample_pixel(&mut m, chosen[i].0, seed, k0..k1, &maps);
+                    bar.inc(1);
+                    m
+                })
+                .collect();
+            bar.finish_and_clear();
+            let mut new = vec![Moments::default(); chosen.len()];
+            for (&(i, _, _), m) in chunks.iter().zip(&fresh) {
+                new[i].merge(m);
+            }
+            for (&(p, _), m) in chosen.iter().zip(new) {
+                self.moments[p as usize] = m;
+                refined.push(p);
+            }
+        }
+        refined.sort_unstable();
+        refined.dedup();
+        Ok(refined)
+    }
+
     /// The progress bar of one [`Renderer::add_samples`] call (hidden unless asked for).
     fn progress_bar(&self, count: u32) -> ProgressBar {
+        let tiles = self.settings.width.div_ceil(TILE) * self.settings.height.div_ceil(TILE);
+        let msg = format!("spp {}..{}", self.samples, self.samples + count);
+        self.bar(tiles as u64, "tiles", msg)
+    }
+
+    /// A progress bar of `len` `unit`s (hidden unless asked for).
+    fn bar(&self, len: u64, unit: &str, msg: String) -> ProgressBar {
         if !self.progress {
             return ProgressBar::hidden();
         }
-        let tiles = self.settings.width.div_ceil(TILE) * self.settings.height.div_ceil(TILE);
-        let b = ProgressBar::new(tiles as u64);
-        if let Ok(style) = ProgressStyle::with_template(
-            "{msg} [{elapsed_precise}] {wide_bar} {pos}/{len} tiles (eta {eta})",
-        ) {
+        let b = ProgressBar::new(len);
+        if let Ok(style) = ProgressStyle::with_template(&format!(
+            "{{msg}} [{{elapsed_precise}}] {{wide_bar}} {{pos}}/{{len}} {unit} (eta {{eta}})"
+        )) {
             b.set_style(style);
         }
-        b.set_message(format!(
-            "{} spp {}..{}",
-            self.settings.component.name(),
-            self.samples,
-            self.samples + count
-        ));
+        b.set_message(format!("{} {msg}", self.settings.component.name()));
         b
     }
 
@@ -277,6 +376,21 @@ impl<'w> Renderer<'w> {
             mean += luminance(e.mean) as f64;
         }
         if mean > 0.0 { se / mean } else { 0.0 }
+    }
+
+    /// The largest [`Renderer::mean_rel_std_error`] of the image's `edge x edge` blocks
+    /// (aligned to the top-left corner): where the image is least converged.
+    pub fn worst_block_rel_std_error(&self, edge: u32) -> f64 {
+        let (w, h, edge) = (self.settings.width, self.settings.height, edge.max(1));
+        let (bw, bh) = (w.div_ceil(edge), h.div_ceil(edge));
+        let mut sums = vec![(0.0f64, 0.0f64); (bw * bh) as usize];
+        for (p, e) in self.estimates().iter().enumerate() {
+            let (x, y) = (p as u32 % w, p as u32 / w);
+            let b = &mut sums[((y / edge) * bw + x / edge) as usize];
+            b.0 += luminance(e.std_error) as f64;
+            b.1 += luminance(e.mean) as f64;
+        }
+        sums.iter().filter(|b| b.1 > 0.0).map(|b| b.0 / b.1).fold(0.0, f64::max)
     }
 }
 

@@ -8,6 +8,12 @@ use std::f32::consts::PI;
 /// A closed UV sphere of radius `r` around the origin (shared vertices: watertight), its
 /// faces wound outwards.
 pub fn sphere(b: &mut WorldBuilder, r: f32, slices: u32, stacks: u32, material: u32) {
+    let (p, idx) = sphere_mesh(r, slices, stacks);
+    b.triangles(&p, &idx, material);
+}
+
+/// The positions and triangles of [`sphere`].
+pub fn sphere_mesh(r: f32, slices: u32, stacks: u32) -> (Vec<Vec3>, Vec<[u32; 3]>) {
     let mut p = vec![Vec3::new(0.0, r, 0.0)];
     for i in 1..stacks {
         let th = PI * i as f32 / stacks as f32;
@@ -30,7 +36,7 @@ pub fn sphere(b: &mut WorldBuilder, r: f32, slices: u32, stacks: u32, material: 
             idx.push([ring(i, j), ring(i + 1, j + 1), ring(i + 1, j)]);
         }
     }
-    b.triangles(&p, &idx, material);
+    (p, idx)
 }
 
 /// The furnace: a closed sphere with albedo `a` and emission `e` (radiance `e / (1 - a)`),
