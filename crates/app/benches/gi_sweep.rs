@@ -7,11 +7,12 @@
 //!   steady frames. Warm-up: `sky_volume_frames() + 1` frames, so the amortised sky volume is
 //!   complete; then frames are timed with the camera nudged 1 mm sideways every frame, so every
 //!   view-dependent pass really reruns instead of being reused (the time of a frame where
-//!   everything is reused is the setting `reused_frame_ms`). Error = `rel_rms_clamped` of the
+//!   everything is reused is the setting `reused_frame_ms`). Error = `rel_rms` of the
 //!   warmed-up frame's linear HDR image against the reference image of the same view
-//!   (`app::compare::errors`: relative RMS over RGB with both images clamped at
-//!   `FIREFLY_CLAMP` times the reference's mean luminance); the unclamped `rel_rms`,
-//!   `mean_rel_luminance`, `luminance_ratio` and the reference's own noise are settings.
+//!   (`app::compare::errors`: relative RMS over RGB, unclamped); `rel_rms_clamped` (both
+//!   images clamped at `FIREFLY_CLAMP` times the reference's mean luminance, the headline
+//!   before the reference sampled caustics and refined its glints), `mean_rel_luminance`,
+//!   `luminance_ratio` and the reference's own noise are settings.
 //!   Also: median, sd, min and max frame ms, the mean ms of every pass over the timed frames
 //!   (`mean_pass_ms`: GPU ms for GPU passes, CPU ms for CPU and sync passes, whose CPU time
 //!   includes waiting for the GPU work before them) and what every pass did in the slowest
@@ -321,7 +322,7 @@ fn preset_entry(sweep: &mut Sweep, view: &View, preset: Preset, timed: usize) {
             .setting("reference_rel_std_error", e.reference_rel_std_error)
             .setting("adapter", r.adapter())
             .setting("software_adapter", software)
-            .error("rel_rms_clamped", e.rel_rms_clamped, &view.reference_name)
+            .error("rel_rms", e.rel_rms, &view.reference_name)
             .threads(rayon::current_num_threads())
             .note(timing_note(software, "one whole frame (steady state, sky volume complete)")),
     );

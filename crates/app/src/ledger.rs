@@ -282,7 +282,8 @@ mod tests {
         e.pixels.fill(engine);
         r.pixels.fill(truth);
         let std_error = Image::new(2, 2);
-        let reference = ReferenceRender { mean: r, std_error, rel_std_error: 0.0, spp: 1, ms: 0.0 };
+        let reference =
+            ReferenceRender { mean: r, std_error, rel_std_error: 0.0, spp: 1, refined: 0, ms: 0.0 };
         (e, reference)
     }
 
@@ -314,7 +315,8 @@ mod tests {
         e.pixels[7] = Vec3::splat(0.5);
         r.pixels[99] = Vec3::splat(400.0);
         let std_error = Image::new(10, 10);
-        let r = ReferenceRender { mean: r, std_error, rel_std_error: 0.0, spp: 1, ms: 0.0 };
+        let r =
+            ReferenceRender { mean: r, std_error, rel_std_error: 0.0, spp: 1, refined: 0, ms: 0.0 };
         let ids = (0..100).map(|i| (i < 99).then_some(u32::from(i % 10 >= 5))).collect();
         let regions = RegionMap { width: 10, height: 10, names: vec!["a".into(), "b".into()], ids };
         let rows = region_rows(&e, &r, &regions);
