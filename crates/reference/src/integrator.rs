@@ -34,15 +34,35 @@ pub enum Component {
     /// Emission seen directly (no bounce). Images: the first surface's emitted radiance;
     /// points: irradiance from emitters one cosine-sampled ray away.
     Emission,
+    /// Sky light reflected diffusely at the first surface: `rho_d / pi` times the occluded
+    /// sky irradiance (what a real-time engine makes of its sky volume's lookup). Images:
+    /// reflected radiance; points: the occluded sky irradiance, as [`Self::SkyIrradiance`].
+    SkyDiffuse,
 }
 
 impl Component {
-    pub const ALL: [Self; 7] = [
+    pub const ALL: [Self; 8] = [
         Self::SunDirect,
         Self::SunIndirectDiffuse,
         Self::SkyIrradiance,
         Self::Reflections,
         Self::Full,
+        Self::PointLights,
+        Self::Emission,
+        Self::SkyDiffuse,
+    ];
+
+    /// The components a one-bounce engine computes, in radiance: their sum over the
+    /// pixels where a surface is seen is the reference's [`Self::Full`] less the light of
+    /// more than one bounce (sky light bouncing, sunlight bouncing twice or more, glossy
+    /// indirect light, sunlight through mirrors onto diffuse surfaces, light of emitters and
+    /// point lights after a bounce). Every path through the first surface's mirror or
+    /// glass part is in [`Self::Reflections`].
+    pub const ONE_BOUNCE: [Self; 6] = [
+        Self::SunDirect,
+        Self::SunIndirectDiffuse,
+        Self::SkyDiffuse,
+        Self::Reflections,
         Self::PointLights,
         Self::Emission,
     ];
@@ -56,6 +76,7 @@ impl Component {
             Self::Full => "full",
             Self::PointLights => "point_lights",
             Self::Emission => "emission",
+            Self::SkyDiffuse => "sky_diffuse",
         }
     }
 
@@ -384,7 +405,7 @@ pub(crate) fn irradiance(
 ) -> Vec3 {
     match component {
         Component::SunDirect => sun_irradiance(world, p, n, rng),
-        Component::SkyIrradiance => {
+        Component::SkyIrradiance | Component::SkyDiffuse => {
             let wi = cosine_hemisphere(n, rng.next_2d());
             let o = world.offset(p, n, wi);
             if world.occluded(o, wi, f32::INFINITY) {
@@ -461,6 +482,10 @@ pub(crate) fn radiance(
         }
         Component::SkyIrradiance => {
             irradiance(world, component, h.position, n, settings, None, rng)
+        }
+        Component::SkyDiffuse => {
+            m.diffuse_reflectance() / PI
+                * irradiance(world, Component::SkyIrradiance, h.position, n, settings, None, rng)
         }
         Component::PointLights => {
             m.base_weight() * point_lights(world, h.position, n, |wi| m.eval_base(n, wo, wi))

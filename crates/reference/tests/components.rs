@@ -56,3 +56,95 @@ fn emission_is_the_first_surface_emitted_radiance_only() {
     assert_eq!(l[0].mean, Vec3::new(2.0, 1.0, 0.5));
     assert_eq!(l[1].mean, Vec3::ZERO, "lit by the light but not emissive");
 }
+
+/// A grey plane with a small emitter lying on it, under a sun, a point light and a blue
+/// sky: nothing but the plane and the emitter's edges, so no light bounces twice; with the
+/// wall, light bounces between it and the plane.
+fn one_bounce_world(with_wall: bool) -> World {
+    let mut b = World::builder();
+    let grey = b.material(Material::diffuse(Vec3::splat(0.5)));
+    let glow = b.material(Material::emissive(Vec3::splat(0.2), Vec3::new(2.0, 1.0, 0.5)));
+    b.quad(
+        Vec3::new(-10.0, 0.0, 10.0),
+        Vec3::new(20.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, -20.0),
+        grey,
+    );
+    b.quad(Vec3::new(-0.5, 0.01, 0.5), Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 0.0, -1.0), glow);
+    if with_wall {
+        b.quad(
+            Vec3::new(-2.0, 0.0, 1.0),
+            Vec3::new(0.0, 0.0, -2.0),
+            Vec3::new(0.0, 2.0, 0.0),
+            grey,
+        );
+    }
+    b.sun(reference::Sun::new(Vec3::new(0.3, 1.0, 0.4), Vec3::splat(2.0)));
+    b.point_light(PointLight {
+        position: Vec3::new(0.0, 1.5, 1.0),
+        intensity: Vec3::splat(3.0),
+        radius: 100.0,
+    });
+    b.sky(|d| Vec3::new(0.2, 0.3, 0.6) * (0.5 + 0.5 * d.y.max(0.0)));
+    b.build().unwrap()
+}
+
+/// Mean luminance of `component` seen along a fan of rays at the plane around the origin.
+fn mean_radiance(w: &World, component: Component, samples: u32) -> (f64, f64) {
+    let rays: Vec<(Vec3, Vec3)> = (0..48)
+        .map(|i| {
+            let t = i as f32 / 48.0;
+            let target = Vec3::new(-1.5 + 3.0 * t, 0.0, 1.5 - 3.0 * (t * 7.0).fract());
+            let eye = Vec3::new(0.0, 3.0, 4.0);
+            (eye, (target - eye).normalize())
+        })
+        .collect();
+    let q = QuerySettings { samples, ..QuerySettings::DEFAULT };
+    let est = radiance(w, component, &rays, &q).unwrap();
+    let n = est.len() as f64;
+    let mean = est.iter().map(|e| reference::luminance(e.mean) as f64).sum::<f64>() / n;
+    let se = est.iter().map(|e| (reference::luminance(e.std_error) as f64).powi(2)).sum::<f64>();
+    (mean, se.sqrt() / n)
+}
+
+#[test]
+fn the_one_bounce_components_add_up_to_the_full_image_where_light_bounces_once() {
+    // Without the wall no light bounces twice between diffuse surfaces, so the full image
+    // is the sum of the one-bounce components (within noise); the wall adds light that
+    // bounces twice or more, which the sum lacks.
+    for (with_wall, more) in [(false, false), (true, true)] {
+        let w = one_bounce_world(with_wall);
+        let (full, se_full) = mean_radiance(&w, Component::Full, 4096);
+        let (mut sum, mut se2) = (0.0, 0.0);
+        for c in Component::ONE_BOUNCE {
+            let (m, se) = mean_radiance(&w, c, 1024);
+            sum += m;
+            se2 += se * se;
+        }
+        let (d, se) = (full - sum, (se2 + se_full * se_full).sqrt());
+        if more {
+            assert!(d > 6.0 * se, "the wall's bounces: full {full} vs sum {sum} +- {se}");
+        } else {
+            assert!(d.abs() < 4.0 * se, "full {full} vs one-bounce sum {sum} +- {se}");
+        }
+    }
+}
+
+#[test]
+fn sky_diffuse_is_albedo_over_pi_times_sky_irradiance() {
+    // A grey plane (albedo 0.5) under a constant sky of radiance 1: 0.5 exactly.
+    let mut b = World::builder();
+    let grey = b.material(Material::diffuse(Vec3::splat(0.5)));
+    b.quad(
+        Vec3::new(-10.0, 0.0, 10.0),
+        Vec3::new(20.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, -20.0),
+        grey,
+    );
+    b.sky(|_| Vec3::ONE);
+    let w = b.build().unwrap();
+    let q = QuerySettings { samples: 16, ..QuerySettings::low() };
+    let l =
+        radiance(&w, Component::SkyDiffuse, &[(Vec3::new(0.0, 1.0, 0.0), -Vec3::Y)], &q).unwrap();
+    assert!((l[0].mean - Vec3::splat(0.5)).abs().max_element() < 1e-5, "{:?}", l[0].mean);
+}
