@@ -28,6 +28,10 @@
 //!   the component image's relative RMS against the reference's same component
 //!   (`engine/reference_<scene>_320x180_<spp>spp_<component>`, 16 spp quick, 64 full);
 //!   settings: luminance ratio and the reference's own noise.
+//! - `engine/beyond_one_bounce_{city,cornell_window,two_rooms}_320x180_{low,default,high}`:
+//!   the reference's light of more than one bounce (`app::beyond`): error = its rel RMS
+//!   against the full reference, the floor of an engine that computes one bounce; settings:
+//!   its luminance share, and the share of the preset's full-frame squared error it is.
 //! - Full sweep only: the same at 1600x900 (`engine/city_1600x900_*`,
 //!   `engine/cornell_window_1600x900_*`, `engine/flythrough_city_1600x900_100`), with
 //!   references of more samples per pixel.
@@ -427,6 +431,11 @@ fn components(
             (r, rname)
         })
         .collect();
+    sweep.stage(&format!("components {name} {w}x{h}: reference sky_diffuse"));
+    let sky = reference::Component::SkyDiffuse;
+    let sky_diffuse =
+        reference_component(&scene, &camera, (w, h), spp, sky, false).expect("reference sky");
+    let regions = app::regions::region_map(&scene, &camera, w, h).expect("regions");
     for preset in Preset::ALL {
         let tag = format!("components_{name}_{w}x{h}_{preset}");
         sweep.stage(&tag);
@@ -457,8 +466,49 @@ fn components(
                     .note(timing_note(software, "the passes that produce the component, in a frame where every per-frame pass ran")),
             );
         }
+        beyond_entry(sweep, &tag, &images, &refs, &sky_diffuse, &regions);
     }
     refs
+}
+
+/// `engine/beyond_one_bounce_<scene>_<w>x<h>_<preset>` (technique "beyond one bounce"): the
+/// reference's light of more than one bounce (`app::beyond`); error = its rel RMS against
+/// the full reference (the floor of a one-bounce engine), time = the reference ms of the
+/// one-bounce components; settings: its luminance share, the references' noise, and the
+/// engine's full-frame error with the share this light would be of it.
+fn beyond_entry(
+    sweep: &mut Sweep,
+    tag: &str,
+    images: &[engine::components::ComponentImage],
+    refs: &[(ReferenceRender, String)],
+    sky_diffuse: &ReferenceRender,
+    regions: &app::regions::RegionMap,
+) {
+    let by_name = |n: &str| refs.iter().zip(images).find(|(_, im)| im.component.name() == n);
+    let Some(((full, full_name), full_image)) = by_name("full") else { return };
+    let mut parts = vec![sky_diffuse];
+    for c in reference::Component::ONE_BOUNCE {
+        if let Some(((r, _), _)) = by_name(c.name()) {
+            parts.push(r);
+        }
+    }
+    let sky_seen = regions.id(app::regions::BACKGROUND);
+    let surface = |i: usize| sky_seen.is_none() || regions.ids[i] != sky_seen;
+    let engine = app::image_of(&full_image.image);
+    let (b, _) = app::beyond::beyond_one_bounce(full, &parts, &engine, surface);
+    let ms: f64 = parts.iter().map(|p| p.ms).sum();
+    let name = tag.replacen("components_", "beyond_one_bounce_", 1);
+    sweep.entry(
+        Entry::new(format!("engine/{name}"), "beyond one bounce", ms)
+            .setting("pixels", b.pixels)
+            .setting("luminance_share", b.luminance_share)
+            .setting("noise_rel_rms", b.noise_rel_rms)
+            .setting("engine_rel_rms", b.engine_rel_rms)
+            .setting("engine_error_share", b.engine_error_share)
+            .error("rel_rms", b.rel_rms, full_name)
+            .threads(rayon::current_num_threads())
+            .note("the reference's full image less the sum of its one-bounce components where a surface is seen: the error an engine exact in every one-bounce component keeps; time: the reference's one-bounce renders"),
+    );
 }
 
 /// The one-bounce techniques raced on the same truth (`reference`, the scene's

@@ -16,10 +16,11 @@
 //! `rel_rms` is `abs_rms / lit mean`, with the lit mean the component's mean reference
 //! luminance over the whole image (`normaliser`; 1 when the whole component is black).
 
+use crate::beyond::{BeyondOneBounce, beyond_one_bounce};
 use crate::compare::{FIREFLY_CLAMP, ReferenceRender, clamp_luminance, reference_component};
 use crate::contact_sheet::{Tile, write_contact_sheet};
 use crate::io_err;
-use crate::regions::{RegionMap, region_map};
+use crate::regions::{BACKGROUND, RegionMap, region_map};
 use engine::Component;
 use engine::components::{ComponentImage, passes, passes_ms, render_components};
 use engine::{EngineError, Renderer};
@@ -71,6 +72,8 @@ pub struct Ledger {
     pub height: u32,
     pub reference_spp: u32,
     pub components: Vec<ComponentLedger>,
+    /// The reference's light of more than one bounce ([`crate::beyond`]).
+    pub beyond: Option<BeyondOneBounce>,
 }
 
 /// Figures of `engine` against `reference` over the pixels `idx`; `normaliser` is the lit mean
@@ -203,6 +206,8 @@ pub fn run_ledger(
     let images = render_components(renderer)?;
     let mut rows = Vec::with_capacity(images.len());
     let mut tiles = Vec::with_capacity(images.len());
+    let mut refs = Vec::with_capacity(images.len() + 1);
+    let mut engine_full = None;
     for ComponentImage { component: c, image } in &images {
         let image = crate::image_of(image);
         let rc = crate::to_reference(*c);
@@ -216,14 +221,38 @@ pub fn run_ledger(
                 let p = dir.join(format!("{what}_{name}.exr"));
                 im.write_exr(&p).map_err(|err| io_err(&p, err))?;
             }
-            tiles.push(Tile { engine: image.clone(), reference: r.mean, figures: row.clone() });
+            let reference = r.mean.clone();
+            tiles.push(Tile { engine: image.clone(), reference, figures: row.clone() });
+        }
+        if *c == Component::Full {
+            engine_full = Some(image);
         }
         rows.push(row);
+        refs.push((rc, r));
     }
     if let Some(dir) = out {
         write_contact_sheet(&dir.join("components.png"), &tiles)?;
     }
-    Ok(Ledger { width: w, height: h, reference_spp: spp, components: rows })
+    let sky = reference::Component::SkyDiffuse;
+    refs.push((sky, reference_component(&scene, &camera, (w, h), spp, sky, progress)?));
+    let beyond = match (engine_full, refs.iter().find(|(c, _)| *c == reference::Component::Full)) {
+        (Some(engine), Some((_, full))) => {
+            let parts: Vec<&ReferenceRender> = reference::Component::ONE_BOUNCE
+                .iter()
+                .filter_map(|c| refs.iter().find(|(rc, _)| rc == c).map(|(_, r)| r))
+                .collect();
+            let sky_seen = regions.id(BACKGROUND);
+            let surface = |i: usize| sky_seen.is_none() || regions.ids[i] != sky_seen;
+            let (figures, image) = beyond_one_bounce(full, &parts, &engine, surface);
+            if let Some(dir) = out {
+                let p = dir.join("reference_beyond_one_bounce.exr");
+                image.write_exr(&p).map_err(|err| io_err(&p, err))?;
+            }
+            Some(figures)
+        }
+        _ => None,
+    };
+    Ok(Ledger { width: w, height: h, reference_spp: spp, components: rows, beyond })
 }
 
 impl Ledger {
@@ -238,6 +267,25 @@ impl Ledger {
              irradiance at the first surface on both sides.\n",
             self.width, self.height, self.reference_spp
         );
+        if let Some(b) = &self.beyond {
+            let _ = write!(
+                s,
+                "\n### beyond one bounce\n\nThe reference's full image less the sum of its \
+                 one-bounce components (sun, one bounce of sun, sky reflected diffusely, \
+                 reflections, point lights, emission) over the {} pixels where a surface is \
+                 seen: the light of more than one bounce, which the engine does not compute. \
+                 Luminance share {:.3}; rel RMS against the full image {:.3} (the references' \
+                 own noise alone: {:.3}), the error an engine exact in every one-bounce \
+                 component would keep; the engine's full frame there: {:.3}, of whose squared \
+                 error this light would be {:.3} if the engine had none of it.\n",
+                b.pixels,
+                b.luminance_share,
+                b.rel_rms,
+                b.noise_rel_rms,
+                b.engine_rel_rms,
+                b.engine_error_share
+            );
+        }
         for c in &self.components {
             let _ = write!(
                 s,

@@ -9,9 +9,11 @@
 //!   and 7.3 ([`thesis`]).
 //! - [`compare`]: a frame against the reference image of the same view.
 //! - [`ledger`]: each lighting component against its reference, whole frame and per region
-//!   ([`regions`]), with a contact sheet ([`contact_sheet`]).
+//!   ([`regions`]), with a contact sheet ([`contact_sheet`]) and the light beyond one bounce
+//!   ([`beyond`]).
 //! - [`view`]: `serein-view`, the engine in a window.
 
+pub mod beyond;
 pub mod cli;
 pub mod compare;
 pub mod contact_sheet;

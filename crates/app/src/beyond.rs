@@ -1,0 +1,100 @@
+//! The light of more than one bounce: what the thesis engine never had but the reference
+//! includes (sky light bouncing off other surfaces, sunlight bouncing twice or more, glossy
+//! indirect light, sunlight through mirrors onto diffuse surfaces, emitters and point lights
+//! after a bounce). It is the reference's full image less the sum of its one-bounce
+//! components ([`reference::Component::ONE_BOUNCE`]) over the pixels where a surface is seen
+//! (the sky seen directly is in the full image only): the part of the frame's error that an
+//! engine exact in every one-bounce component would still have.
+
+use crate::compare::ReferenceRender;
+use reference::{Image, luminance};
+
+/// Figures of the light beyond one bounce in one view.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct BeyondOneBounce {
+    /// Pixels where a surface is seen (the figures' pixels).
+    pub pixels: usize,
+    /// Mean luminance of the residual over the full image's.
+    pub luminance_share: f64,
+    /// `sqrt(sum |R|² / sum |F|²)` over RGB, `R` the residual and `F` the full image: the
+    /// error of an engine exact in every one-bounce component.
+    pub rel_rms: f64,
+    /// What the references' own noise alone gives `rel_rms` (the variances of the full image
+    /// and every component, added): a residual near it is noise.
+    pub noise_rel_rms: f64,
+    /// The engine's full frame against the reference over the same pixels.
+    pub engine_rel_rms: f64,
+    /// `sum |R|² / sum |E - F|²`: the share of the engine's squared error that the light
+    /// beyond one bounce would be if the engine had none of it.
+    pub engine_error_share: f64,
+}
+
+/// The residual image (`full` less the sum of `parts`, black where `surface` is false) and
+/// its figures against `full` and the engine's frame `engine`.
+pub fn beyond_one_bounce(
+    full: &ReferenceRender,
+    parts: &[&ReferenceRender],
+    engine: &Image,
+    surface: impl Fn(usize) -> bool,
+) -> (BeyondOneBounce, Image) {
+    let mut residual = Image::new(full.mean.width, full.mean.height);
+    let (mut yr, mut yf, mut r2, mut f2, mut v2, mut e2, mut n) =
+        (0.0f64, 0.0, 0.0, 0.0, 0.0, 0.0, 0);
+    for i in (0..full.mean.pixels.len()).filter(|&i| surface(i)) {
+        let f = full.mean.pixels[i];
+        let r = parts.iter().fold(f, |acc, p| acc - p.mean.pixels[i]);
+        residual.pixels[i] = r;
+        yr += luminance(r) as f64;
+        yf += luminance(f) as f64;
+        r2 += r.length_squared() as f64;
+        f2 += f.length_squared() as f64;
+        v2 += parts
+            .iter()
+            .chain(std::iter::once(&full))
+            .map(|p| p.std_error.pixels[i].length_squared() as f64)
+            .sum::<f64>();
+        e2 += (engine.pixels[i] - f).length_squared() as f64;
+        n += 1;
+    }
+    let ratio = |a: f64, b: f64| if b > 0.0 { a / b } else { 0.0 };
+    let figures = BeyondOneBounce {
+        pixels: n,
+        luminance_share: ratio(yr, yf),
+        rel_rms: ratio(r2, f2).sqrt(),
+        noise_rel_rms: ratio(v2, f2).sqrt(),
+        engine_rel_rms: ratio(e2, f2).sqrt(),
+        engine_error_share: ratio(r2, e2),
+    };
+    (figures, residual)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    fn flat(v: Vec3, se: f32) -> ReferenceRender {
+        let mut mean = Image::new(2, 2);
+        mean.pixels.fill(v);
+        let mut std_error = Image::new(2, 2);
+        std_error.pixels.fill(Vec3::splat(se));
+        ReferenceRender { mean, std_error, rel_std_error: 0.0, spp: 1, refined: 0, ms: 0.0 }
+    }
+
+    #[test]
+    fn the_residual_is_what_the_parts_leave_on_surfaces_only() {
+        // Full 1.0 = 0.5 + 0.3 + 0.2 beyond; pixel 3 is sky (left out).
+        let (full, a, b) =
+            (flat(Vec3::ONE, 0.01), flat(Vec3::splat(0.5), 0.0), flat(Vec3::splat(0.3), 0.0));
+        let mut engine = Image::new(2, 2);
+        engine.pixels.fill(Vec3::splat(0.8)); // exact in both parts, nothing beyond
+        let (f, im) = beyond_one_bounce(&full, &[&a, &b], &engine, |i| i != 3);
+        assert_eq!(f.pixels, 3);
+        assert!((f.luminance_share - 0.2).abs() < 1e-5, "{}", f.luminance_share);
+        assert!((f.rel_rms - 0.2).abs() < 1e-5 && (f.engine_rel_rms - 0.2).abs() < 1e-5);
+        assert!((f.engine_error_share - 1.0).abs() < 1e-4, "{}", f.engine_error_share);
+        assert!((f.noise_rel_rms - 0.01).abs() < 1e-5, "{}", f.noise_rel_rms);
+        assert!((im.pixels[0] - Vec3::splat(0.2)).abs().max_element() < 1e-6);
+        assert_eq!(im.pixels[3], Vec3::ZERO);
+    }
+}
