@@ -22,7 +22,8 @@ fn fs_combine(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     if component != COMPONENT_FULL && component != COMPONENT_REFLECTIONS {
         return textureLoad(lit_t, px, 0);
     }
-    // The reflections component alone: what the traced rays add (the lit view holds 0).
+    // The reflections component alone: what the traced rays add to the lit view's (the sun's
+    // glint in the mirror and glass parts).
     let lit = textureLoad(lit_t, px, 0);
     let depth = textureLoad(depth_t, px, 0).x;
     if depth <= 0.0 {

@@ -141,6 +141,26 @@ fn channel_view(ch: u32, px: vec2<i32>, a: vec4<f32>, n: vec3<f32>, gn: vec3<f32
     }
 }
 
+// The sun's glint in a surface's mirror or glass part, per unit of its irradiance: the
+// density (1/sr) of the pixel's reflected directions at the sun, so that the pixel holds the
+// share of the sun's reflection that falls in it instead of point-sampling a disk far
+// smaller than a pixel (a curved mirror's glint). The directions spread over a Gaussian of
+// total angular variance `alpha^2 / 2` (the sun's disk of radius alpha) + `delta^2 / 3` (the
+// view directions under a tent filter two pixels wide, delta a pixel's angular size: the
+// pixels' tents add up to one everywhere, so the pixels together hold the whole glint
+// wherever it falls) + `4 s2` (the normal's variance over the pixel, which the G-buffer
+// folded into the widened Phong power: `4 s2 = 1 / p_w - 1 / p`, zero without a lobe to
+// tell it).
+fn sun_glint(r: vec3<f32>, l: vec3<f32>, alpha: f32, pixel: f32, power: f32, widened: f32) -> f32 {
+    var normal_var = 0.0;
+    if power > 1.0 && widened > 0.0 {
+        normal_var = max(1.0 / widened - 1.0 / power, 0.0);
+    }
+    let q = 2.0 / max(0.5 * alpha * alpha + pixel * pixel / 3.0 + normal_var, 1e-12);
+    let one_minus_cos = max(1.0 - dot(r, l), 0.0);
+    return q / (2.0 * PI) * exp(-q * one_minus_cos);
+}
+
 @fragment
 fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     let px = vec2<i32>(frag.xy);
@@ -168,10 +188,21 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     let power = max(ns.w, 1.0);
     let base = max(1.0 - m.params.y - m.params.z, 0.0);
     var sun = vec3<f32>(0.0);
+    var glint = vec3<f32>(0.0);
     if frame.sun_dir.w > 0.0 {
-        let f = base_brdf_cos(a.rgb, g, power, n, frame.sun_dir.xyz, v);
-        if any(f > vec3<f32>(0.0)) {
-            sun = f * frame.sun_irradiance.rgb * sun_visibility(p, gn, depth);
+        let l = frame.sun_dir.xyz;
+        let f = base_brdf_cos(a.rgb, g, power, n, l, v);
+        // The mirror and glass parts' weights, as the combine pass weighs their traced rays.
+        let w_delta = m.params.y + m.params.z * fresnel_schlick(dot(n, v), m.params.w);
+        var lobe = 0.0;
+        if w_delta > 0.0 && (frame.size.w & FLAG_SUN_GLINTS) != 0u {
+            let pixel = length(view_ray(frame, pxf + vec2<f32>(1.0, 0.0)) - view_ray(frame, pxf));
+            lobe = sun_glint(reflect(-v, n), l, frame.sun_irradiance.w, pixel, m.params.x, ns.w);
+        }
+        if any(f > vec3<f32>(0.0)) || lobe > 1e-6 {
+            let e = frame.sun_irradiance.rgb * sun_visibility(p, gn, depth);
+            sun = f * e;
+            glint = w_delta * lobe * e;
         }
     }
     var points = vec3<f32>(0.0);
@@ -207,9 +238,10 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
         case COMPONENT_SKY_IRRADIANCE: { c = PI * sky_e_over_pi * ao; }
         case COMPONENT_SUN_INDIRECT: { c = diffuse / PI * bounce_e * ao; }
         case COMPONENT_EMISSION: { c = m.emission.rgb; }
-        case COMPONENT_REFLECTIONS: { c = vec3<f32>(0.0); }
+        // The sun seen in the mirror and glass parts; the combine pass adds the traced rays.
+        case COMPONENT_REFLECTIONS: { c = glint; }
         default: {
-            c = base * (sun + points) + diffuse * (sky_e_over_pi + bounce_e / PI) * ao + m.emission.rgb;
+            c = base * (sun + points) + diffuse * (sky_e_over_pi + bounce_e / PI) * ao + m.emission.rgb + glint;
         }
     }
     return vec4<f32>(max(c, vec3<f32>(0.0)), 1.0);

@@ -20,6 +20,8 @@ pub struct RenderJob {
     pub preset: Preset,
     /// The one-bounce technique (the presets': the RSM gather).
     pub indirect: Indirect,
+    /// The sun's glint in mirror and glass parts (`engine::Settings::sun_glints`).
+    pub sun_glints: bool,
     pub frames: u32,
     pub out: PathBuf,
     /// Samples per pixel of the reference image, if wanted.
@@ -42,6 +44,7 @@ impl Default for RenderJob {
             height: 900,
             preset: Preset::Default,
             indirect: Indirect::Rsm,
+            sun_glints: false,
             frames: 24,
             out: PathBuf::from("target/render"),
             reference_spp: None,
@@ -178,8 +181,11 @@ pub fn load_scene(job: &RenderJob) -> Result<scene::Scene, EngineError> {
 pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
     let scene = load_scene(job)?;
     let name = scene.name.clone();
-    let settings =
-        Settings { indirect: job.indirect, ..Settings::preset(job.preset, job.width, job.height) };
+    let settings = Settings {
+        indirect: job.indirect,
+        sun_glints: job.sun_glints,
+        ..Settings::preset(job.preset, job.width, job.height)
+    };
     let mut renderer = Renderer::new(scene, settings)?;
     std::fs::create_dir_all(&job.out).map_err(|e| crate::io_err(&job.out, e))?;
     let bar = progress_bar(job.progress, job.frames as u64, "frames");

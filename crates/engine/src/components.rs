@@ -8,7 +8,7 @@
 //! | `sun_direct` | `w_b f_base cos E_sun V_pcss` | the same with the sun disk sampled and a shadow ray |
 //! | `sun_indirect_diffuse` | `w_b (1 - g) albedo / pi E_bounce ao` (E from the LPV or the RSM gather) | `rho_d / pi` times one-bounce sun irradiance |
 //! | `sky_irradiance` | `pi (E_sky / pi) ao`: **irradiance** at the first surface | occluded sky irradiance at the first surface |
-//! | `reflections` | what the combine pass adds (traced mirror + glass radiance with Fresnel weights) | light through the first surface's delta part, full GI after it |
+//! | `reflections` | what the combine pass adds (traced mirror + glass radiance with Fresnel weights), and with `Settings::sun_glints` the sun's glint in those parts | light through the first surface's delta part, full GI after it |
 //! | `point_lights` | `w_b f_base cos I / d² V_cube` | the same with one shadow ray per light |
 //! | `emission` | the first surface's emission | the same |
 //! | `full` | the frame | the path-traced frame |

@@ -12,6 +12,8 @@ pub(crate) const FLAG_SHADOWS: u32 = 16;
 /// The ray casting writes reflection rays (refraction rays) where materials ask for them.
 pub(crate) const FLAG_REFLECTIONS: u32 = 32;
 pub(crate) const FLAG_REFRACTIONS: u32 = 64;
+/// The lighting adds the sun's glint in mirror and glass parts (`Settings::sun_glints`).
+pub(crate) const FLAG_SUN_GLINTS: u32 = 128;
 
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
@@ -61,6 +63,7 @@ mod tests {
             ("FLAG_SHADOWS", FLAG_SHADOWS),
             ("FLAG_REFLECTIONS", FLAG_REFLECTIONS),
             ("FLAG_REFRACTIONS", FLAG_REFRACTIONS),
+            ("FLAG_SUN_GLINTS", FLAG_SUN_GLINTS),
         ] {
             assert_eq!(crate::shaders::u32_constant(&src, name), Some(value), "{name}");
         }

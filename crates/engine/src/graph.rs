@@ -6,7 +6,7 @@
 use crate::effects::Effect;
 use crate::frame::{
     FLAG_BLINN, FLAG_INDIRECT, FLAG_REFLECTIONS, FLAG_REFRACTIONS, FLAG_SHADOWS, FLAG_SKY,
-    FLAG_SKY_VOLUME, FrameUniform,
+    FLAG_SKY_VOLUME, FLAG_SUN_GLINTS, FrameUniform,
 };
 use crate::passes::display::{Exposure, Shown};
 use crate::passes::lighting::{IndirectSource, LightingInputs};
@@ -79,6 +79,9 @@ fn write_frame_uniform(c: &FrameCtx) {
     }
     if set.specular == Specular::BlinnPhong {
         flags |= FLAG_BLINN;
+    }
+    if set.sun_glints {
+        flags |= FLAG_SUN_GLINTS;
     }
     let maps = s.shadow_maps.lock().ok().and_then(|m| *m);
     let cubes = s.point_shadows_ready.load(Ordering::Acquire);

@@ -36,6 +36,10 @@ struct Args {
     components: bool,
     /// No progress bars.
     #[arg(long)]
+    /// Adds the sun's glint in mirror and glass parts (off in the presets; see
+    /// `engine::Settings::sun_glints` for what it buys and costs on the ledger).
+    #[arg(long)]
+    sun_glints: bool,
     quiet: bool,
 }
 
@@ -47,6 +51,7 @@ fn main() -> anyhow::Result<()> {
         height,
         preset: a.engine.preset,
         indirect: a.engine.indirect,
+        sun_glints: a.sun_glints,
         frames: a.frames,
         out: a.out.clone(),
         reference_spp: a.reference,
