@@ -166,6 +166,8 @@ impl Refinement {
                     while (n as f64) < wanted && n < hi {
                         n *= 2;
                     }
+                    // A count a pixel's moments can hold (u32), whatever the first stage.
+                    let n = n.min(1 << 31);
                     if n > e.samples as u64 {
                         let need = if need.is_finite() { need.max(1.0) } else { 1.0 };
                         needy.push((need, p, n as u32));
