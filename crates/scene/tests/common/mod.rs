@@ -2,6 +2,8 @@
 //! brute-force ray caster, and the proptest case count.
 #![allow(dead_code)]
 
+pub mod closed_room;
+
 use glam::Vec3;
 
 /// Proptest cases: `PROPTEST_CASES` or `default`.

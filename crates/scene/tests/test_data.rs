@@ -1,0 +1,50 @@
+//! The scene files under `tests/data/`, made by the project: each is what its generator in
+//! `tests/common/` writes (`SEREIN_BLESS=1 cargo test -p scene --test test_data` rewrites
+//! them), and each loads as the scene it describes.
+
+mod common;
+
+use common::closed_room;
+use glam::Vec3;
+
+#[test]
+fn closed_room_file_is_what_its_generator_writes() {
+    let want = closed_room::gltf();
+    if std::env::var_os("SEREIN_BLESS").is_some() {
+        std::fs::write(closed_room::PATH, &want).expect("write the test data");
+    }
+    let have = std::fs::read_to_string(closed_room::PATH).expect("tests/data/closed_room.gltf");
+    assert!(have == want, "{} is stale: rerun with SEREIN_BLESS=1", closed_room::PATH);
+}
+
+/// The room loads with no authored occlusion quads, and the quads derived from its walls
+/// close it but for the window: from the room's centre, rays escape only through the
+/// window's upper half (the window subtends 3.4% of the sphere from there, centred on the
+/// horizon; its lower half looks at the ground, which occludes too).
+#[test]
+fn closed_room_loads_and_its_derived_occluders_leave_only_the_window() {
+    let scene = scene::load_gltf(closed_room::PATH).expect("load the closed room");
+    assert!(scene.occlusion_quads.is_empty(), "a glTF file authors no occlusion quads");
+    assert_eq!(scene.meshes.len(), 9, "ground, roof, three walls, four window-wall pieces");
+    let (eye, target) = closed_room::inside_camera();
+    assert!((scene.camera.position - eye).length() < 1e-4, "{:?}", scene.camera);
+    let forward = (target - eye).normalize();
+    assert!(scene.camera.forward.dot(forward) > 0.9999, "{:?}", scene.camera);
+
+    let quads = scene.sky_occluders();
+    let (min, max) = closed_room::INTERIOR;
+    let centre = (min + max) * 0.5;
+    let n = 4000;
+    let escaped = (0..n)
+        .filter(|&i| {
+            // A Fibonacci sphere of directions.
+            let z = 1.0 - 2.0 * (i as f32 + 0.5) / n as f32;
+            let phi = i as f32 * 2.399_963;
+            let r = (1.0 - z * z).sqrt();
+            let d = Vec3::new(r * phi.cos(), z, r * phi.sin());
+            !quads.iter().any(|q| q.intersect(centre, d, f32::INFINITY).is_some())
+        })
+        .count();
+    let fraction = escaped as f64 / n as f64;
+    assert!((0.01..0.025).contains(&fraction), "{escaped} of {n} directions escape the room");
+}
