@@ -83,6 +83,12 @@ fn world_position(f: Frame, px: vec2<f32>, depth: f32) -> vec3<f32> {
     return f.camera_pos.xyz + d * (depth / max(dot(d, f.camera_fwd.xyz), 1e-4));
 }
 
+// Diffuse reflectance of material `m` under G-buffer albedo `a` (rgb albedo, w glossiness):
+// the part of the light neither mirrored, transmitted nor reflected glossily.
+fn diffuse_reflectance(m: Material, a: vec4<f32>) -> vec3<f32> {
+    return max(1.0 - m.params.y - m.params.z, 0.0) * (1.0 - a.w) * a.rgb;
+}
+
 // Schlick's Fresnel reflectance for a dielectric of index `ior` seen at cosine `c`.
 fn fresnel_schlick(c: f32, ior: f32) -> f32 {
     let r0 = (ior - 1.0) / (ior + 1.0);

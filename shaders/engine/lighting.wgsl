@@ -229,7 +229,7 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
         bounce_e = bounce[i].xyz;
     }
     let ao = ambient_occlusion(vec2<u32>(px), p, gn);
-    let diffuse = base * (1.0 - g) * a.rgb;
+    let diffuse = diffuse_reflectance(m, a);
     var c: vec3<f32>;
     switch component {
         case COMPONENT_SUN_DIRECT: { c = base * sun; }

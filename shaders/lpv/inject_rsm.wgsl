@@ -9,7 +9,7 @@
 struct RsmInject {
     // xyz unit direction towards the light, w the texel's area across the light (world²)
     to_light: vec4<f32>,
-    // RSM width, height; 1 when the geometry volume is on; unused
+    // RSM width, height; 1 when the geometry volume is on and the texels are surfels; unused
     size: vec4<u32>,
     // largest flux one texel can carry (per channel; the fixed-point scale's bound),
     // geometry volume fixed-point scale, unused x2

@@ -165,20 +165,16 @@ fn rays_switched(c: &FrameCtx) -> bool {
     c.effects.is_on(Effect::Reflections) || c.effects.is_on(Effect::Refractions)
 }
 
-/// Declares the pipeline.
-pub fn build(
-    sky_layers: u32,
-    layers_per_frame: u32,
-    cache_frames: u32,
-) -> (FrameGraph<FrameCtx>, Outputs) {
+/// Declares the pipeline for `set`, over a sky volume of `sky_layers` layers.
+pub fn build(set: &crate::Settings, sky_layers: u32) -> (FrameGraph<FrameCtx>, Outputs) {
     let mut g = FrameGraph::<FrameCtx>::new();
     let r = Resources::declare(&mut g);
     g.output(r.shown);
-    let sky_volume = sky_passes(&mut g, r, sky_layers, layers_per_frame);
+    let sky_volume = sky_passes(&mut g, r, sky_layers, set.sky_layers_per_frame);
     shadow_passes(&mut g, r);
     gbuffer_pass(&mut g, r);
-    bounce_passes(&mut g, r);
-    cache_pass(&mut g, r, cache_frames);
+    bounce_passes(&mut g, r, set.sky_bounce > 0);
+    cache_pass(&mut g, r, set.cache_frames);
     trace_passes(&mut g, r);
     lighting_pass(&mut g, r);
     combine_pass(&mut g, r);
@@ -292,23 +288,33 @@ fn gbuffer_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
 }
 
 /// One bounce of sunlight: the LPV, or the RSM the lighting pass gathers from.
-fn bounce_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
-    g.gpu_pass(pass::LPV)
+fn bounce_passes(g: &mut FrameGraph<FrameCtx>, r: Resources, sky_bounce: bool) {
+    let mut lpv = g
+        .gpu_pass(pass::LPV)
         .writes(r.lpv)
         .switched(Effect::IndirectLight)
         .run_if(BOUNCE_NEEDED, bounce_needed)
         .run_if("the indirect technique is the LPV", |c: &FrameCtx| c.indirect == Indirect::Lpv)
         .key("camera cell (1 m)", |c: &FrameCtx| quantise_dir(c.camera.position.to_array(), 1.0))
-        .key("sun direction", sun_key)
-        .run(move |io| -> PassResult {
-            let c = io.ctx();
-            let sun = c.sun.ok_or_else(|| crate::EngineError::Settings("no sun".into()))?;
-            let mut l = c.state.lpv.write().map_err(poisoned)?;
-            l.update(&c.state.gpu, &c.state.scene, c.camera.position, &sun)?;
-            io.ctx().state.gpu.take_error()?;
-            io.put(r.lpv, c.frame)?;
-            Ok(())
-        });
+        .key("sun direction", sun_key);
+    if sky_bounce {
+        // The sky-bounce VPLs are the view's surfaces lit by the sky volume.
+        lpv = lpv.reads(r.gbuf).reads(r.sky_vol);
+    }
+    lpv.run(move |io| -> PassResult {
+        let c = io.ctx();
+        let s = &c.state;
+        let sun = c.sun.ok_or_else(|| crate::EngineError::Settings("no sun".into()))?;
+        let sky = match &s.sky {
+            Some(k) if c.needs.sky_lighting.needed => Some(k.read().map_err(poisoned)?),
+            _ => None,
+        };
+        let mut l = s.lpv.write().map_err(poisoned)?;
+        l.update(&s.gpu, &s.scene, &c.camera, &sun, sky.as_deref())?;
+        s.gpu.take_error()?;
+        io.put(r.lpv, c.frame)?;
+        Ok(())
+    });
 
     g.gpu_pass(pass::SUN_RSM)
         .writes(r.sun_rsm)

@@ -136,7 +136,7 @@ impl Renderer {
         let state = Arc::new(State::new(&scene, settings, gpu)?);
         let layers = state.sky.as_ref().map_or(1, |s| s.read().map_or(1, |s| s.layers()));
         let set = &state.settings;
-        let (g, out) = graph::build(layers, set.sky_layers_per_frame, set.cache_frames);
+        let (g, out) = graph::build(set, layers);
         let scheduler =
             g.build().map_err(|e| EngineError::Settings(format!("frame graph: {e}")))?;
         let mut camera = scene.camera;

@@ -167,6 +167,12 @@ pub struct Settings {
     /// path, which is faster than Mesa's emulation of the kernels (city 320x180 on lavapipe:
     /// the LPV pass 56 ms CPU + 31 ms GPU against 25 + 298 ms resident).
     pub lpv_on_gpu: Option<bool>,
+    /// LPV: sky-bounce VPLs across the view (thesis 5.3.7; rows follow the aspect ratio):
+    /// the G-buffer sampled on that grid of cells is an RSM of sky light, injected beside the
+    /// sun's (`passes::sky_bounce`); the LPV then carries sky light bounced once, in the
+    /// `sun_indirect_diffuse` component. 0: off (the presets; the ledger's figures are in
+    /// `engine/sky_bounce_*` of the report).
+    pub sky_bounce: u32,
     /// Radiance cache (`Indirect::Cache`): cascades, SH bands, shadow rays per lighting,
     /// caches lit per frame.
     #[serde(skip)]
@@ -233,6 +239,7 @@ impl Settings {
             rsm_gi: rsm_gi::Settings { low_res: 2, ..rsm_gi::Settings::DEFAULT },
             rsm_gather_radius: 30.0,
             lpv_on_gpu: None,
+            sky_bounce: 0,
             radiance_cache: radiance_cache::Settings::DEFAULT,
             cache_frames: 8,
             cache_points: (320, 180),
@@ -324,6 +331,9 @@ impl Settings {
         }
         if self.sky_samples == 0 || self.sky_layers_per_frame == 0 {
             return bad("sky volume needs samples and at least one layer per frame".into());
+        }
+        if self.sky_bounce > 1024 {
+            return bad(format!("{} sky-bounce VPL columns (0..1024)", self.sky_bounce));
         }
         if !(1..=3).contains(&self.trace_depth) {
             return bad(format!("trace depth {} (1..3)", self.trace_depth));

@@ -6,6 +6,7 @@ const LIGHTING: &str = include_str!("../../../shaders/engine/lighting.wgsl");
 const QUERIES: &str = include_str!("../../../shaders/engine/queries.wgsl");
 const RAYCAST: &str = include_str!("../../../shaders/engine/raycast.wgsl");
 const COMBINE: &str = include_str!("../../../shaders/engine/combine.wgsl");
+const SKY_VPLS: &str = include_str!("../../../shaders/engine/sky_vpls.wgsl");
 const TONEMAP: &str = include_str!("../../../shaders/engine/tonemap.wgsl");
 
 /// Every complete shader as `(name, source)`, for the pipelines and the naga test.
@@ -14,6 +15,7 @@ pub fn all() -> Vec<(&'static str, String)> {
         ("gbuffer", gbuffer()),
         ("lighting", lighting()),
         ("queries", queries()),
+        ("sky_vpls", sky_vpls()),
         ("raycast", raycast()),
         ("combine", combine()),
         ("tonemap", tonemap()),
@@ -32,6 +34,10 @@ pub fn lighting() -> String {
 
 pub fn queries() -> String {
     format!("{COMMON}\n{QUERIES}")
+}
+
+pub fn sky_vpls() -> String {
+    format!("{COMMON}\n{SKY_VPLS}")
 }
 
 pub fn raycast() -> String {

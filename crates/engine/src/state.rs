@@ -15,6 +15,7 @@ use crate::passes::{
     shadow::ShadowMaps,
     shadow::ShadowPass,
     sky::SkyState,
+    sky_bounce::SkyBounceInputs,
 };
 use crate::trace::TraceScene;
 use crate::{EngineError, Settings};
@@ -94,6 +95,11 @@ impl State {
             // Bindings need one element; the frame uniform's light count stays 0.
             lights.push(bytemuck::Zeroable::zeroed());
         }
+        let frame =
+            uniform(device, "frame", &[0u8; std::mem::size_of::<crate::frame::FrameUniform>()]);
+        let view =
+            SkyBounceInputs { targets: &targets, frame: &frame, materials: &buffers.materials };
+        let lpv = LpvState::new(&gpu, &buffers, &settings, &view)?;
         let state = Self {
             gbuffer: GBufferPass::new(device, &buffers)?,
             shadow: ShadowPass::new(device, &settings)?,
@@ -101,17 +107,13 @@ impl State {
             raycast: RayCastPass::new(device, &targets)?,
             combine: CombinePass::new(device, &targets)?,
             display: DisplayPass::new(device, &targets)?,
-            lpv: RwLock::new(LpvState::new(&gpu, &buffers, &settings)?),
+            lpv: RwLock::new(lpv),
             rsm_gather: RwLock::new(RsmGatherState::new(
                 &gpu, scene, &buffers, &targets, &settings,
             )?),
             cache: RwLock::new(CacheState::new(&gpu, scene, &buffers, &settings)?),
             trace: TraceScene::new(scene)?,
-            frame: uniform(
-                device,
-                "frame",
-                &[0u8; std::mem::size_of::<crate::frame::FrameUniform>()],
-            ),
+            frame,
             lights: storage(device, "point lights", bytemuck::cast_slice(&lights)),
             shadow_maps: Mutex::new(None),
             point_shadow: PointShadowPass::new(device, &scene.point_lights, cube_size)?,

@@ -115,8 +115,10 @@ fn rsm_textures(
 
 /// The resident LPV injects straight from RSM textures (each texel a VPL and, with the
 /// geometry volume, a surfel of area texel_area / max(|n.l|, 0.2)) and propagates on the
-/// GPU: the same volumes as the CPU path fed the same VPLs and surfels, and recording it
-/// again into the same buffers allocates nothing.
+/// GPU: the same volumes as the CPU path fed the same VPLs and surfels, whether the texels
+/// come in one RSM or split over two of different sizes (the second's texels VPLs only, no
+/// surfels, as a G-buffer of sky light is injected); recording it again into the same
+/// buffers allocates nothing.
 #[test]
 fn resident_update_from_rsm_textures_matches_the_cpu() {
     let Some(ctx) = gpu_harness::gpu_test_context() else { return };
@@ -127,48 +129,81 @@ fn resident_update_from_rsm_textures_matches_the_cpu() {
     texels.push((Vec3::ONE, Vec3::ZERO, Vec3::ONE));
     texels.push((Vec3::ONE, Vec3::Y, Vec3::ZERO));
     texels.push((Vec3::splat(1e4), Vec3::Y, Vec3::ONE));
-    let (views, height) = rsm_textures(&ctx, &texels, 32);
     let to_light = Vec3::new(0.3, 0.9, 0.2).normalize();
-    let frame = RsmFrame {
+    let max_flux =
+        |t: &[(Vec3, Vec3, Vec3)]| t.iter().map(|t| t.2.max_element()).fold(0.0, f32::max);
+    let frame = |t: &[(Vec3, Vec3, Vec3)]| RsmFrame {
         to_light,
         texel_area: 0.05,
-        max_texel_flux: texels.iter().map(|t| t.2.max_element()).fold(0.0, f32::max),
+        max_texel_flux: max_flux(t),
     };
     let vpls: Vec<lpv::Vpl> = texels.iter().map(|&(p, n, f)| lpv::Vpl::new(p, n, f)).collect();
-    let surfels: Vec<lpv::Surfel> = texels
-        .iter()
-        .filter(|t| t.1 != Vec3::ZERO)
-        .map(|&(p, n, _)| {
-            let n = n.normalize();
-            lpv::Surfel::new(p, n, frame.texel_area / n.dot(to_light).abs().max(0.2))
-        })
-        .collect();
-    let rsm =
-        RsmTextures { flux: &views[0], normal: &views[1], position: &views[2], width: 32, height };
-    for gv in [false, true] {
-        let (s, cpu, mut on_gpu) = updated_on_cpu(gv, &vpls, &surfels);
-        let resident = ResidentLpv::new(&ctx.device, s, &rsm).expect("resident lpv");
-        let grids: Vec<lpv::Grid> = on_gpu.cascades().iter().map(|c| c.grid).collect();
-        let record = || {
-            let mut enc = ctx.device.create_command_encoder(&Default::default());
-            resident.record_update(&ctx.queue, &mut enc, &grids, frame).expect("record");
-            ctx.queue.submit([enc.finish()]);
-        };
-        // Live buffers and bind groups once the queue has drained (its staging is gone).
-        let live = || {
-            let l = gpu_harness::live_objects(&ctx.device);
-            [l.buffers, l.bind_groups]
-        };
-        record();
-        let before = live();
-        record();
-        assert_eq!(before, live(), "an update makes no buffer and no bind group");
-        resident.read_back(&ctx.device, &ctx.queue, &mut on_gpu).expect("read back");
-        on_gpu.validate().unwrap();
-        for (a, b) in on_gpu.cascades().iter().zip(cpu.cascades()) {
-            let d = rel_diff(&a.volume.data, &b.volume.data);
-            eprintln!("{} resident gv={gv}: max |gpu - cpu| / max |cpu| = {d:e}", ctx.describe());
-            assert!(d < 1e-3, "resident volume parity {d}");
+    let surfels_of = |t: &[(Vec3, Vec3, Vec3)]| -> Vec<lpv::Surfel> {
+        t.iter()
+            .filter(|t| t.1 != Vec3::ZERO)
+            .map(|&(p, n, _)| {
+                let n = n.normalize();
+                lpv::Surfel::new(p, n, 0.05 / n.dot(to_light).abs().max(0.2))
+            })
+            .collect()
+    };
+    let split = texels.len() * 2 / 3;
+    let (sun, sky) = texels.split_at(split);
+    let whole = rsm_textures(&ctx, &texels, 32);
+    let parts = [rsm_textures(&ctx, sun, 32), rsm_textures(&ctx, sky, 8)];
+    fn rsm((v, h): &([wgpu::TextureView; 3], u32), width: u32, surfels: bool) -> RsmTextures<'_> {
+        RsmTextures { flux: &v[0], normal: &v[1], position: &v[2], width, height: *h, surfels }
+    }
+    let cases = [
+        ("one rsm", vec![rsm(&whole, 32, true)], vec![frame(&texels)], surfels_of(&texels)),
+        (
+            "two rsms",
+            vec![rsm(&parts[0], 32, true), rsm(&parts[1], 8, false)],
+            vec![frame(sun), frame(sky)],
+            surfels_of(sun),
+        ),
+    ];
+    for (name, rsms, frames, surfels) in &cases {
+        for gv in [false, true] {
+            let (s, cpu, mut on_gpu) = updated_on_cpu(gv, &vpls, surfels);
+            let resident = ResidentLpv::new(&ctx.device, s, rsms).expect("resident lpv");
+            let grids: Vec<lpv::Grid> = on_gpu.cascades().iter().map(|c| c.grid).collect();
+            let record = || {
+                let mut enc = ctx.device.create_command_encoder(&Default::default());
+                resident.record_update(&ctx.queue, &mut enc, &grids, frames).expect("record");
+                ctx.queue.submit([enc.finish()]);
+            };
+            // Live buffers and bind groups once the queue has drained (its staging is gone).
+            let live = || {
+                let l = gpu_harness::live_objects(&ctx.device);
+                [l.buffers, l.bind_groups]
+            };
+            record();
+            let before = live();
+            record();
+            assert_eq!(before, live(), "an update makes no buffer and no bind group");
+            resident.read_back(&ctx.device, &ctx.queue, &mut on_gpu).expect("read back");
+            on_gpu.validate().unwrap();
+            for (a, b) in on_gpu.cascades().iter().zip(cpu.cascades()) {
+                let d = rel_diff(&a.volume.data, &b.volume.data);
+                eprintln!(
+                    "{} resident {name} gv={gv}: max |gpu - cpu| / max |cpu| = {d:e}",
+                    ctx.describe()
+                );
+                assert!(d < 1e-3, "resident volume parity ({name}, gv={gv}) {d}");
+            }
         }
     }
+    // A frame per RSM, and at least one RSM.
+    let s = lpv::LpvSettings::default();
+    let resident = ResidentLpv::new(&ctx.device, s, &cases[1].1).expect("resident lpv");
+    let lpv = lpv::Lpv::new(s).unwrap();
+    let grids: Vec<lpv::Grid> = lpv.cascades().iter().map(|c| c.grid).collect();
+    let mut enc = ctx.device.create_command_encoder(&Default::default());
+    let one = [frame(&texels)];
+    assert!(matches!(
+        resident.record_update(&ctx.queue, &mut enc, &grids, &one),
+        Err(lpv::LpvError::Gpu(_))
+    ));
+    assert!(matches!(ResidentLpv::new(&ctx.device, s, &[]), Err(lpv::LpvError::Gpu(_))));
 }

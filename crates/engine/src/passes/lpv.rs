@@ -7,8 +7,13 @@
 //!   beats Mesa's emulation of the kernels): the RSM is read back, its texels become VPLs,
 //!   and the volumes are uploaded for the lookup.
 //!
+//! With `Settings::sky_bounce`, sky light reflected by the surfaces in view is injected too
+//! (`sky_bounce`: the G-buffer as a second RSM, read back as VPLs on the CPU path).
+//!
 //! The per-pixel lookup is the crate's own kernel either way.
 
+use super::sky::SkyState;
+use super::sky_bounce::{SkyBounce, SkyBounceInputs};
 use super::sun_rsm::SunRsm;
 use crate::gpu::{Gpu, SceneBuffers, compute_pipeline, dispatch_lookup, storage_empty, uniform};
 use crate::state::SunLight;
@@ -22,6 +27,8 @@ pub struct LpvState {
     /// volumes.
     pub lpv: Lpv,
     rsm: SunRsm,
+    /// Sky-bounce VPLs from the G-buffer (`Settings::sky_bounce` > 0).
+    sky_bounce: Option<SkyBounce>,
     /// The GPU path (`None`: the CPU path).
     resident: Option<ResidentLpv>,
     /// The CPU path's volumes, uploaded for the lookup.
@@ -55,14 +62,25 @@ impl LpvState {
         gpu: &Gpu,
         buffers: &SceneBuffers,
         settings: &Settings,
+        view: &SkyBounceInputs<'_>,
     ) -> Result<Self, EngineError> {
         let lpv = Lpv::new(settings.lpv).map_err(lpv_err)?;
         let rsm = SunRsm::new(gpu, buffers, settings)?;
+        let sky_bounce = match settings.sky_bounce {
+            0 => None,
+            columns => Some(SkyBounce::new(&gpu.device, columns, view)?),
+        };
         let resident = if settings.lpv_on_gpu.unwrap_or(!gpu.software) {
             let [flux, normal, position] = rsm.views();
             let (width, height) = (rsm.resolution(), rsm.resolution());
-            let textures = RsmTextures { flux, normal, position, width, height };
-            Some(ResidentLpv::new(&gpu.device, settings.lpv, &textures).map_err(lpv_err)?)
+            let mut rsms =
+                vec![RsmTextures { flux, normal, position, width, height, surfels: true }];
+            if let Some(b) = &sky_bounce {
+                let [flux, normal, position] = b.views();
+                let (width, height) = b.cells();
+                rsms.push(RsmTextures { flux, normal, position, width, height, surfels: false });
+            }
+            Some(ResidentLpv::new(&gpu.device, settings.lpv, &rsms).map_err(lpv_err)?)
         } else {
             None
         };
@@ -70,6 +88,7 @@ impl LpvState {
             volumes: storage_empty(&gpu.device, "lpv volumes", volume_bytes(&lpv)),
             lpv,
             rsm,
+            sky_bounce,
             resident,
             lookup: compute_pipeline(&gpu.device, "lpv lookup", lpv::gpu::LOOKUP_WGSL, "lookup")?,
             lookup_params: uniform(
@@ -81,36 +100,43 @@ impl LpvState {
         })
     }
 
-    /// Re-centres the cascades on `eye`, renders the sun's RSM over them, injects and
+    /// Re-centres the cascades on the camera, renders the sun's RSM over them (and, with
+    /// sky bounce and a sky, the sky-bounce VPLs of the G-buffer as it is), injects and
     /// propagates.
     pub fn update(
         &mut self,
         gpu: &Gpu,
         scene: &SceneBuffers,
-        eye: Vec3,
+        camera: &scene::Camera,
         sun: &SunLight,
+        sky: Option<&SkyState>,
     ) -> Result<(), EngineError> {
-        self.lpv.follow(eye);
+        self.lpv.follow(camera.position);
         let Some(region) = bounce_region(&self.lpv) else { return Ok(()) };
         let view = self.rsm.render(gpu, scene, region, sun)?;
         let texel_area = (view.texel_size * view.texel_size) as f32;
+        let sky_frame = self.record_sky_bounce(gpu, camera, region, sky);
         if let Some(resident) = &self.resident {
             let grids: Vec<Grid> = self.lpv.cascades().iter().map(|c| c.grid).collect();
             let max_texel_flux = self.rsm.max_texel_flux(sun.irradiance, texel_area);
-            let frame = RsmFrame { to_light: sun.dir, texel_area, max_texel_flux };
+            let mut frames = vec![RsmFrame { to_light: sun.dir, texel_area, max_texel_flux }];
+            frames.extend(sky_frame);
             let mut enc = gpu.device.create_command_encoder(&Default::default());
-            resident.record_update(&gpu.queue, &mut enc, &grids, frame).map_err(lpv_err)?;
+            resident.record_update(&gpu.queue, &mut enc, &grids, &frames).map_err(lpv_err)?;
             gpu.queue.submit([enc.finish()]);
             self.cpu_stale = true;
             return Ok(());
         }
         let rsm = self.rsm.read_back(gpu)?;
-        let vpls: Vec<Vpl> = rsm
+        let mut vpls: Vec<Vpl> = rsm
             .extract_vpls(1)
             .map_err(|e| EngineError::technique("shadows", e))?
             .into_iter()
             .map(|v| Vpl::new(v.position, v.normal, v.flux))
             .collect();
+        if let (Some(bounce), Some(_)) = (&self.sky_bounce, sky) {
+            vpls.extend(bounce.read_back(gpu)?);
+        }
         let surfels: Vec<Surfel> = if self.lpv.settings().geometry_volume {
             rsm.position
                 .iter()
@@ -126,6 +152,28 @@ impl LpvState {
             self.lpv.cascades().iter().flat_map(|c| c.volume.data.iter().copied()).collect();
         gpu.write(&self.volumes, 0, bytemuck::cast_slice(&data));
         Ok(())
+    }
+
+    /// Records the sky-bounce VPLs (submitted at once) and returns their RSM frame; with sky
+    /// bounce on but no sky, a frame that injects nothing (its flux bound 0). `None`: off.
+    fn record_sky_bounce(
+        &self,
+        gpu: &Gpu,
+        camera: &scene::Camera,
+        (center, radius): (glam::DVec3, f64),
+        sky: Option<&SkyState>,
+    ) -> Option<RsmFrame> {
+        let bounce = self.sky_bounce.as_ref()?;
+        let mut frame = RsmFrame { to_light: Vec3::Y, texel_area: 0.0, max_texel_flux: 0.0 };
+        if let Some(sky) = sky {
+            let reach = (camera.position.as_dvec3() - center).length() + radius;
+            frame.max_texel_flux =
+                bounce.max_texel_flux(camera, sky.max_irradiance(), reach as f32);
+            let mut enc = gpu.device.create_command_encoder(&Default::default());
+            bounce.record(gpu, &mut enc, sky, frame.max_texel_flux);
+            gpu.queue.submit([enc.finish()]);
+        }
+        Some(frame)
     }
 
     /// Brings the CPU copy of the volumes up to date (a read-back on the GPU path after an

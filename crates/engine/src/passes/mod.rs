@@ -12,5 +12,6 @@ pub mod raycast;
 pub mod rsm_gather;
 pub mod shadow;
 pub mod sky;
+pub mod sky_bounce;
 pub mod sun_rsm;
 pub mod tonemap;

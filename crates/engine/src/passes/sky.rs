@@ -99,6 +99,13 @@ impl SkyState {
         Ok(())
     }
 
+    /// A bound on the sky irradiance anywhere: pi times the brightest texel of the map
+    /// (a cosine-weighted hemisphere of it), with room for the volume's SH ringing (1.5x).
+    pub fn max_irradiance(&self) -> f32 {
+        let texels = self.map.as_ref().map_or(&[][..], |m| m.texels());
+        1.5 * std::f32::consts::PI * texels.iter().fold(0.0f32, |m, t| m.max(t.max_element()))
+    }
+
     pub fn map_size(&self) -> u32 {
         self.map.as_ref().map_or(0, |m| m.size())
     }

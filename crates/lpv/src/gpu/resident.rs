@@ -1,7 +1,9 @@
 //! The resident LPV: created once from a `wgpu::Device`, the settings and the caller's
-//! reflective shadow map (its flux, normal and position textures), it owns every buffer the
-//! update needs and records into the caller's encoder: injection straight from the RSM's
-//! texels (and, with the geometry volume, their surfels), propagation, and the volumes of all
+//! reflective shadow maps (each its flux, normal and position textures: the sun's, and any
+//! other set of VPLs laid out as one, such as sky light reflected by the G-buffer's
+//! surfaces, thesis 5.3.7), it owns every buffer the update needs and records into the
+//! caller's encoder: injection straight from every RSM's texels (and, with the geometry
+//! volume, the surfels of those that are a light's view of the scene), propagation, and the volumes of all
 //! cascades in one buffer that the lookup kernel (`LOOKUP_WGSL`, [`ResidentLpv::record_lookup`])
 //! or the caller's shader reads. Nothing goes through the CPU; [`ResidentLpv::read_back`] is
 //! for tests and CPU consumers.
@@ -28,6 +30,18 @@ pub struct RsmTextures<'a> {
     pub position: &'a wgpu::TextureView,
     pub width: u32,
     pub height: u32,
+    /// Whether the texels are also the geometry volume's surfels (area
+    /// `texel_area / max(|n.l|, 0.2)`): true for a light's view of the scene; false for VPLs
+    /// whose surfaces a light's RSM already holds (a camera's G-buffer used as an RSM), which
+    /// would block twice.
+    pub surfels: bool,
+}
+
+/// One injected RSM: its size, whether it adds surfels, and its uniform.
+struct Source {
+    size: (u32, u32),
+    surfels: bool,
+    uniform: wgpu::Buffer,
 }
 
 /// What one update needs to know of the RSM it injects.
@@ -128,7 +142,8 @@ struct CascadeGroups {
     inject_grid: wgpu::Buffer,
     /// The grid as resolve and propagation see it (float count).
     cells_grid: wgpu::Buffer,
-    inject: wgpu::BindGroup,
+    /// One injection per source.
+    inject: Vec<wgpu::BindGroup>,
     faces: wgpu::BindGroup,
     resolve: wgpu::BindGroup,
     propagate: [wgpu::BindGroup; 2],
@@ -137,13 +152,12 @@ struct CascadeGroups {
 /// A cascaded LPV that lives on the GPU.
 pub struct ResidentLpv {
     settings: LpvSettings,
-    rsm_size: (u32, u32),
+    sources: Vec<Source>,
     inject: wgpu::ComputePipeline,
     faces: wgpu::ComputePipeline,
     resolve: wgpu::ComputePipeline,
     propagate: wgpu::ComputePipeline,
     lookup: wgpu::ComputePipeline,
-    rsm_uniform: wgpu::Buffer,
     faces_scale: wgpu::Buffer,
     /// Scratch shared by the cascades (updated one after the other): fixed-point cells,
     /// fixed-point corner blocking, face blocking, the two propagation buffers, the sum.
@@ -157,13 +171,17 @@ pub struct ResidentLpv {
 }
 
 impl ResidentLpv {
-    /// Everything an LPV of `settings` needs to be updated from `rsm`.
+    /// Everything an LPV of `settings` needs to be updated from the RSMs `rsms` (at least
+    /// one; each update injects all of them).
     pub fn new(
         device: &wgpu::Device,
         settings: LpvSettings,
-        rsm: &RsmTextures<'_>,
+        rsms: &[RsmTextures<'_>],
     ) -> Result<Self, LpvError> {
         settings.validate()?;
+        if rsms.is_empty() {
+            return Err(LpvError::Gpu("a resident LPV needs at least one RSM to inject".into()));
+        }
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let n = settings.resolution as u64;
         let floats = n * n * n * COEFFS as u64;
@@ -181,8 +199,14 @@ impl ResidentLpv {
         let accum = buffer(device, "lpv accum", floats * 4, storage | copy);
         let cascades_n = settings.cascades as u64;
         let volumes = buffer(device, "lpv volumes", floats * 4 * cascades_n, storage | copy);
-        let rsm_uniform =
-            buffer(device, "lpv rsm", std::mem::size_of::<GpuRsmInject>() as u64, uni);
+        let sources: Vec<Source> = rsms
+            .iter()
+            .map(|r| Source {
+                size: (r.width, r.height),
+                surfels: r.surfels,
+                uniform: buffer(device, "lpv rsm", std::mem::size_of::<GpuRsmInject>() as u64, uni),
+            })
+            .collect();
         let faces_scale = buffer(device, "lpv blocking scale", 16, uni);
         let lookup_params =
             buffer(device, "lpv lookup", std::mem::size_of::<GpuLookupParams>() as u64, uni);
@@ -209,18 +233,24 @@ impl ResidentLpv {
                 let inject_grid = buffer(device, "lpv inject grid", 32, uni);
                 let cells_grid = buffer(device, "lpv cells grid", 32, uni);
                 CascadeGroups {
-                    inject: group(
-                        &inject,
-                        vec![
-                            b(&inject_grid),
-                            b(&rsm_uniform),
-                            tv(rsm.flux),
-                            tv(rsm.normal),
-                            tv(rsm.position),
-                            b(&fixed),
-                            b(&blocking),
-                        ],
-                    ),
+                    inject: rsms
+                        .iter()
+                        .zip(&sources)
+                        .map(|(rsm, source)| {
+                            group(
+                                &inject,
+                                vec![
+                                    b(&inject_grid),
+                                    b(&source.uniform),
+                                    tv(rsm.flux),
+                                    tv(rsm.normal),
+                                    tv(rsm.position),
+                                    b(&fixed),
+                                    b(&blocking),
+                                ],
+                            )
+                        })
+                        .collect(),
                     faces: group(
                         &faces,
                         vec![b(&cells_grid), b(&faces_scale), b(&blocking), b(&faces_buf)],
@@ -240,13 +270,12 @@ impl ResidentLpv {
             .collect();
         let me = Self {
             settings,
-            rsm_size: (rsm.width, rsm.height),
+            sources,
             inject,
             faces,
             resolve,
             propagate,
             lookup,
-            rsm_uniform,
             faces_scale,
             fixed,
             blocking,
@@ -267,50 +296,58 @@ impl ResidentLpv {
     }
 
     /// Records the update of the cascades `grids` (an [`Lpv`]'s, after it followed the
-    /// camera) from the RSM as it is when the encoder runs: per cascade the injection of
-    /// every texel (and its surfel), the face blocking, the propagation, and the copy into
-    /// [`Self::volumes`].
+    /// camera) from the RSMs as they are when the encoder runs, `frames[i]` describing the
+    /// `i`-th RSM given to [`Self::new`]: per cascade the injection of every texel of every
+    /// RSM (and the surfels of those that have them), the face blocking, the propagation,
+    /// and the copy into [`Self::volumes`].
     pub fn record_update(
         &self,
         queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
         grids: &[Grid],
-        frame: RsmFrame,
+        frames: &[RsmFrame],
     ) -> Result<(), LpvError> {
+        let finite = |f: &RsmFrame| {
+            f.max_texel_flux.is_finite() && f.texel_area.is_finite() && f.to_light.is_finite()
+        };
         if grids.len() != self.cascades.len()
             || grids.iter().any(|g| g.res != self.settings.resolution)
-            || !(frame.max_texel_flux.is_finite() && frame.texel_area.is_finite())
-            || !frame.to_light.is_finite()
+            || frames.len() != self.sources.len()
+            || !frames.iter().all(finite)
         {
             return Err(LpvError::Gpu(format!(
-                "{} grids (of {}³) and a finite RSM frame expected, got {} and {frame:?}",
+                "{} grids (of {}³) and {} finite RSM frames expected, got {} and {frames:?}",
                 self.cascades.len(),
                 self.settings.resolution,
+                self.sources.len(),
                 grids.len()
             )));
         }
-        let (w, h) = self.rsm_size;
         let gv = self.settings.geometry_volume;
-        let head = GpuRsmInject {
-            to_light: frame.to_light.extend(frame.texel_area).to_array(),
-            size: [w, h, u32::from(gv), 0],
-            limits: [frame.max_texel_flux.max(0.0), BLOCKING_SCALE, 0.0, 0.0],
-        };
-        queue.write_buffer(&self.rsm_uniform, 0, bytemuck::bytes_of(&head));
+        // No cell can exceed 2^30: every texel of every RSM at its bound, all in one cell.
+        let mut bound = 0.0f64;
+        for (source, frame) in self.sources.iter().zip(frames) {
+            let (w, h) = source.size;
+            let head = GpuRsmInject {
+                to_light: frame.to_light.extend(frame.texel_area).to_array(),
+                size: [w, h, u32::from(gv && source.surfels), 0],
+                limits: [frame.max_texel_flux.max(0.0), BLOCKING_SCALE, 0.0, 0.0],
+            };
+            queue.write_buffer(&source.uniform, 0, bytemuck::bytes_of(&head));
+            bound += frame.max_texel_flux.max(0.0) as f64 * (w as f64 * h as f64) * 0.2821;
+        }
         queue.write_buffer(
             &self.faces_scale,
             0,
             bytemuck::bytes_of(&[BLOCKING_SCALE, 0.0, 0.0, 0.0]),
         );
-        // No cell can exceed 2^30: every texel at the bound, all in one cell.
-        let bound = frame.max_texel_flux.max(1e-30) as f64 * (w as f64 * h as f64) * 0.2821;
-        let scale = ((1u64 << 30) as f64 / bound).min(1e30) as f32;
+        let scale = ((1u64 << 30) as f64 / bound.max(1e-30)).min(1e30) as f32;
         let n = self.settings.resolution;
         let floats = n * n * n * COEFFS as u32;
         let bytes = floats as u64 * 4;
         let flags = u32::from(gv);
+        let texels: u32 = self.sources.iter().map(|s| s.size.0 * s.size.1).sum();
         for (k, (grid, c)) in grids.iter().zip(&self.cascades).enumerate() {
-            let texels = w * h;
             queue.write_buffer(
                 &c.inject_grid,
                 0,
@@ -323,7 +360,10 @@ impl ResidentLpv {
             );
             encoder.clear_buffer(&self.fixed, 0, None);
             encoder.clear_buffer(&self.blocking, 0, None);
-            dispatch(encoder, &self.inject, &c.inject, [w.div_ceil(8), h.div_ceil(8), 1]);
+            for (source, group) in self.sources.iter().zip(&c.inject) {
+                let (w, h) = source.size;
+                dispatch(encoder, &self.inject, group, [w.div_ceil(8), h.div_ceil(8), 1]);
+            }
             let wg = n.div_ceil(4);
             if gv {
                 dispatch(encoder, &self.faces, &c.faces, [wg, wg, (3 * n).div_ceil(4)]);
