@@ -22,6 +22,8 @@ pub struct RenderJob {
     pub indirect: Indirect,
     /// The sun's glint in mirror and glass parts (`engine::Settings::sun_glints`).
     pub sun_glints: bool,
+    /// Sky-bounce VPLs across the view for the LPV (`engine::Settings::sky_bounce`; 0 off).
+    pub sky_bounce: u32,
     pub frames: u32,
     pub out: PathBuf,
     /// Samples per pixel of the reference image, if wanted.
@@ -45,6 +47,7 @@ impl Default for RenderJob {
             preset: Preset::Default,
             indirect: Indirect::Rsm,
             sun_glints: false,
+            sky_bounce: 0,
             frames: 24,
             out: PathBuf::from("target/render"),
             reference_spp: None,
@@ -184,6 +187,7 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
     let settings = Settings {
         indirect: job.indirect,
         sun_glints: job.sun_glints,
+        sky_bounce: job.sky_bounce,
         ..Settings::preset(job.preset, job.width, job.height)
     };
     let mut renderer = Renderer::new(scene, settings)?;

@@ -61,3 +61,27 @@ fn run_writes_the_image_the_report_and_the_timeline() {
     assert!(svg.contains("<svg") && svg.trim_end().ends_with("</svg>"), "timeline.svg is not SVG");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `serein-render --help` lists every switch as a `--` option with its own description (a
+/// field whose doc comment and attribute got separated became a positional argument once).
+#[test]
+fn render_help_lists_the_switches_as_options() {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_serein-render"))
+        .arg("--help")
+        .output()
+        .expect("run serein-render --help");
+    assert!(out.status.success());
+    let help = String::from_utf8_lossy(&out.stdout);
+    for (flag, words) in [
+        ("--quiet", "No progress bars"),
+        ("--sun-glints", "glint"),
+        ("--sky-bounce", "Sky-bounce VPLs"),
+        ("--components", "ledger"),
+    ] {
+        let line = help.lines().position(|l| l.trim_start().starts_with(flag));
+        let Some(at) = line else { panic!("{flag} missing from\n{help}") };
+        let text: String = help.lines().skip(at).take(4).collect();
+        assert!(text.contains(words), "{flag}'s description lacks {words:?}:\n{help}");
+    }
+    assert!(!help.contains("[QUIET]"), "--quiet is positional:\n{help}");
+}

@@ -34,12 +34,16 @@ struct Args {
     /// components.png (contact sheet) and a ledger section in report.md / report.json.
     #[arg(long, requires = "reference")]
     components: bool,
-    /// No progress bars.
-    #[arg(long)]
     /// Adds the sun's glint in mirror and glass parts (off in the presets; see
     /// `engine::Settings::sun_glints` for what it buys and costs on the ledger).
     #[arg(long)]
     sun_glints: bool,
+    /// Sky-bounce VPLs across the view for the LPV (`--indirect lpv`; thesis 5.3.7; see
+    /// `engine::Settings::sky_bounce`); 0: off, as in the presets.
+    #[arg(long, default_value_t = 0)]
+    sky_bounce: u32,
+    /// No progress bars.
+    #[arg(long)]
     quiet: bool,
 }
 
@@ -52,6 +56,7 @@ fn main() -> anyhow::Result<()> {
         preset: a.engine.preset,
         indirect: a.engine.indirect,
         sun_glints: a.sun_glints,
+        sky_bounce: a.sky_bounce,
         frames: a.frames,
         out: a.out.clone(),
         reference_spp: a.reference,
