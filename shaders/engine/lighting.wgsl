@@ -35,6 +35,8 @@ struct PointLight {
 @group(0) @binding(12) var<storage, read> lights: array<PointLight>;
 @group(0) @binding(13) var cubes: texture_depth_cube_array;
 @group(0) @binding(14) var cube_cmp: sampler_comparison;
+// The LPV's glossy lookup: radiance arriving from the pixel's mirror direction.
+@group(0) @binding(15) var<storage, read> glossy: array<vec4<f32>>;
 
 fn csm_count() -> i32 {
     return i32(frame.csm.x);
@@ -228,6 +230,12 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     if (frame.size.w & FLAG_INDIRECT) != 0u {
         bounce_e = bounce[i].xyz;
     }
+    // Glossy surfaces reflect the LPV's light around their mirror direction (thesis 5.2.7):
+    // the glossy part's normalised lobe times the radiance arriving from there.
+    var glossy_l = vec3<f32>(0.0);
+    if (frame.size.w & FLAG_LPV_GLOSSY) != 0u {
+        glossy_l = base * g * glossy[i].xyz;
+    }
     let ao = ambient_occlusion(vec2<u32>(px), p, gn);
     let diffuse = diffuse_reflectance(m, a);
     var c: vec3<f32>;
@@ -241,7 +249,7 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
         // The sun seen in the mirror and glass parts; the combine pass adds the traced rays.
         case COMPONENT_REFLECTIONS: { c = glint; }
         default: {
-            c = base * (sun + points) + diffuse * (sky_e_over_pi + bounce_e / PI) * ao + m.emission.rgb + glint;
+            c = base * (sun + points) + (diffuse * (sky_e_over_pi + bounce_e / PI) + glossy_l) * ao + m.emission.rgb + glint;
         }
     }
     return vec4<f32>(max(c, vec3<f32>(0.0)), 1.0);

@@ -2,7 +2,8 @@
 // One lookup query per pixel for the sky-volume and LPV lookup kernels of their crates
 // (`shaders/sky_volume/lookup.wgsl`, `shaders/lpv/lookup.wgsl`): world position and shading
 // normal from the G-buffer; background pixels get a zero normal and albedo (zero light).
-// The world positions also go to a texture (w 1, 0 for the background) for the RSM gather.
+// The world positions also go to a texture (w 1, 0 for the background) for the RSM gather,
+// and each pixel's mirror direction of the view ray to the LPV's glossy lookup queries.
 
 struct SkyQuery {
     position: vec4<f32>,
@@ -21,6 +22,7 @@ struct LpvQuery {
 @group(0) @binding(3) var<storage, read_write> sky_q: array<SkyQuery>;
 @group(0) @binding(4) var<storage, read_write> lpv_q: array<LpvQuery>;
 @group(0) @binding(5) var positions: texture_storage_2d<rgba32float, write>;
+@group(0) @binding(6) var<storage, read_write> glossy_q: array<LpvQuery>;
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -32,12 +34,15 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     var p = vec3<f32>(0.0);
     var n = vec3<f32>(0.0);
     var albedo = 0.0;
+    var r = vec3<f32>(0.0);
     if depth > 0.0 {
         p = world_position(frame, vec2<f32>(id.xy), depth);
         n = normalize(textureLoad(normal_t, vec2<i32>(id.xy), 0).xyz);
         albedo = 1.0;
+        r = reflect(view_ray(frame, vec2<f32>(id.xy)), n);
     }
     sky_q[i] = SkyQuery(vec4<f32>(p, 1.0), vec4<f32>(n, 0.0), vec4<f32>(albedo));
     lpv_q[i] = LpvQuery(vec4<f32>(p, 1.0), vec4<f32>(n, 0.0));
+    glossy_q[i] = LpvQuery(vec4<f32>(p, 1.0), vec4<f32>(r, 0.0));
     textureStore(positions, vec2<i32>(id.xy), vec4<f32>(p, albedo));
 }

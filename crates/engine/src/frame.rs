@@ -14,6 +14,8 @@ pub(crate) const FLAG_REFLECTIONS: u32 = 32;
 pub(crate) const FLAG_REFRACTIONS: u32 = 64;
 /// The lighting adds the sun's glint in mirror and glass parts (`Settings::sun_glints`).
 pub(crate) const FLAG_SUN_GLINTS: u32 = 128;
+/// The LPV's glossy lookup lights glossy surfaces (`Settings::lpv_glossy`).
+pub(crate) const FLAG_LPV_GLOSSY: u32 = 256;
 
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
@@ -64,6 +66,7 @@ mod tests {
             ("FLAG_REFLECTIONS", FLAG_REFLECTIONS),
             ("FLAG_REFRACTIONS", FLAG_REFRACTIONS),
             ("FLAG_SUN_GLINTS", FLAG_SUN_GLINTS),
+            ("FLAG_LPV_GLOSSY", FLAG_LPV_GLOSSY),
         ] {
             assert_eq!(crate::shaders::u32_constant(&src, name), Some(value), "{name}");
         }

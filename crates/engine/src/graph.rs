@@ -5,8 +5,8 @@
 
 use crate::effects::Effect;
 use crate::frame::{
-    FLAG_BLINN, FLAG_INDIRECT, FLAG_REFLECTIONS, FLAG_REFRACTIONS, FLAG_SHADOWS, FLAG_SKY,
-    FLAG_SKY_VOLUME, FLAG_SUN_GLINTS, FrameUniform,
+    FLAG_BLINN, FLAG_INDIRECT, FLAG_LPV_GLOSSY, FLAG_REFLECTIONS, FLAG_REFRACTIONS, FLAG_SHADOWS,
+    FLAG_SKY, FLAG_SKY_VOLUME, FLAG_SUN_GLINTS, FrameUniform,
 };
 use crate::passes::display::{Exposure, Shown};
 use crate::passes::lighting::{IndirectSource, LightingInputs};
@@ -82,6 +82,9 @@ fn write_frame_uniform(c: &FrameCtx) {
     }
     if set.sun_glints {
         flags |= FLAG_SUN_GLINTS;
+    }
+    if set.lpv_glossy > 0 && c.needs.indirect_lpv.needed && c.indirect == Indirect::Lpv {
+        flags |= FLAG_LPV_GLOSSY;
     }
     let maps = s.shadow_maps.lock().ok().and_then(|m| *m);
     let cubes = s.point_shadows_ready.load(Ordering::Acquire);

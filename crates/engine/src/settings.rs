@@ -173,6 +173,11 @@ pub struct Settings {
     /// `sun_indirect_diffuse` component. 0: off (the presets; the ledger's figures are in
     /// `engine/sky_bounce_*` of the report).
     pub sky_bounce: u32,
+    /// LPV: the glossy lookup (thesis 5.2.7, "diffuse + glossy reflections"): glossy
+    /// surfaces reflect the LPV's radiance arriving from their mirror direction, marched
+    /// over this many cells (`lpv::Lpv::glossy`); full frame only (the reference's
+    /// one-bounce component is diffuse). 0: off (the presets).
+    pub lpv_glossy: u32,
     /// Radiance cache (`Indirect::Cache`): cascades, SH bands, shadow rays per lighting,
     /// caches lit per frame.
     #[serde(skip)]
@@ -240,6 +245,7 @@ impl Settings {
             rsm_gather_radius: 30.0,
             lpv_on_gpu: None,
             sky_bounce: 0,
+            lpv_glossy: 0,
             radiance_cache: radiance_cache::Settings::DEFAULT,
             cache_frames: 8,
             cache_points: (320, 180),
@@ -331,6 +337,9 @@ impl Settings {
         }
         if self.sky_samples == 0 || self.sky_layers_per_frame == 0 {
             return bad("sky volume needs samples and at least one layer per frame".into());
+        }
+        if self.lpv_glossy > 16 {
+            return bad(format!("{} glossy LPV steps (0..16)", self.lpv_glossy));
         }
         if self.sky_bounce > 1024 {
             return bad(format!("{} sky-bounce VPL columns (0..1024)", self.sky_bounce));

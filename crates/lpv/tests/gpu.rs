@@ -78,6 +78,14 @@ fn gpu_update_and_lookup_match_the_cpu() {
         let flat = |v: &[Vec3]| v.iter().flat_map(|e| e.to_array()).collect::<Vec<f32>>();
         let d = rel_diff(&flat(&e_gpu), &flat(&e_cpu));
         assert!(d < 1e-4, "lookup parity {d}");
+        // The glossy lookup: the points' normals as reflection directions, 1 and 3 steps.
+        for steps in [1, 3] {
+            let l_gpu = gpu.glossy(&ctx.device, &ctx.queue, &cpu, &pts, steps).expect("glossy");
+            let l_cpu: Vec<Vec3> = pts.iter().map(|(p, r)| cpu.glossy(*p, *r, steps)).collect();
+            assert!(l_cpu.iter().any(|l| l.max_element() > 0.0), "the glossy lookup sees light");
+            let d = rel_diff(&flat(&l_gpu), &flat(&l_cpu));
+            assert!(d < 1e-4, "glossy lookup parity ({steps} steps) {d}");
+        }
     }
 }
 

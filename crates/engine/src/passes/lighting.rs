@@ -15,6 +15,9 @@ pub struct LightingPass {
     pipeline: wgpu::RenderPipeline,
     sky_q: wgpu::Buffer,
     lpv_q: wgpu::Buffer,
+    /// The LPV's glossy lookup: per pixel (position, mirror direction), and the radiance.
+    glossy_q: wgpu::Buffer,
+    glossy_out: wgpu::Buffer,
     pub sky_out: wgpu::Buffer,
     pub lpv_out: wgpu::Buffer,
     pixels: u32,
@@ -61,6 +64,8 @@ impl LightingPass {
             pipeline,
             sky_q: storage_empty(device, "sky queries", n * 48),
             lpv_q: storage_empty(device, "lpv queries", n * 32),
+            glossy_q: storage_empty(device, "lpv glossy queries", n * 32),
+            glossy_out: storage_empty(device, "lpv glossy light", n * 16),
             sky_out: storage_empty(device, "sky light", n * 16),
             lpv_out: storage_empty(device, "lpv light", n * 16),
             pixels: n as u32,
@@ -95,6 +100,7 @@ impl LightingPass {
                     self.sky_q.as_entire_binding(),
                     self.lpv_q.as_entire_binding(),
                     tv(&targets.positions),
+                    self.glossy_q.as_entire_binding(),
                 ],
             );
             dispatch(
@@ -110,6 +116,7 @@ impl LightingPass {
         let indirect = match inputs.indirect {
             IndirectSource::Lpv(lpv) => {
                 lpv.record_lookup(gpu, enc, &self.lpv_q, &self.lpv_out, self.pixels);
+                lpv.record_glossy(gpu, enc, &self.glossy_q, &self.glossy_out, self.pixels);
                 &self.lpv_out
             }
             IndirectSource::Rsm(rsm, view_proj) => rsm.record_gather(gpu, enc, view_proj)?,
@@ -139,6 +146,7 @@ impl LightingPass {
                 inputs.lights.as_entire_binding(),
                 tv(inputs.cubes.0),
                 wgpu::BindingResource::Sampler(inputs.cubes.1),
+                self.glossy_out.as_entire_binding(),
             ],
         );
         draw_fullscreen(enc, "lighting", &self.pipeline, &bg, &targets.lit);

@@ -34,6 +34,9 @@ pub struct LpvState {
     /// The CPU path's volumes, uploaded for the lookup.
     volumes: wgpu::Buffer,
     lookup: wgpu::ComputePipeline,
+    /// The glossy lookup (`Settings::lpv_glossy` points marched; 0: not recorded).
+    glossy: wgpu::ComputePipeline,
+    glossy_steps: u32,
     lookup_params: wgpu::Buffer,
     /// The GPU path updated the volumes since `lpv` last read them back.
     cpu_stale: bool,
@@ -91,6 +94,8 @@ impl LpvState {
             sky_bounce,
             resident,
             lookup: compute_pipeline(&gpu.device, "lpv lookup", lpv::gpu::LOOKUP_WGSL, "lookup")?,
+            glossy: compute_pipeline(&gpu.device, "lpv glossy", lpv::gpu::LOOKUP_WGSL, "glossy")?,
+            glossy_steps: settings.lpv_glossy,
             lookup_params: uniform(
                 &gpu.device,
                 "lpv lookup",
@@ -196,20 +201,55 @@ impl LpvState {
         out: &wgpu::Buffer,
         count: u32,
     ) {
+        self.write_lookup_params(gpu, count);
+        dispatch_lookup(&gpu.device, enc, &self.lookup, self.lookup_buffers(queries, out), count);
+    }
+
+    /// Records the glossy lookup from `queries` (position, mirror direction) to `out`, when
+    /// `Settings::lpv_glossy` asks for it (after [`Self::record_lookup`] of the same count).
+    pub fn record_glossy(
+        &self,
+        gpu: &Gpu,
+        enc: &mut wgpu::CommandEncoder,
+        queries: &wgpu::Buffer,
+        out: &wgpu::Buffer,
+        count: u32,
+    ) {
+        if self.glossy_steps > 0 {
+            dispatch_lookup(
+                &gpu.device,
+                enc,
+                &self.glossy,
+                self.lookup_buffers(queries, out),
+                count,
+            );
+        }
+    }
+
+    /// The lookups' parameters; both kernels of a frame read the same (written once, the
+    /// queue applies it before the encoder runs).
+    fn write_lookup_params(&self, gpu: &Gpu, count: u32) {
         let s = self.lpv.settings();
         let mut params = GpuLookupParams {
             cascades: self.lpv.cascades().len() as u32,
             blend_cells: s.blend_cells,
             offset_cells: s.lookup_offset_cells,
             count,
+            glossy_steps: self.glossy_steps,
             ..Default::default()
         };
         for (i, c) in self.lpv.cascades().iter().enumerate().take(4) {
             params.grids[i] = GpuGrid::new(&c.grid, 0, 1.0, 0);
         }
         gpu.write(&self.lookup_params, 0, bytemuck::bytes_of(&params));
+    }
+
+    fn lookup_buffers<'a>(
+        &'a self,
+        queries: &'a wgpu::Buffer,
+        out: &'a wgpu::Buffer,
+    ) -> [&'a wgpu::Buffer; 4] {
         let volumes = self.resident.as_ref().map_or(&self.volumes, ResidentLpv::volumes);
-        let buffers = [&self.lookup_params, volumes, queries, out];
-        dispatch_lookup(&gpu.device, enc, &self.lookup, buffers, count);
+        [&self.lookup_params, volumes, queries, out]
     }
 }

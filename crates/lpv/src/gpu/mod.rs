@@ -97,8 +97,11 @@ pub struct GpuLookupParams {
     pub blend_cells: f32,
     pub offset_cells: f32,
     pub count: u32,
+    /// Points the glossy lookup marches ([`crate::Lpv::glossy`]'s `steps`).
+    pub glossy_steps: u32,
+    pub _pad: [u32; 3],
 }
-const _: () = assert!(std::mem::size_of::<GpuLookupParams>() == 144);
+const _: () = assert!(std::mem::size_of::<GpuLookupParams>() == 160);
 
 /// A lookup query (`Query` in `lookup.wgsl`).
 #[repr(C)]
@@ -136,12 +139,13 @@ pub fn fixed_point_scale(vpls: &[GpuVpl]) -> f32 {
     if m > 0.0 { ((1u64 << 30) as f64 / m).min(1e30) as f32 } else { 1.0 }
 }
 
-/// Compiled pipelines for the four kernels.
+/// Compiled pipelines for the kernels.
 pub struct GpuLpv {
     inject: wgpu::ComputePipeline,
     resolve: wgpu::ComputePipeline,
     propagate: wgpu::ComputePipeline,
     lookup: wgpu::ComputePipeline,
+    glossy: wgpu::ComputePipeline,
 }
 
 fn pipeline(device: &wgpu::Device, src: &str, entry: &str) -> wgpu::ComputePipeline {
@@ -238,13 +242,14 @@ fn read_back(
 }
 
 impl GpuLpv {
-    /// Compiles the four kernels on `device`.
+    /// Compiles the kernels on `device`.
     pub fn new(device: &wgpu::Device) -> Self {
         Self {
             inject: pipeline(device, INJECT_WGSL, "inject"),
             resolve: pipeline(device, RESOLVE_WGSL, "resolve"),
             propagate: pipeline(device, PROPAGATE_WGSL, "propagate"),
             lookup: pipeline(device, LOOKUP_WGSL, "lookup"),
+            glossy: pipeline(device, LOOKUP_WGSL, "glossy"),
         }
     }
 
@@ -332,6 +337,31 @@ impl GpuLpv {
         lpv: &Lpv,
         points: &[(Vec3, Vec3)],
     ) -> Result<Vec<Vec3>, LpvError> {
+        self.run_lookup(&self.lookup, device, queue, lpv, points, 0)
+    }
+
+    /// The glossy lookup at `(position, reflection direction)` pairs, on the GPU (the same
+    /// as [`Lpv::glossy`] with `steps`).
+    pub fn glossy(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        lpv: &Lpv,
+        points: &[(Vec3, Vec3)],
+        steps: u32,
+    ) -> Result<Vec<Vec3>, LpvError> {
+        self.run_lookup(&self.glossy, device, queue, lpv, points, steps)
+    }
+
+    fn run_lookup(
+        &self,
+        kernel: &wgpu::ComputePipeline,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        lpv: &Lpv,
+        points: &[(Vec3, Vec3)],
+        glossy_steps: u32,
+    ) -> Result<Vec<Vec3>, LpvError> {
         if points.is_empty() {
             return Ok(Vec::new());
         }
@@ -342,6 +372,7 @@ impl GpuLpv {
             blend_cells: s.blend_cells,
             offset_cells: s.lookup_offset_cells,
             count: points.len() as u32,
+            glossy_steps,
             ..Default::default()
         };
         let mut volumes = Vec::new();
@@ -362,8 +393,8 @@ impl GpuLpv {
         let bytes = points.len() as u64 * 16;
         let out = storage(device, "result", &vec![0u8; bytes as usize]);
         let mut enc = device.create_command_encoder(&Default::default());
-        let bg = bind(device, &self.lookup, &[&u, &vb, &qb, &out]);
-        dispatch(&mut enc, &self.lookup, &bg, [(points.len() as u32).div_ceil(64), 1, 1]);
+        let bg = bind(device, kernel, &[&u, &vb, &qb, &out]);
+        dispatch(&mut enc, kernel, &bg, [(points.len() as u32).div_ceil(64), 1, 1]);
         let data = read_back(device, queue, enc, &out, bytes)?;
         if let Some(err) = pollster::block_on(scope.pop()) {
             return Err(LpvError::Gpu(err.to_string()));
