@@ -332,52 +332,65 @@ fn preset_entry(sweep: &mut Sweep, view: &View, preset: Preset, timed: usize) {
     );
 }
 
-/// What the sky-bounce VPLs buy (thesis 5.3.7): the LPV at the default preset with
-/// `Settings::sky_bounce` off and at three grids, the whole frame against the reference's
-/// (which carries every bounce of sky light); time = the LPV pass (with the VPLs' queries
-/// and read-back) in frames whose camera steps 1.01 m sideways and back, so that the pass
-/// reruns with sky bounce off too (its key is the camera's 1 m cell).
-fn sky_bounce_entries(sweep: &mut Sweep, view: &View) {
+/// What the LPV's two optional inputs buy at the default preset, each against the LPV
+/// without it, the whole frame against the reference's (which carries every bounce):
+/// - `engine/sky_bounce_<view>_<columns>`: the sky-bounce VPLs (thesis 5.3.7; 0 is off);
+/// - `engine/lpv_glossy_<view>_<steps>`: the glossy lookup (thesis 5.2.7; 0 is off).
+///
+/// Time = the LPV pass (with the VPLs' queries and read-back) for sky bounce, the lighting
+/// pass (where the lookups run) for the glossy lookup, in frames whose camera steps 1.01 m
+/// sideways and back, so that the LPV reruns (its key is the camera's 1 m cell).
+fn lpv_option_entries(sweep: &mut Sweep, view: &View) {
     use engine::Indirect;
     let (w, h) = (view.width, view.height);
+    let base = Settings { indirect: Indirect::Lpv, ..Settings::preset(Preset::Default, w, h) };
+    let mut runs = Vec::new();
     for columns in [0u32, 32, 64, 128] {
-        let tag = format!("{}_{w}x{h}_{columns}", view.name);
-        sweep.stage(&format!("sky bounce {tag}"));
-        let base = Settings::preset(Preset::Default, w, h);
-        let settings = Settings { indirect: Indirect::Lpv, sky_bounce: columns, ..base };
+        runs.push((
+            "sky_bounce",
+            columns,
+            engine::pass::LPV,
+            Settings { sky_bounce: columns, ..base },
+        ));
+    }
+    for steps in [0u32, 1, 2, 4] {
+        runs.push((
+            "lpv_glossy",
+            steps,
+            engine::pass::LIGHTING,
+            Settings { lpv_glossy: steps, ..base },
+        ));
+    }
+    for (what, knob, timed_pass, settings) in runs {
+        let tag = format!("{}_{w}x{h}_{knob}", view.name);
+        sweep.stage(&format!("{what} {tag}"));
         let mut r = renderer(&view.scene, settings);
         r.set_camera(view.camera).expect("camera");
         let (frame, _) = warm_up(&mut r);
         let e = view.errors(&app::image_of(&frame.hdr));
-        let lpv_ms: Vec<f64> = (1..=4)
+        let ms: Vec<f64> = (1..=4)
             .filter_map(|k| {
                 let cam = if k % 2 == 1 { nudged(&view.camera, 1010) } else { view.camera };
                 r.set_camera(cam).expect("camera");
                 let f = render(&mut r);
-                let p = f.report.pass(engine::pass::LPV).filter(|p| p.outcome.executed())?;
+                let p = f.report.pass(timed_pass).filter(|p| p.outcome.executed())?;
                 Some(p.cpu_ms.unwrap_or(0.0).max(p.gpu_ms.unwrap_or(0.0)))
             })
             .collect();
         let software = r.is_software();
         sweep.entry(
-            Entry::new(
-                format!("engine/sky_bounce_{tag}"),
-                format!("sky bounce {}", view.name),
-                mean(&lpv_ms),
-            )
-            .setting("scene", view.name)
-            .setting("indirect", "lpv")
-            .setting("preset", Preset::Default)
-            .setting("sky_bounce_columns", columns)
-            .setting("luminance_ratio", e.luminance_ratio)
-            .setting("rel_rms_clamped", e.rel_rms_clamped)
-            .setting("software_adapter", software)
-            .error("rel_rms", e.rel_rms, &view.reference_name)
-            .threads(rayon::current_num_threads())
-            .note(timing_note(
-                software,
-                "the LPV pass (sun RSM, sky-bounce VPLs, injection, propagation)",
-            )),
+            Entry::new(format!("engine/{what}_{tag}"), format!("{what} {}", view.name), mean(&ms))
+                .setting("scene", view.name)
+                .setting("indirect", "lpv")
+                .setting("preset", Preset::Default)
+                .setting(what, knob)
+                .setting("timed_pass", timed_pass)
+                .setting("luminance_ratio", e.luminance_ratio)
+                .setting("rel_rms_clamped", e.rel_rms_clamped)
+                .setting("software_adapter", software)
+                .error("rel_rms", e.rel_rms, &view.reference_name)
+                .threads(rayon::current_num_threads())
+                .note(timing_note(software, timed_pass)),
         );
     }
 }
@@ -747,7 +760,7 @@ fn main() {
             for preset in Preset::ALL {
                 preset_entry(&mut sweep, &view, preset, size.timed_frames);
             }
-            sky_bounce_entries(&mut sweep, &view);
+            lpv_option_entries(&mut sweep, &view);
             if which == Generated::City {
                 flythrough(&mut sweep, &view.scene, w, h, size.flythrough_frames);
             }

@@ -24,6 +24,8 @@ pub struct RenderJob {
     pub sun_glints: bool,
     /// Sky-bounce VPLs across the view for the LPV (`engine::Settings::sky_bounce`; 0 off).
     pub sky_bounce: u32,
+    /// The LPV's glossy lookup, cells marched (`engine::Settings::lpv_glossy`; 0 off).
+    pub lpv_glossy: u32,
     pub frames: u32,
     pub out: PathBuf,
     /// Samples per pixel of the reference image, if wanted.
@@ -48,6 +50,7 @@ impl Default for RenderJob {
             indirect: Indirect::Rsm,
             sun_glints: false,
             sky_bounce: 0,
+            lpv_glossy: 0,
             frames: 24,
             out: PathBuf::from("target/render"),
             reference_spp: None,
@@ -188,6 +191,7 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
         indirect: job.indirect,
         sun_glints: job.sun_glints,
         sky_bounce: job.sky_bounce,
+        lpv_glossy: job.lpv_glossy,
         ..Settings::preset(job.preset, job.width, job.height)
     };
     let mut renderer = Renderer::new(scene, settings)?;

@@ -76,6 +76,7 @@ fn render_help_lists_the_switches_as_options() {
         ("--quiet", "No progress bars"),
         ("--sun-glints", "glint"),
         ("--sky-bounce", "Sky-bounce VPLs"),
+        ("--lpv-glossy", "glossy lookup"),
         ("--components", "ledger"),
     ] {
         let line = help.lines().position(|l| l.trim_start().starts_with(flag));

@@ -42,6 +42,10 @@ struct Args {
     /// `engine::Settings::sky_bounce`); 0: off, as in the presets.
     #[arg(long, default_value_t = 0)]
     sky_bounce: u32,
+    /// The LPV's glossy lookup, cells marched (`--indirect lpv`; see
+    /// `engine::Settings::lpv_glossy`); 0: off, as in the presets.
+    #[arg(long, default_value_t = 0)]
+    lpv_glossy: u32,
     /// No progress bars.
     #[arg(long)]
     quiet: bool,
@@ -57,6 +61,7 @@ fn main() -> anyhow::Result<()> {
         indirect: a.engine.indirect,
         sun_glints: a.sun_glints,
         sky_bounce: a.sky_bounce,
+        lpv_glossy: a.lpv_glossy,
         frames: a.frames,
         out: a.out.clone(),
         reference_spp: a.reference,
