@@ -555,10 +555,8 @@ fn beyond_entry(
             parts.push(r);
         }
     }
-    let sky_seen = regions.id(app::regions::BACKGROUND);
-    let surface = |i: usize| sky_seen.is_none() || regions.ids[i] != sky_seen;
     let engine = app::image_of(&full_image.image);
-    let (b, _) = app::beyond::beyond_one_bounce(full, &parts, &engine, surface);
+    let (b, _) = app::beyond::beyond_one_bounce(full, &parts, &engine, regions);
     let ms: f64 = parts.iter().map(|p| p.ms).sum();
     let name = tag.replacen("components_", "beyond_one_bounce_", 1);
     sweep.entry(

@@ -7,7 +7,24 @@
 //! engine exact in every one-bounce component would still have.
 
 use crate::compare::ReferenceRender;
+use crate::regions::RegionMap;
 use reference::{Image, luminance};
+
+/// Regions listed in [`BeyondOneBounce::regions`] (those holding the most of the light).
+pub const REGIONS_LISTED: usize = 8;
+
+/// The light beyond one bounce in one region.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct BeyondRegion {
+    pub region: String,
+    pub pixels: usize,
+    /// Mean luminance of the reference's full image over the region.
+    pub full_luminance: f64,
+    /// Mean luminance of the light beyond one bounce over the region.
+    pub beyond_luminance: f64,
+    /// `beyond / full`: how much of the region's light no one-bounce component carries.
+    pub share: f64,
+}
 
 /// Figures of the light beyond one bounce in one view.
 #[derive(Clone, Debug, serde::Serialize)]
@@ -27,16 +44,21 @@ pub struct BeyondOneBounce {
     /// `sum |R|² / sum |E - F|²`: the share of the engine's squared error that the light
     /// beyond one bounce would be if the engine had none of it.
     pub engine_error_share: f64,
+    /// The named regions holding the most of it (by summed luminance, largest first, at
+    /// most [`REGIONS_LISTED`]).
+    pub regions: Vec<BeyondRegion>,
 }
 
-/// The residual image (`full` less the sum of `parts`, black where `surface` is false) and
-/// its figures against `full` and the engine's frame `engine`.
+/// The residual image (`full` less the sum of `parts`, black where no surface is seen) and
+/// its figures against `full` and the engine's frame `engine`, whole and per region.
 pub fn beyond_one_bounce(
     full: &ReferenceRender,
     parts: &[&ReferenceRender],
     engine: &Image,
-    surface: impl Fn(usize) -> bool,
+    regions: &RegionMap,
 ) -> (BeyondOneBounce, Image) {
+    let mask = regions.surface_mask();
+    let surface = |i: usize| mask[i];
     let mut residual = Image::new(full.mean.width, full.mean.height);
     let (mut yr, mut yf, mut r2, mut f2, mut v2, mut e2, mut n) =
         (0.0f64, 0.0, 0.0, 0.0, 0.0, 0.0, 0);
@@ -64,8 +86,39 @@ pub fn beyond_one_bounce(
         noise_rel_rms: ratio(v2, f2).sqrt(),
         engine_rel_rms: ratio(e2, f2).sqrt(),
         engine_error_share: ratio(r2, e2),
+        regions: by_region(&full.mean, &residual, regions),
     };
     (figures, residual)
+}
+
+/// The regions of `regions` by the summed luminance of `residual` (largest first).
+fn by_region(full: &Image, residual: &Image, regions: &RegionMap) -> Vec<BeyondRegion> {
+    let mut rows: Vec<(f64, BeyondRegion)> = regions
+        .names
+        .iter()
+        .enumerate()
+        .map(|(id, name)| {
+            let (mut f, mut r, mut n) = (0.0f64, 0.0f64, 0usize);
+            for i in regions.pixels(id as u32) {
+                f += luminance(full.pixels[i]) as f64;
+                r += luminance(residual.pixels[i]) as f64;
+                n += 1;
+            }
+            let m = n.max(1) as f64;
+            let share = if f > 0.0 { r / f } else { 0.0 };
+            let row = BeyondRegion {
+                region: name.clone(),
+                pixels: n,
+                full_luminance: f / m,
+                beyond_luminance: r / m,
+                share,
+            };
+            (r, row)
+        })
+        .filter(|(_, row)| row.pixels > 0)
+        .collect();
+    rows.sort_by(|a, b| b.0.total_cmp(&a.0));
+    rows.into_iter().take(REGIONS_LISTED).map(|(_, row)| row).collect()
 }
 
 #[cfg(test)]
@@ -88,7 +141,13 @@ mod tests {
             (flat(Vec3::ONE, 0.01), flat(Vec3::splat(0.5), 0.0), flat(Vec3::splat(0.3), 0.0));
         let mut engine = Image::new(2, 2);
         engine.pixels.fill(Vec3::splat(0.8)); // exact in both parts, nothing beyond
-        let (f, im) = beyond_one_bounce(&full, &[&a, &b], &engine, |i| i != 3);
+        let regions = RegionMap {
+            width: 2,
+            height: 2,
+            names: vec!["wall".into(), crate::regions::BACKGROUND.into()],
+            ids: vec![Some(0), Some(0), Some(0), Some(1)],
+        };
+        let (f, im) = beyond_one_bounce(&full, &[&a, &b], &engine, &regions);
         assert_eq!(f.pixels, 3);
         assert!((f.luminance_share - 0.2).abs() < 1e-5, "{}", f.luminance_share);
         assert!((f.rel_rms - 0.2).abs() < 1e-5 && (f.engine_rel_rms - 0.2).abs() < 1e-5);
@@ -96,5 +155,11 @@ mod tests {
         assert!((f.noise_rel_rms - 0.01).abs() < 1e-5, "{}", f.noise_rel_rms);
         assert!((im.pixels[0] - Vec3::splat(0.2)).abs().max_element() < 1e-6);
         assert_eq!(im.pixels[3], Vec3::ZERO);
+        // Per region: the wall holds all of it, a fifth of its light; the sky none.
+        assert_eq!(f.regions.len(), 2);
+        assert_eq!((f.regions[0].region.as_str(), f.regions[0].pixels), ("wall", 3));
+        assert!((f.regions[0].share - 0.2).abs() < 1e-5, "{:?}", f.regions[0]);
+        assert!((f.regions[0].full_luminance - 1.0).abs() < 1e-5);
+        assert_eq!(f.regions[1].beyond_luminance, 0.0);
     }
 }

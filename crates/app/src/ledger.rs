@@ -20,7 +20,7 @@ use crate::beyond::{BeyondOneBounce, beyond_one_bounce};
 use crate::compare::{FIREFLY_CLAMP, ReferenceRender, clamp_luminance, reference_component};
 use crate::contact_sheet::{Tile, write_contact_sheet};
 use crate::io_err;
-use crate::regions::{BACKGROUND, RegionMap, region_map};
+use crate::regions::{RegionMap, region_map};
 use engine::Component;
 use engine::components::{ComponentImage, passes, passes_ms, render_components};
 use engine::{EngineError, Renderer};
@@ -241,9 +241,7 @@ pub fn run_ledger(
                 .iter()
                 .filter_map(|c| refs.iter().find(|(rc, _)| rc == c).map(|(_, r)| r))
                 .collect();
-            let sky_seen = regions.id(BACKGROUND);
-            let surface = |i: usize| sky_seen.is_none() || regions.ids[i] != sky_seen;
-            let (figures, image) = beyond_one_bounce(full, &parts, &engine, surface);
+            let (figures, image) = beyond_one_bounce(full, &parts, &engine, &regions);
             if let Some(dir) = out {
                 let p = dir.join("reference_beyond_one_bounce.exr");
                 image.write_exr(&p).map_err(|err| io_err(&p, err))?;
@@ -285,6 +283,18 @@ impl Ledger {
                 b.engine_rel_rms,
                 b.engine_error_share
             );
+            s.push_str(
+                "\nWhere it lies (the regions holding the most of it; share: of the region's \
+                 own light):\n\n| region | pixels | full Y | beyond Y | share |\n\
+                 |---|---:|---:|---:|---:|\n",
+            );
+            for r in &b.regions {
+                let _ = writeln!(
+                    s,
+                    "| {} | {} | {:.4} | {:.4} | {:.3} |",
+                    r.region, r.pixels, r.full_luminance, r.beyond_luminance, r.share
+                );
+            }
         }
         for c in &self.components {
             let _ = write!(

@@ -47,6 +47,12 @@ impl RegionMap {
     pub fn id(&self, name: &str) -> Option<u32> {
         self.names.iter().position(|n| n == name).map(|i| i as u32)
     }
+
+    /// Per pixel: whether it sees a surface (not the sky seen directly, [`BACKGROUND`]).
+    pub fn surface_mask(&self) -> Vec<bool> {
+        let sky = self.id(BACKGROUND);
+        self.ids.iter().map(|&r| sky.is_none() || r != sky).collect()
+    }
 }
 
 /// The axis name of a unit normal.
