@@ -3,7 +3,8 @@
 // (`shaders/sky_volume/lookup.wgsl`, `shaders/lpv/lookup.wgsl`): world position and shading
 // normal from the G-buffer; background pixels get a zero normal and albedo (zero light).
 // The world positions also go to a texture (w 1, 0 for the background) for the RSM gather,
-// and each pixel's mirror direction of the view ray to the LPV's glossy lookup queries.
+// and each glossy pixel's mirror direction of the view ray to the LPV's glossy lookup queries
+// (a zero direction elsewhere, which the lookup skips).
 
 struct SkyQuery {
     position: vec4<f32>,
@@ -23,6 +24,7 @@ struct LpvQuery {
 @group(0) @binding(4) var<storage, read_write> lpv_q: array<LpvQuery>;
 @group(0) @binding(5) var positions: texture_storage_2d<rgba32float, write>;
 @group(0) @binding(6) var<storage, read_write> glossy_q: array<LpvQuery>;
+@group(0) @binding(7) var albedo_t: texture_2d<f32>;
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -39,7 +41,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         p = world_position(frame, vec2<f32>(id.xy), depth);
         n = normalize(textureLoad(normal_t, vec2<i32>(id.xy), 0).xyz);
         albedo = 1.0;
-        r = reflect(view_ray(frame, vec2<f32>(id.xy)), n);
+        if textureLoad(albedo_t, vec2<i32>(id.xy), 0).w > 0.0 {
+            r = reflect(view_ray(frame, vec2<f32>(id.xy)), n);
+        }
     }
     sky_q[i] = SkyQuery(vec4<f32>(p, 1.0), vec4<f32>(n, 0.0), vec4<f32>(albedo));
     lpv_q[i] = LpvQuery(vec4<f32>(p, 1.0), vec4<f32>(n, 0.0));

@@ -64,9 +64,12 @@
 //! - The LPV is looked up 1.5 cells along the normal at the default and high presets (half a
 //!   cell in the thesis and the `lpv` crate): a surface sees less of its own injected bounce
 //!   ([`settings::ENGINE_LPV_LOOKUP_OFFSET`] has the ledger's figures).
-//! - The LPV is diffuse only (the glossy LPV lookup and sky-bounce VPLs are not wired); on a
-//!   hardware adapter it is injected from the RSM's textures and propagated on the GPU
-//!   (resident), on a software adapter by the crate's CPU path (faster there).
+//! - The thesis's two extras of the LPV are settings, off in the presets because the ledger
+//!   shows them buying little: the sky-bounce VPLs from the G-buffer (`Settings::sky_bounce`,
+//!   thesis 5.3.7) and the glossy lookup (`Settings::lpv_glossy`, 5.2.7); the settings' docs
+//!   have the figures. On a hardware adapter the LPV is injected from the RSMs' textures and
+//!   propagated on the GPU (resident), on a software adapter by the crate's CPU path (faster
+//!   there).
 //! - Glass is handled by the combine pass (reflection + refraction rays weighted by Fresnel),
 //!   not by a forward pass for transparent surfaces; normal maps are not applied.
 

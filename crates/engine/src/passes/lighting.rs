@@ -101,6 +101,7 @@ impl LightingPass {
                     self.lpv_q.as_entire_binding(),
                     tv(&targets.positions),
                     self.glossy_q.as_entire_binding(),
+                    tv(&targets.albedo),
                 ],
             );
             dispatch(
