@@ -5,6 +5,11 @@
 //! components ([`reference::Component::ONE_BOUNCE`]) over the pixels where a surface is seen
 //! (the sky seen directly is in the full image only): the part of the frame's error that an
 //! engine exact in every one-bounce component would still have.
+//!
+//! Where a region's share is large, `examples/specular_transport.rs` splits its light by
+//! taking the materials' specular parts away: the city's east facade across from the glass
+//! tower (83% beyond one bounce) gets 48% of its light by glossy lobes and 29% by mirror and
+//! glass parts, sunlight the tower's windows reflect onto it.
 
 use crate::compare::ReferenceRender;
 use crate::regions::RegionMap;
