@@ -30,6 +30,14 @@ struct Material {
     flags: vec4<u32>,
 }
 
+// A query of the sky volume's lookup kernel (crate sky_volume): position, normal, albedo
+// (the lookup returns albedo / pi * E).
+struct SkyQuery {
+    position: vec4<f32>,
+    normal: vec4<f32>,
+    albedo: vec4<f32>,
+}
+
 // One texel of the quarter-resolution ray casting buffer (thesis Table 6.1).
 struct RayCast {
     // xyz origin, w view depth (0: no ray)

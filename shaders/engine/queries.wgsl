@@ -6,12 +6,6 @@
 // and each glossy pixel's mirror direction of the view ray to the LPV's glossy lookup queries
 // (a zero direction elsewhere, which the lookup skips).
 
-struct SkyQuery {
-    position: vec4<f32>,
-    normal: vec4<f32>,
-    albedo: vec4<f32>,
-}
-
 struct LpvQuery {
     position: vec4<f32>,
     normal: vec4<f32>,

@@ -18,12 +18,6 @@ struct SkyVplGrid {
     limits: vec4<f32>,
 }
 
-struct SkyQuery {
-    position: vec4<f32>,
-    normal: vec4<f32>,
-    albedo: vec4<f32>,
-}
-
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<uniform> grid: SkyVplGrid;
 @group(0) @binding(2) var normal_t: texture_2d<f32>;

@@ -20,17 +20,7 @@ fn luminance(p: Vec3) -> f64 {
 /// is filled.
 fn engine_sky(r: &mut engine::Renderer, camera: scene::Camera) -> f64 {
     r.set_camera(camera).expect("camera");
-    r.set_component(Some(Component::SkyIrradiance));
-    let mut frame = r.render_frame().expect("frame");
-    for _ in 0..64 {
-        if r.sky_volume_complete() {
-            break;
-        }
-        frame = r.render_frame().expect("frame");
-    }
-    assert!(r.sky_volume_complete(), "the sky volume fills");
-    let px = &frame.hdr.pixels;
-    px.iter().map(|p| luminance(Vec3::new(p[0], p[1], p[2]))).sum::<f64>() / px.len() as f64
+    common::settled_mean_luminance(r, Component::SkyIrradiance)
 }
 
 /// Mean luminance of the reference's sky-irradiance image from `camera`.

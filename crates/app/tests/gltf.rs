@@ -8,57 +8,15 @@ use app::cli::load_scene;
 use engine::{Preset, Settings, pass};
 use frame_scheduler::Outcome;
 
-fn base64(data: &[u8]) -> String {
-    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut s = String::new();
-    for c in data.chunks(3) {
-        let b = [c[0], *c.get(1).unwrap_or(&0), *c.get(2).unwrap_or(&0)];
-        let n = (b[0] as u32) << 16 | (b[1] as u32) << 8 | b[2] as u32;
-        for k in 0..4 {
-            s.push(if k <= c.len() { A[(n >> (18 - 6 * k) & 63) as usize] as char } else { '=' });
-        }
-    }
-    s
-}
+#[path = "../../scene/tests/common/cube.rs"]
+mod cube;
 
-/// A unit cube centred on the origin: 24 vertices (flat normals), 36 u16 indices. Returns
-/// the buffer (positions, normals, indices) and the byte offsets of the three views.
-fn cube_buffer() -> (Vec<u8>, [usize; 3]) {
-    let mut pos = Vec::new();
-    let mut nrm = Vec::new();
-    let mut idx: Vec<u16> = Vec::new();
-    for axis in 0..3 {
-        for sign in [-1.0f32, 1.0] {
-            let mut n = [0.0f32; 3];
-            n[axis] = sign;
-            // u x v = n for a counter-clockwise (front-facing) quad.
-            let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
-            let base = pos.len() as u16;
-            for (a, b) in [(-1.0f32, -1.0f32), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
-                let mut p = [0.0f32; 3];
-                p[axis] = 0.5 * sign;
-                p[u] = 0.5 * a * sign;
-                p[v] = 0.5 * b;
-                pos.push(p);
-                nrm.push(n);
-            }
-            idx.extend([0, 1, 2, 0, 2, 3].map(|i| base + i));
-        }
-    }
-    let mut buf = Vec::new();
-    for f in pos.iter().flatten().chain(nrm.iter().flatten()) {
-        buf.extend_from_slice(&f.to_le_bytes());
-    }
-    for i in &idx {
-        buf.extend_from_slice(&i.to_le_bytes());
-    }
-    (buf, [0, 24 * 12, 48 * 12])
-}
+use cube::{CUBE_VIEWS, base64, cube_buffer};
 
 /// The glTF document: a 20 x 0.1 x 20 m grey ground slab, a red 1 m box on it, and a camera
 /// 6 m away, 2.5 m up, looking down at the box.
 fn box_on_plane_gltf() -> String {
-    let (buf, [p, n, i]) = cube_buffer();
+    let (buf, [p, n, i]) = (cube_buffer(), CUBE_VIEWS);
     let uri = format!("data:application/octet-stream;base64,{}", base64(&buf));
     let pitch = -(2.0f32 / 6.0).atan();
     let (qx, qw) = ((pitch / 2.0).sin(), (pitch / 2.0).cos());

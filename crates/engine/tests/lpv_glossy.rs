@@ -11,17 +11,11 @@ mod common;
 use engine::components::Component;
 use engine::{Indirect, Preset, Settings};
 use glam::{Vec3, Vec4Swizzles};
-use scene::{Camera, Material, MeshData, Scene, Sun};
+use scene::{Camera, Material, Scene, Sun};
 
 const W: u32 = 160;
 const H: u32 = 90;
 const GLOSS: f32 = 0.5;
-
-fn quad(corner: Vec3, u: Vec3, v: Vec3, material: scene::MaterialId) -> scene::Mesh {
-    let positions = vec![corner, corner + u, corner + u + v, corner + v];
-    let data = MeshData { positions, normals: None, uvs: None, indices: vec![0, 1, 2, 0, 2, 3] };
-    scene::Mesh::build("quad", data, material).unwrap().0
-}
 
 /// Floor x -3..3, z -6..0: glossy for x < 0, diffuse for x > 0; a white wall at z -6.
 fn scene() -> Scene {
@@ -29,9 +23,9 @@ fn scene() -> Scene {
     let glossy = s.add_material(Material::glossy("glossy", Vec3::splat(0.5), GLOSS, 32.0));
     let matte = s.add_material(Material::diffuse("matte", Vec3::splat(0.5)));
     let wall = s.add_material(Material::diffuse("wall", Vec3::splat(0.8)));
-    s.meshes.push(quad(Vec3::new(-3.0, 0.0, 0.0), Vec3::X * 3.0, -Vec3::Z * 6.0, glossy));
-    s.meshes.push(quad(Vec3::ZERO, Vec3::X * 3.0, -Vec3::Z * 6.0, matte));
-    s.meshes.push(quad(Vec3::new(-3.0, 0.0, -6.0), Vec3::X * 6.0, Vec3::Y * 6.0, wall));
+    s.meshes.push(common::quad(Vec3::new(-3.0, 0.0, 0.0), Vec3::X * 3.0, -Vec3::Z * 6.0, glossy));
+    s.meshes.push(common::quad(Vec3::ZERO, Vec3::X * 3.0, -Vec3::Z * 6.0, matte));
+    s.meshes.push(common::quad(Vec3::new(-3.0, 0.0, -6.0), Vec3::X * 6.0, Vec3::Y * 6.0, wall));
     s.sun = Some(Sun::from_direction(Vec3::new(0.2, 0.5, 0.8).normalize()));
     s.camera =
         Camera::look_at(Vec3::new(0.0, 1.5, 2.0), Vec3::new(0.0, 0.8, -6.0), 60.0, 16.0 / 9.0);

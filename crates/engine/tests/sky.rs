@@ -6,27 +6,6 @@ mod common;
 
 use engine::Component;
 
-/// Mean luminance of the sky-irradiance image once the sky volume is filled.
-fn sky_irradiance(r: &mut engine::Renderer) -> f64 {
-    r.set_component(Some(Component::SkyIrradiance));
-    let mut frame = r.render_frame().expect("frame");
-    for _ in 0..64 {
-        if r.sky_volume_complete() {
-            break;
-        }
-        frame = r.render_frame().expect("frame");
-    }
-    assert!(r.sky_volume_complete(), "the sky volume fills");
-    let n = frame.hdr.pixels.len() as f64;
-    frame
-        .hdr
-        .pixels
-        .iter()
-        .map(|p| 0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64)
-        .sum::<f64>()
-        / n
-}
-
 /// Sky irradiance (mean luminance) in `two_rooms`' closed east room (the scene camera's
 /// view) and in its windowed west room, with the authored quads or, `strip`ped of them,
 /// with quads derived from the geometry.
@@ -38,7 +17,7 @@ fn rooms(strip: bool) -> Option<(f64, f64)> {
     }
     let settings = engine::Settings::preset(engine::Preset::Low, 64, 36);
     let mut r = common::renderer(scene, settings)?;
-    let closed = sky_irradiance(&mut r);
+    let closed = common::settled_mean_luminance(&mut r, Component::SkyIrradiance);
     // The west room from its north-west corner, looking at the floor under the window.
     let west = scene::Camera::look_at(
         glam::Vec3::new(0.4, 2.2, -3.6),
@@ -47,7 +26,7 @@ fn rooms(strip: bool) -> Option<(f64, f64)> {
         16.0 / 9.0,
     );
     r.set_camera(west).expect("camera");
-    Some((closed, sky_irradiance(&mut r)))
+    Some((closed, common::settled_mean_luminance(&mut r, Component::SkyIrradiance)))
 }
 
 /// `two_rooms` stripped of its authored quads: the closed east room (its truth is black) gets

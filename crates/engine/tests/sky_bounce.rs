@@ -13,7 +13,7 @@ mod common;
 use engine::components::Component;
 use engine::{Indirect, Preset, Settings};
 use glam::{Vec3, Vec4Swizzles};
-use scene::{Camera, Material, MeshData, Scene, Sun};
+use scene::{Camera, Material, Scene, Sun};
 
 const W: u32 = 160;
 const H: u32 = 90;
@@ -23,19 +23,13 @@ const WALL_ALBEDO: f32 = 0.5;
 const HALF: f32 = 3.0;
 const WALL_Z: f32 = -6.0;
 
-fn quad(corner: Vec3, u: Vec3, v: Vec3, material: scene::MaterialId) -> scene::Mesh {
-    let positions = vec![corner, corner + u, corner + u + v, corner + v];
-    let data = MeshData { positions, normals: None, uvs: None, indices: vec![0, 1, 2, 0, 2, 3] };
-    scene::Mesh::build("quad", data, material).unwrap().0
-}
-
 fn scene() -> Scene {
     let mut s = Scene::new("floor and wall");
     let floor = s.add_material(Material::diffuse("floor", Vec3::splat(FLOOR_ALBEDO)));
     let wall = s.add_material(Material::diffuse("wall", Vec3::splat(WALL_ALBEDO)));
     let x = Vec3::X * (2.0 * HALF);
-    s.meshes.push(quad(Vec3::new(-HALF, 0.0, 0.0), x, Vec3::Z * WALL_Z, floor));
-    s.meshes.push(quad(Vec3::new(-HALF, 0.0, WALL_Z), x, Vec3::Y * (2.0 * HALF), wall));
+    s.meshes.push(common::quad(Vec3::new(-HALF, 0.0, 0.0), x, Vec3::Z * WALL_Z, floor));
+    s.meshes.push(common::quad(Vec3::new(-HALF, 0.0, WALL_Z), x, Vec3::Y * (2.0 * HALF), wall));
     // The sun lights both; its own bounce is the same with and without sky bounce.
     s.sun = Some(Sun::from_direction(Vec3::new(0.4, 0.7, 0.6).normalize()));
     s.sky = true;

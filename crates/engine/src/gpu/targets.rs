@@ -37,18 +37,9 @@ fn target(
     h: u32,
     format: wgpu::TextureFormat,
 ) -> wgpu::Texture {
-    device.create_texture(&wgpu::TextureDescriptor {
-        label: Some(label),
-        size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT
-            | wgpu::TextureUsages::TEXTURE_BINDING
-            | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    })
+    use wgpu::TextureUsages as U;
+    let usage = U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC;
+    super::util::texture_2d(device, label, (w, h), format, usage)
 }
 
 impl GBufferTargets {
@@ -65,19 +56,14 @@ impl GBufferTargets {
             geometry: view("geometry", GBUFFER_FORMATS[2]),
             depth: view("linear depth", GBUFFER_FORMATS[3]),
             zbuffer: view("z-buffer", wgpu::TextureFormat::Depth32Float),
-            positions: device
-                .create_texture(&wgpu::TextureDescriptor {
-                    label: Some("world positions"),
-                    size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
-                    mip_level_count: 1,
-                    sample_count: 1,
-                    dimension: wgpu::TextureDimension::D2,
-                    format: wgpu::TextureFormat::Rgba32Float,
-                    usage: wgpu::TextureUsages::STORAGE_BINDING
-                        | wgpu::TextureUsages::TEXTURE_BINDING,
-                    view_formats: &[],
-                })
-                .create_view(&Default::default()),
+            positions: super::util::texture_2d(
+                device,
+                "world positions",
+                (width, height),
+                wgpu::TextureFormat::Rgba32Float,
+                wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+            )
+            .create_view(&Default::default()),
             lit: lit_texture.create_view(&Default::default()),
             lit_texture,
             combined: combined_texture.create_view(&Default::default()),

@@ -129,6 +129,26 @@ pub(crate) fn read_texture(
     Ok(out)
 }
 
+/// A 2D texture of one mip level and sample.
+pub(crate) fn texture_2d(
+    device: &wgpu::Device,
+    label: &str,
+    (width, height): (u32, u32),
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    })
+}
+
 /// A shader module; WGSL errors surface as [`EngineError::Gpu`] with the shader's name.
 pub(crate) fn shader(
     device: &wgpu::Device,

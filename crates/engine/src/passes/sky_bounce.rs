@@ -11,7 +11,9 @@
 
 use super::sky::SkyState;
 use crate::EngineError;
-use crate::gpu::{GBufferTargets, Gpu, compute_pipeline, dispatch, storage_empty, uniform};
+use crate::gpu::{
+    GBufferTargets, Gpu, compute_pipeline, dispatch, storage_empty, texture_2d, uniform,
+};
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 
@@ -47,19 +49,10 @@ pub struct SkyBounceInputs<'a> {
     pub materials: &'a wgpu::Buffer,
 }
 
-fn rsm_target(device: &wgpu::Device, label: &str, (w, h): (u32, u32)) -> wgpu::Texture {
-    device.create_texture(&wgpu::TextureDescriptor {
-        label: Some(label),
-        size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba32Float,
-        usage: wgpu::TextureUsages::STORAGE_BINDING
-            | wgpu::TextureUsages::TEXTURE_BINDING
-            | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    })
+fn rsm_target(device: &wgpu::Device, label: &str, size: (u32, u32)) -> wgpu::Texture {
+    use wgpu::TextureUsages as U;
+    let usage = U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC;
+    texture_2d(device, label, size, wgpu::TextureFormat::Rgba32Float, usage)
 }
 
 /// A bind group of `pipeline`'s group 0 from `(binding, resource)` pairs.

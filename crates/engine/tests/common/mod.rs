@@ -84,3 +84,31 @@ pub fn scratch_dir(test: &str) -> std::path::PathBuf {
     std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("creating {}: {e}", dir.display()));
     dir
 }
+
+/// A quad (two triangles) from `corner` spanned by `u` and `v`, of `material`.
+pub fn quad(
+    corner: glam::Vec3,
+    u: glam::Vec3,
+    v: glam::Vec3,
+    material: scene::MaterialId,
+) -> scene::Mesh {
+    let positions = vec![corner, corner + u, corner + u + v, corner + v];
+    let indices = vec![0, 1, 2, 0, 2, 3];
+    let data = scene::MeshData { positions, normals: None, uvs: None, indices };
+    scene::Mesh::build("quad", data, material).expect("a valid quad").0
+}
+
+/// Mean luminance of `component`'s image of the renderer's view once the sky volume is
+/// complete (at most 64 more frames).
+pub fn settled_mean_luminance(r: &mut Renderer, component: engine::Component) -> f64 {
+    r.set_component(Some(component));
+    let mut frame = r.render_frame().expect("frame");
+    for _ in 0..64 {
+        if r.sky_volume_complete() {
+            break;
+        }
+        frame = r.render_frame().expect("frame");
+    }
+    assert!(r.sky_volume_complete(), "the sky volume fills");
+    hdr_stats(&frame).0
+}

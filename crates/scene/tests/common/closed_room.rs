@@ -3,7 +3,7 @@
 //! axis-aligned boxes (one unit cube mesh, a node per box) with its camera inside. A file
 //! with no occlusion quads, so a renderer has to derive the sky's occlusion from the walls.
 
-use super::base64;
+use super::cube::{base64, cube_buffer};
 use glam::{Mat3, Quat, Vec3};
 
 /// Where the committed file lives.
@@ -33,37 +33,6 @@ fn boxes() -> Vec<(&'static str, usize, Vec3, Vec3)> {
 /// The camera inside: from the north-east corner towards the window and the floor under it.
 pub fn inside_camera() -> (Vec3, Vec3) {
     (Vec3::new(3.6, 2.4, -3.6), Vec3::new(1.6, 0.6, -0.6))
-}
-
-/// A unit cube centred on the origin: 24 vertices with flat normals, 36 u16 indices; the
-/// buffer (positions, normals, indices).
-fn cube_buffer() -> Vec<u8> {
-    let (mut pos, mut nrm, mut idx) = (Vec::new(), Vec::new(), Vec::<u16>::new());
-    for axis in 0..3 {
-        for sign in [-1.0f32, 1.0] {
-            let mut n = [0.0f32; 3];
-            n[axis] = sign;
-            let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
-            let base = pos.len() as u16;
-            for (a, b) in [(-1.0f32, -1.0f32), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
-                let mut p = [0.0f32; 3];
-                p[axis] = 0.5 * sign;
-                p[u] = 0.5 * a * sign;
-                p[v] = 0.5 * b;
-                pos.push(p);
-                nrm.push(n);
-            }
-            idx.extend([0, 1, 2, 0, 2, 3].map(|i| base + i));
-        }
-    }
-    let mut buf = Vec::new();
-    for f in pos.iter().flatten().chain(nrm.iter().flatten()) {
-        buf.extend_from_slice(&f.to_le_bytes());
-    }
-    for i in &idx {
-        buf.extend_from_slice(&i.to_le_bytes());
-    }
-    buf
 }
 
 /// glTF's camera looks down its local -Z with +Y up.
