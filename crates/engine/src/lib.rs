@@ -14,7 +14,7 @@
 //! | `shadow maps` | stabilised cascades fitted to the camera, PCSS parameters (resident pass) | 4.2 | `shadows` |
 //! | `point shadows` | one depth cube array for the shadow-casting point lights (resident pass) | 4.2 | `shadows` |
 //! | `g-buffer` | albedo + gloss, normal + power, geometry normal + material, depth | Table 3.1 | - |
-//! | `rsm + lpv` | sun RSM → injection (from its textures on a GPU) + propagation in 3 cascades (indirect `lpv`) | 5.2, 5.3.7 | `shadows`, `lpv` |
+//! | `rsm + lpv` | sun RSM (and with `Settings::sky_bounce` the G-buffer's sky-bounce VPLs, `passes::sky_bounce`) → injection (from their textures on a GPU) + propagation in 3 cascades (indirect `lpv`) | 5.2, 5.3.7 | `shadows`, `lpv`, `sky_volume` |
 //! | `rsm (gather)` | the same sun RSM, kept on the GPU for the lighting pass's interleaved gather (indirect `rsm`) | seed 2 | `shadows`, `rsm_gi` |
 //! | `ray casting buffer` | quarter-res origins + reflection/refraction rays, read back | 6.2.1 | - |
 //! | `ray tracing` | CPU kd-tree tracing and shading of those rays, on a worker thread | 6.2-6.3 | `kdtree_tracer` |
