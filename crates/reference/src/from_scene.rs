@@ -12,6 +12,13 @@
 //!   Earth atmosphere's transmittance, in units of the solar irradiance at the top) and the
 //!   sky radiance comes from an `atmosphere::SkyMap`; without a sky the sun's colour is read
 //!   as its irradiance and there is no sky light. Point lights map one to one.
+//! - Ground: a scene's ground ends at its edge, and the world stands on a dark ground that
+//!   reaches the horizon ([`crate::WorldBuilder::dark_ground`]): the sky lights surfaces from
+//!   above the horizon only, as the engine's sky volume does, while what the eye sees below
+//!   the horizon (directly or through mirrors and glass) is the sky map's horizon. Without
+//!   it, rays from the city's facades that passed below the horizon beyond its 120 m ground
+//!   found the horizon's radiance: `building_0_1_facade south` got 0.060 of sky irradiance,
+//!   0.036 of it from above the horizon (what the same facade gets on an endless ground).
 
 use crate::material::{AlbedoTexture, AlphaTest};
 use crate::world::{PointLight, Sun, World};
@@ -111,6 +118,10 @@ pub fn world_from_scene(scene: &scene::Scene, lighting: &SceneLighting) -> Resul
         let dir = sun_dir.unwrap_or(Vec3::new(0.0, -1.0, 0.0));
         let map = SkyMap::new(&sky, lighting.sky_map, dir).map_err(scene_err)?;
         b.sky(move |d: Vec3| map.radiance(d));
+        // The scene's ground ends at its edge; the sky lights it from above the horizon only,
+        // as the engine's sky volume does (the city's facades got 40% of their sky light
+        // from below the horizon beyond the ground otherwise).
+        b.dark_ground(true);
         if let (Some(s), Some(d)) = (&scene.sun, sun_dir) {
             let mut sun = Sun::new(d, s.color * sky.sun_colour(lighting.sky_map.altitude_km, d));
             sun.angular_radius = s.angular_radius;

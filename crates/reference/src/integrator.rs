@@ -306,7 +306,9 @@ pub(crate) fn trace_path_from(
     let mut after_base = !specular;
     loop {
         let Some(h) = world.intersect(origin, dir, f32::INFINITY) else {
-            l += beta * world.sky_radiance(dir);
+            // What the eye sees through delta bounces is the backdrop; after a base-BRDF
+            // vertex the sky lights (from above the horizon, on a dark ground).
+            l += beta * if specular { world.sky_radiance(dir) } else { world.sky_light(dir) };
             if specular
                 && !(after_base && caustics.is_some())
                 && let Some(sun) = world.sun()
@@ -408,11 +410,7 @@ pub(crate) fn irradiance(
         Component::SkyIrradiance | Component::SkyDiffuse => {
             let wi = cosine_hemisphere(n, rng.next_2d());
             let o = world.offset(p, n, wi);
-            if world.occluded(o, wi, f32::INFINITY) {
-                Vec3::ZERO
-            } else {
-                PI * world.sky_radiance(wi)
-            }
+            if world.occluded(o, wi, f32::INFINITY) { Vec3::ZERO } else { PI * world.sky_light(wi) }
         }
         Component::SunIndirectDiffuse => {
             let wi = cosine_hemisphere(n, rng.next_2d());

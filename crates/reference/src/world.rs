@@ -76,6 +76,7 @@ pub struct WorldBuilder {
     sun: Option<Sun>,
     points: Vec<PointLight>,
     sky: Option<Arc<SkyFn>>,
+    dark_ground: bool,
 }
 
 impl WorldBuilder {
@@ -151,6 +152,18 @@ impl WorldBuilder {
         self
     }
 
+    /// With `true`, the world stands on a black ground that reaches the horizon: the sky
+    /// lights surfaces from above the horizon only ([`World::sky_light`]), while what the eye
+    /// sees of the sky, directly or through mirrors and glass, is the sky function's
+    /// everywhere (a backdrop). Without it (the default) a ray that leaves the world below
+    /// the horizon finds the sky function there too, as if the world floated in the sky:
+    /// right for an environment given on the whole sphere (a furnace), wrong for a scene
+    /// whose ground ends at its edge ([`crate::world_from_scene`] sets it).
+    pub fn dark_ground(&mut self, on: bool) -> &mut Self {
+        self.dark_ground = on;
+        self
+    }
+
     /// Checks everything and builds the kd-tree.
     pub fn build(self) -> Result<World, Error> {
         for (i, m) in self.materials.iter().enumerate() {
@@ -212,6 +225,7 @@ impl WorldBuilder {
             sun,
             points: self.points,
             sky: self.sky,
+            dark_ground: self.dark_ground,
             any_alpha,
             epsilon: 2e-5 * extent,
             emitters,
@@ -246,6 +260,7 @@ pub struct World {
     sun: Option<Sun>,
     points: Vec<PointLight>,
     sky: Option<Arc<SkyFn>>,
+    dark_ground: bool,
     any_alpha: bool,
     epsilon: f32,
     emitters: Emitters,
@@ -337,6 +352,12 @@ impl World {
             }
             None => Vec3::ZERO,
         }
+    }
+
+    /// Sky radiance lighting a surface from `dir`: [`Self::sky_radiance`], but zero below
+    /// the horizon when the world stands on a dark ground ([`WorldBuilder::dark_ground`]).
+    pub fn sky_light(&self, dir: Vec3) -> Vec3 {
+        if self.dark_ground && dir.y < 0.0 { Vec3::ZERO } else { self.sky_radiance(dir) }
     }
 
     pub fn has_sky(&self) -> bool {

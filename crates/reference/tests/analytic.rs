@@ -71,6 +71,37 @@ fn energy_never_increases_with_bounce_count() {
     }
 }
 
+/// A world on a dark ground (`WorldBuilder::dark_ground`) is lit by the sky from above the
+/// horizon only: 5 m above a 1 m floor patch under a constant sky, a sideways normal gets
+/// `pi L / 2` and a downward one nothing (without the dark ground: `pi L` both, the rays
+/// below the horizon escaping to the sky); the eye still sees the sky below the horizon.
+#[test]
+fn a_dark_ground_lights_from_above_the_horizon_only() {
+    let l = Vec3::new(0.5, 1.0, 2.0);
+    let world = |dark| {
+        let mut b = World::builder();
+        let g = b.material(Material::diffuse(Vec3::splat(0.8)));
+        b.quad(Vec3::new(-0.5, 0.0, 0.5), Vec3::X, -Vec3::Z, g);
+        b.sky(move |_| l).dark_ground(dark);
+        b.build().unwrap()
+    };
+    let p = Vec3::new(0.0, 5.0, 0.0);
+    let pts = [QueryPoint::new(p, Vec3::X), QueryPoint::new(p, -Vec3::Y)];
+    let q = QuerySettings { samples: 4096, ..QuerySettings::DEFAULT };
+    for (dark, want) in [(true, [0.5, 0.0]), (false, [1.0, 1.0])] {
+        let est = irradiance(&world(dark), Component::SkyIrradiance, &pts, &q).unwrap();
+        for (e, w) in est.iter().zip(want) {
+            let want = PI * w * l;
+            let err = (e.mean - want).abs().max_element();
+            assert!(err < 0.03 * PI * l.max_element(), "dark {dark}: {} against {want}", e.mean);
+        }
+    }
+    // A camera ray below the horizon that misses the patch sees the sky either way.
+    let rays = [(p, Vec3::new(1.0, -0.2, 0.0).normalize())];
+    let seen = radiance(&world(true), Component::Full, &rays, &QuerySettings::low()).unwrap();
+    assert!((seen[0].mean - l).abs().max_element() < 1e-4, "{}", seen[0].mean);
+}
+
 #[test]
 fn plane_under_a_constant_sky_receives_pi_l() {
     let mut b = World::builder();
