@@ -35,7 +35,7 @@
 
 use crate::EngineError;
 use glam::{Vec2, Vec3};
-use kdtree_tracer::{Hit, KdTree, Mesh, Ray, RayQuery, Settings};
+use kdtree_tracer::{Hit, Mesh, Ray, RayQuery, Settings, SurfaceHit, Surfaces};
 use rayon::prelude::*;
 use scene::{Material, Texture, TextureId};
 use std::f32::consts::PI;
@@ -47,25 +47,18 @@ pub const PIXEL_SPREAD: f32 = 2e-3;
 /// Deepest recursion [`trace_rays`] follows (every glass hit doubles the rays).
 pub const MAX_TRACE_DEPTH: u32 = 8;
 
-/// The scene prepared for tracing: kdtree_tracer acceleration structure over every mesh in
-/// world space, per-triangle material ids, per-vertex world normals and uvs for interpolation
-/// at hits.
+/// The scene prepared for tracing: the surface layer it shares with the reference
+/// ([`kdtree_tracer::Surfaces`]: a kd-tree over every mesh in world space, per-triangle
+/// materials, shading normals, UVs, alpha-tested holes, offsets) and what shading needs on
+/// top of it.
 pub struct TraceScene {
-    mesh: Mesh,
-    tree: KdTree,
-    /// Per triangle: material index.
-    tri_material: Vec<u32>,
+    surfaces: Surfaces,
     /// Per triangle: `sqrt(uv area / world area)` (UV units per metre), for mip selection.
     uv_density: Vec<f32>,
-    /// Per vertex (global numbering of `mesh`): unit world normal (zero when unknown).
-    normals: Vec<Vec3>,
-    uvs: Vec<Vec2>,
     materials: Vec<Material>,
     /// Indexed by [`TextureId`]; only textures some material uses are kept.
     textures: Vec<Option<Texture>>,
-    any_alpha: bool,
     any_glass: bool,
-    epsilon: f32,
 }
 
 /// Most surfaces a shadow ray passes through before it counts as blocked.
@@ -78,142 +71,107 @@ fn fresnel_schlick(ior: f32, cos: f32) -> f32 {
 }
 
 impl TraceScene {
-    /// Flattens every mesh to world space and builds the kd-tree. A scene without triangles
-    /// is fine (every ray returns the sky). Errors: a mesh whose material does not exist, a
-    /// non-finite world position or too many triangles.
+    /// Flattens the scene to world space ([`scene::Scene::triangles`]) and builds the
+    /// surface layer. A scene without triangles is fine (every ray returns the sky).
+    /// Errors: a mesh whose material does not exist, a non-finite world position or too many
+    /// triangles.
     pub fn new(scene: &scene::Scene) -> Result<Self, EngineError> {
-        let mut mesh = Mesh::new();
-        let (mut tri_material, mut uv_density) = (Vec::new(), Vec::new());
-        let (mut normals, mut uvs) = (Vec::new(), Vec::new());
-        for (i, m) in scene.meshes.iter().enumerate() {
-            if m.material.index() >= scene.materials.len() {
-                return Err(EngineError::technique(
-                    "trace",
-                    format!(
-                        "mesh {i} (\"{}\") uses material {} but the scene has {}",
-                        m.name,
-                        m.material.0,
-                        scene.materials.len()
-                    ),
-                ));
-            }
-            let pos: Vec<Vec3> =
-                m.positions.iter().map(|&p| m.transform.transform_point3(p)).collect();
-            mesh.push(&pos, &m.indices)?;
-            let nm = m.normal_matrix();
-            let base = uvs.len();
-            normals.extend(
-                (0..pos.len()).map(|v| {
-                    m.normals.get(v).map_or(Vec3::ZERO, |&n| (nm * n).normalize_or_zero())
-                }),
-            );
-            uvs.extend(
-                (0..pos.len())
-                    .map(|v| m.uvs.get(v).copied().filter(|u| u.is_finite()).unwrap_or(Vec2::ZERO)),
-            );
-            for t in &m.indices {
-                let [a, b, c] = t.map(|i| pos[i as usize]);
-                let [ua, ub, uc] = t.map(|i| uvs[base + i as usize]);
-                let world = (b - a).cross(c - a).length();
-                let uv = (ub - ua).perp_dot(uc - ua).abs();
-                let d = (uv / world).sqrt();
-                uv_density.push(if d.is_finite() { d } else { 0.0 });
-                tri_material.push(m.material.0);
-            }
+        if let Some((i, m)) = scene
+            .meshes
+            .iter()
+            .enumerate()
+            .find(|(_, m)| m.material.index() >= scene.materials.len())
+        {
+            return Err(EngineError::technique(
+                "trace",
+                format!(
+                    "mesh {i} (\"{}\") uses material {} but the scene has {}",
+                    m.name,
+                    m.material.0,
+                    scene.materials.len()
+                ),
+            ));
         }
-        let tree = KdTree::build(&mesh, &Settings::DEFAULT)?;
+        let tris = scene.triangles();
+        let corners = |t| (tris.triangle(t), tris.corner_uvs(t));
+        let uv_density = (0..tris.indices.len())
+            .map(|t| {
+                let ([a, b, c], [ua, ub, uc]) = corners(t);
+                let d = ((ub - ua).perp_dot(uc - ua).abs() / (b - a).cross(c - a).length()).sqrt();
+                if d.is_finite() { d } else { 0.0 }
+            })
+            .collect();
         let used = |id: usize| {
             scene.materials.iter().any(|m| {
                 m.albedo_texture.is_some_and(|t| t.index() == id)
                     || m.alpha_mask.is_some_and(|a| a.texture.index() == id)
             })
         };
-        let textures = scene
+        let textures: Vec<Option<Texture>> = scene
             .textures
             .iter()
             .enumerate()
             .map(|(i, t)| (used(i) && t.width() > 0).then(|| t.clone()))
             .collect();
-        let extent =
-            mesh.bounds().map_or(1.0, |(lo, hi)| lo.abs().max(hi.abs()).max_element().max(1.0));
+        // A mask whose texture is missing or empty cuts nothing out.
+        let cutouts = scene
+            .materials
+            .iter()
+            .map(|m| {
+                m.alpha_mask
+                    .is_some_and(|a| textures.get(a.texture.index()).is_some_and(Option::is_some))
+            })
+            .collect();
+        let n = tris.indices.len();
+        let mesh = Mesh::from_indexed(&tris.positions, &tris.indices)?;
+        let surfaces = Surfaces::build(mesh, tris.materials.clone(), &Settings::DEFAULT)?
+            .with_shading_normals((0..n).map(|t| tris.corner_normals(t)).collect())?
+            .with_uvs((0..n).map(|t| tris.corner_uvs(t)).collect())?
+            .with_cutouts(cutouts);
         Ok(Self {
-            mesh,
-            tree,
-            tri_material,
+            surfaces,
             uv_density,
-            normals,
-            uvs,
-            any_alpha: scene.materials.iter().any(|m| m.alpha_mask.is_some()),
             any_glass: scene.materials.iter().any(Material::is_transparent),
             materials: scene.materials.clone(),
             textures,
-            epsilon: 2e-5 * extent,
         })
     }
 
     pub fn triangle_count(&self) -> usize {
-        self.mesh.triangle_count()
+        self.surfaces.triangle_count()
     }
 
     /// Offset used to leave a surface (scaled with the scene's extent).
     pub fn epsilon(&self) -> f32 {
-        self.epsilon
+        self.surfaces.epsilon()
     }
 
     fn texture(&self, id: TextureId) -> Option<&Texture> {
         self.textures.get(id.index())?.as_ref()
     }
 
-    fn material(&self, h: &Hit) -> &Material {
-        &self.materials[self.tri_material[h.triangle as usize] as usize]
+    fn material(&self, triangle: u32) -> &Material {
+        &self.materials[self.surfaces.material(triangle) as usize]
     }
 
-    fn uv(&self, h: &Hit) -> Vec2 {
-        h.interpolate(self.mesh.indices()[h.triangle as usize].map(|i| self.uvs[i as usize]))
-    }
-
-    /// False when the hit falls in an alpha-tested hole.
-    fn opaque(&self, h: &Hit) -> bool {
-        let Some(mask) = self.material(h).alpha_mask else { return true };
+    /// False when the surface point falls in an alpha-tested hole.
+    fn opaque(&self, triangle: u32, bary: Vec2) -> bool {
+        let Some(mask) = self.material(triangle).alpha_mask else { return true };
         let Some(tex) = self.texture(mask.texture) else { return true };
-        tex.sample_bilinear(self.uv(h), 0).w >= mask.cutoff
-    }
-
-    /// Closest hit in `[0, t_max]`, skipping alpha-tested holes when `alpha`.
-    fn intersect(&self, origin: Vec3, dir: Vec3, t_max: f32, alpha: bool) -> Option<Hit> {
-        self.intersect_from(origin, dir, 0.0, t_max, alpha)
+        tex.sample_bilinear(self.surfaces.uv(triangle, bary), 0).w >= mask.cutoff
     }
 
     /// Closest hit in `[t_min, t_max]`, skipping alpha-tested holes when `alpha`.
-    fn intersect_from(
+    fn intersect(
         &self,
         origin: Vec3,
         dir: Vec3,
-        mut t_min: f32,
+        t_min: f32,
         t_max: f32,
         alpha: bool,
-    ) -> Option<Hit> {
-        let alpha = alpha && self.any_alpha;
-        loop {
-            let h = self.tree.intersect(&Ray::new(origin, dir).with_t_min(t_min), t_max)?;
-            if !alpha || self.opaque(&h) {
-                return Some(h);
-            }
-            let next = h.t + (h.t * 1e-6).max(1e-7);
-            if next <= t_min || next > t_max {
-                return None;
-            }
-            t_min = next;
-        }
-    }
-
-    /// True when something (opaque, with `alpha`) lies along the ray within `[0, t_max]`.
-    fn occluded(&self, origin: Vec3, dir: Vec3, t_max: f32, alpha: bool) -> bool {
-        if alpha && self.any_alpha {
-            self.intersect(origin, dir, t_max, true).is_some()
-        } else {
-            self.tree.occluded(&Ray::new(origin, dir), t_max)
-        }
+    ) -> Option<SurfaceHit> {
+        let opaque = |t: u32, b: Vec2| !alpha || self.opaque(t, b);
+        self.surfaces.intersect(origin, dir, t_min, t_max, &opaque)
     }
 
     /// The fraction of light that travels along the ray within `[0, t_max]`: 0 behind an
@@ -222,38 +180,32 @@ impl TraceScene {
     /// a thin pane shifts light but does not turn it, and the refraction's bend is left out.
     /// Alpha-tested holes let light through with `alpha`.
     fn transmittance(&self, origin: Vec3, dir: Vec3, t_max: f32, alpha: bool) -> f32 {
-        if !self.any_glass {
-            return if self.occluded(origin, dir, t_max, alpha) { 0.0 } else { 1.0 };
-        }
-        if !self.tree.occluded(&Ray::new(origin, dir), t_max) {
+        let opaque = |t: u32, b: Vec2| !alpha || self.opaque(t, b);
+        if !self.surfaces.occluded(origin, dir, 0.0, t_max, &opaque) {
             return 1.0;
+        }
+        if !self.any_glass {
+            return 0.0;
         }
         let (mut t_min, mut through) = (0.0, 1.0);
         for _ in 0..MAX_TRANSMISSIONS {
-            let Some(h) = self.intersect_from(origin, dir, t_min, t_max, alpha) else {
+            let Some(h) = self.intersect(origin, dir, t_min, t_max, alpha) else {
                 return through;
             };
-            let m = self.material(&h);
+            let m = self.material(h.triangle);
             if !m.is_transparent() {
                 return 0.0;
             }
-            let cos = dir.dot(self.geometric_normal(&h)).abs();
+            let cos = dir.dot(h.normal).abs();
             through *= m.transparency * (1.0 - fresnel_schlick(m.ior, cos));
             t_min = h.t + (h.t * 1e-6).max(1e-7);
         }
         0.0
     }
 
-    /// The unit geometric normal of a hit triangle (zero for a degenerate one).
+    /// The unit geometric normal of a hit triangle as wound.
     pub fn geometric_normal(&self, h: &Hit) -> Vec3 {
-        let [a, b, c] = self.mesh.triangle(h.triangle);
-        (b - a).cross(c - a).normalize_or_zero()
-    }
-
-    /// A point just off the surface at `p` (geometric normal `ng`) on the side of `dir`.
-    fn offset(&self, p: Vec3, ng: Vec3, dir: Vec3) -> Vec3 {
-        let e = self.epsilon.max(p.abs().max_element() * 4e-6);
-        if ng.dot(dir) >= 0.0 { p + ng * e } else { p - ng * e }
+        self.surfaces.normal(h.triangle)
     }
 }
 
@@ -261,15 +213,13 @@ impl TraceScene {
 /// alpha-tested holes let rays through, as they do for the traced reflections.
 impl RayQuery for TraceScene {
     fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        self.intersect_from(ray.origin, ray.dir, ray.t_min, t_max, true)
+        let opaque = |t: u32, b: Vec2| self.opaque(t, b);
+        self.surfaces.intersect_hit(ray.origin, ray.dir, ray.t_min, t_max, &opaque)
     }
 
     fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
-        if self.any_alpha {
-            RayQuery::intersect(self, ray, t_max).is_some()
-        } else {
-            self.tree.occluded(ray, t_max)
-        }
+        let opaque = |t: u32, b: Vec2| self.opaque(t, b);
+        self.surfaces.occluded(ray.origin, ray.dir, ray.t_min, t_max, &opaque)
     }
 }
 
@@ -356,27 +306,20 @@ impl Tracer<'_> {
     /// ray has already travelled (for mip selection).
     fn radiance(&self, origin: Vec3, dir: Vec3, depth: u32, dist: f32) -> Vec3 {
         let s = self.scene;
-        let Some(h) = s.intersect(origin, dir, f32::INFINITY, self.alpha) else {
+        let Some(h) = s.intersect(origin, dir, 0.0, f32::INFINITY, self.alpha) else {
             return finite((self.lighting.sky)(dir));
         };
-        let p = origin + dir * h.t;
-        let m = s.material(&h);
-        let idx = s.mesh.indices()[h.triangle as usize];
-        let [a, b, c] = s.mesh.triangle(h.triangle);
-        let mut ng = (b - a).cross(c - a).try_normalize().unwrap_or(Vec3::Y);
-        let front = ng.dot(dir) < 0.0;
-        if !front {
-            ng = -ng;
-        }
-        let mut n = h.interpolate(idx.map(|i| s.normals[i as usize])).try_normalize().unwrap_or(ng);
-        if n.dot(dir) > 0.0 {
-            n = -n;
-        }
+        let p = h.position;
+        let m = s.material(h.triangle);
+        // Both normals turned to the side the ray came from.
+        let front = h.normal.dot(dir) < 0.0;
+        let ng = if front { h.normal } else { -h.normal };
+        let n = if h.shading_normal.dot(dir) > 0.0 { -h.shading_normal } else { h.shading_normal };
         let mut l = finite(m.emission);
         let base = (1.0 - m.reflectivity - m.transparency).max(0.0);
         if base > 0.0 {
             let albedo = self.albedo(m, &h, dist + h.t);
-            l += base * self.direct(m, albedo, p, s.offset(p, ng, -dir), n, dir);
+            l += base * self.direct(m, albedo, p, s.surfaces.offset(p, ng, -dir), n, dir);
         }
         if depth <= 1 {
             return l;
@@ -398,7 +341,7 @@ impl Tracer<'_> {
         }
         let mut follow = |w: f32, d: Vec3| {
             if w > 0.0 {
-                l += w * self.radiance(s.offset(p, ng, d), d, depth - 1, dist + h.t);
+                l += w * self.radiance(s.surfaces.offset(p, ng, d), d, depth - 1, dist + h.t);
             }
         };
         follow(w_reflect, reflect(dir, n));
@@ -440,7 +383,7 @@ impl Tracer<'_> {
             let cos = n.dot(l);
             if cos > 0.0 {
                 let through = if light.casts_shadows {
-                    s.transmittance(po, l, d - s.epsilon, self.alpha)
+                    s.transmittance(po, l, d - s.epsilon(), self.alpha)
                 } else {
                     1.0
                 };
@@ -451,14 +394,14 @@ impl Tracer<'_> {
     }
 
     /// The material's albedo times its texture at the hit (`dist`: distance travelled).
-    fn albedo(&self, m: &Material, h: &Hit, dist: f32) -> Vec3 {
+    fn albedo(&self, m: &Material, h: &SurfaceHit, dist: f32) -> Vec3 {
         let s = self.scene;
         let mut albedo = m.albedo;
         if let Some(tex) = m.albedo_texture.and_then(|id| s.texture(id)) {
             let texels = (tex.width() as f32 * tex.height() as f32).sqrt();
             let footprint = dist * PIXEL_SPREAD * s.uv_density[h.triangle as usize] * texels;
             let lod = if footprint > 0.0 { footprint.log2() } else { 0.0 };
-            albedo *= tex.sample_trilinear(s.uv(h), lod).truncate();
+            albedo *= tex.sample_trilinear(h.uv, lod).truncate();
         }
         finite(albedo).min(Vec3::ONE)
     }

@@ -27,6 +27,10 @@
 //! - **Dynamic geometry** (the thesis's future work): [`BvhAccel`] answers the same queries
 //!   with an obvhs CWBVH rebuilt per frame, and [`SceneAccel`] combines a static kd-tree with
 //!   it, keeping the closer hit.
+//! - **Surfaces**: [`Surfaces`] is the layer a renderer's traced rays need over the tree
+//!   (per-triangle materials, alpha-tested cut-outs skipped, interpolated shading normals and
+//!   texture coordinates, the offset that leaves a surface), shared by the engine's ray
+//!   tracer and the reference path tracer so that the two cannot differ on it.
 //! - [`BruteForce`] is the reference every structure is tested against; [`test_util`] has
 //!   the seeded scenes (city block, spheres, random soup, Cornell box) and ray generators.
 //!
@@ -134,6 +138,7 @@ mod node;
 mod ray;
 mod scene;
 mod settings;
+mod surfaces;
 mod test_meshes;
 mod tiles;
 mod traverse;
@@ -150,5 +155,6 @@ pub use mesh::Mesh;
 pub use ray::{Hit, Ray, RayQuery};
 pub use scene::SceneAccel;
 pub use settings::{MAX_DEPTH_LIMIT, Settings};
+pub use surfaces::{SurfaceHit, Surfaces};
 pub use tiles::{DEFAULT_TILE, map_tiles, trace_tiles};
 pub use tree::{KdTree, MAX_TRIANGLES, TreeStats};

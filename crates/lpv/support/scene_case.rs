@@ -51,12 +51,13 @@ impl SceneCase {
         let triangles: Vec<[Vec3; 3]> = (0..tris.indices.len()).map(|t| tris.triangle(t)).collect();
         let albedo = (0..triangles.len())
             .map(|t| {
-                let material = scene.meshes[tris.mesh_ids[t] as usize].material.0;
+                let material = tris.materials[t];
                 let h = SurfaceHit {
                     t: 0.0,
                     position: Vec3::ZERO,
                     normal: Vec3::Y,
                     shading_normal: Vec3::Y,
+                    uv: Vec2::ZERO,
                     triangle: t as u32,
                     material,
                     barycentrics: Vec2::splat(1.0 / 3.0),

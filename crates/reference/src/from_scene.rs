@@ -61,13 +61,9 @@ fn scene_err(e: impl std::fmt::Display) -> Error {
 pub fn world_from_scene(scene: &scene::Scene, lighting: &SceneLighting) -> Result<World, Error> {
     scene.validate().map_err(scene_err)?;
     let mut b = World::builder();
-    // Per-triangle UVs, shared by the alpha tests.
-    let mut uvs: Vec<[Vec2; 3]> = Vec::with_capacity(scene.triangle_count());
-    for m in &scene.meshes {
-        for t in &m.indices {
-            uvs.push(t.map(|i| m.uvs.get(i as usize).copied().unwrap_or(Vec2::ZERO)));
-        }
-    }
+    let tris = scene.triangles();
+    // Per-triangle UVs, shared by the alpha tests and the albedo textures.
+    let uvs: Vec<[Vec2; 3]> = (0..tris.indices.len()).map(|t| tris.corner_uvs(t)).collect();
     let uvs = Arc::new(uvs);
     for sm in &scene.materials {
         let alpha = sm.alpha_mask.and_then(|mask| {
@@ -103,12 +99,7 @@ pub fn world_from_scene(scene: &scene::Scene, lighting: &SceneLighting) -> Resul
             albedo_texture,
         });
     }
-    for m in &scene.meshes {
-        let p: Vec<Vec3> = m.positions.iter().map(|&p| m.transform.transform_point3(p)).collect();
-        let nm = m.normal_matrix();
-        let n: Vec<Vec3> = m.normals.iter().map(|&n| nm * n).collect();
-        b.smooth_triangles(&p, &n, &m.indices, m.material.0);
-    }
+    b.shaded_triangles(&tris.positions, &tris.normals, &tris.indices, &tris.materials);
     let sun_dir = match &scene.sun {
         Some(s) => Some(s.direction().map_err(scene_err)?),
         None => None,

@@ -4,7 +4,8 @@
 use crate::lights::Emitters;
 use crate::{Error, Material};
 use glam::{Vec2, Vec3};
-use kdtree_tracer::{KdTree, Mesh, Ray, Settings};
+pub use kdtree_tracer::SurfaceHit;
+use kdtree_tracer::{Mesh, Settings, Surfaces};
 use std::f32::consts::PI;
 use std::sync::Arc;
 
@@ -97,12 +98,7 @@ impl WorldBuilder {
         indices: &[[u32; 3]],
         material: u32,
     ) -> &mut Self {
-        let base = self.positions.len() as u32;
-        self.positions.extend_from_slice(positions);
-        self.vertex_normals.resize(self.positions.len(), Vec3::ZERO);
-        self.indices.extend(indices.iter().map(|t| t.map(|i| i.saturating_add(base))));
-        self.tri_material.extend(std::iter::repeat_n(material, indices.len()));
-        self
+        self.push(positions, &[], indices, |_| material)
     }
 
     /// Adds indexed world-space triangles whose surface is shaded with the per-vertex
@@ -116,11 +112,36 @@ impl WorldBuilder {
         indices: &[[u32; 3]],
         material: u32,
     ) -> &mut Self {
-        let base = self.vertex_normals.len();
-        self.triangles(positions, indices, material);
-        for (v, n) in self.vertex_normals[base..].iter_mut().zip(normals) {
-            *v = n.try_normalize().unwrap_or(Vec3::ZERO);
-        }
+        self.push(positions, normals, indices, |_| material)
+    }
+
+    /// [`Self::smooth_triangles`] with a material per triangle (a missing one is an error
+    /// of [`Self::build`]): a whole flattened scene at once.
+    pub fn shaded_triangles(
+        &mut self,
+        positions: &[Vec3],
+        normals: &[Vec3],
+        indices: &[[u32; 3]],
+        materials: &[u32],
+    ) -> &mut Self {
+        self.push(positions, normals, indices, |t| materials.get(t).copied().unwrap_or(u32::MAX))
+    }
+
+    fn push(
+        &mut self,
+        positions: &[Vec3],
+        normals: &[Vec3],
+        indices: &[[u32; 3]],
+        material: impl Fn(usize) -> u32,
+    ) -> &mut Self {
+        let base = self.positions.len() as u32;
+        self.positions.extend_from_slice(positions);
+        self.vertex_normals.extend(
+            (0..positions.len())
+                .map(|v| normals.get(v).and_then(|n| n.try_normalize()).unwrap_or(Vec3::ZERO)),
+        );
+        self.indices.extend(indices.iter().map(|t| t.map(|i| i.saturating_add(base))));
+        self.tri_material.extend((0..indices.len()).map(material));
         self
     }
 
@@ -195,74 +216,39 @@ impl WorldBuilder {
             }
         }
         let mesh = Mesh::from_indexed(&self.positions, &self.indices)?;
-        let tree = KdTree::build(&mesh, &Settings::DEFAULT)?;
-        let normals = (0..mesh.triangle_count() as u32)
-            .map(|t| {
-                let [a, b, c] = mesh.triangle(t);
-                (b - a).cross(c - a).try_normalize().unwrap_or(Vec3::Y)
-            })
-            .collect();
-        let shading = if self.vertex_normals.iter().any(|n| *n != Vec3::ZERO) {
-            self.indices.iter().map(|t| t.map(|i| self.vertex_normals[i as usize])).collect()
-        } else {
-            Vec::new()
-        };
-        let any_alpha = self.materials.iter().any(|m| m.alpha.is_some());
-        let extent =
-            mesh.bounds().map_or(1.0, |(lo, hi)| lo.abs().max(hi.abs()).max_element().max(1.0));
+        let shading =
+            self.indices.iter().map(|t| t.map(|i| self.vertex_normals[i as usize])).collect();
+        let cutouts = self.materials.iter().map(|m| m.alpha.is_some()).collect();
+        let surfaces = Surfaces::build(mesh, self.tri_material, &Settings::DEFAULT)?
+            .with_shading_normals(shading)?
+            .with_cutouts(cutouts);
         let sun = self.sun.map(|s| Sun { direction: s.direction.normalize(), ..s });
-        let emitters = Emitters::new((0..mesh.triangle_count()).map(|t| {
-            let m = &self.materials[self.tri_material[t] as usize];
-            (mesh.triangle(t as u32), m.emission, m.double_sided)
+        let emitters = Emitters::new((0..surfaces.triangle_count() as u32).map(|t| {
+            let m = &self.materials[surfaces.material(t) as usize];
+            (surfaces.triangle(t), m.emission, m.double_sided)
         }));
         Ok(World {
-            mesh,
-            tree,
-            normals,
-            shading,
-            tri_material: self.tri_material,
+            surfaces,
             materials: self.materials,
             sun,
             points: self.points,
             sky: self.sky,
             dark_ground: self.dark_ground,
-            any_alpha,
-            epsilon: 2e-5 * extent,
             emitters,
         })
     }
 }
 
-/// A surface point found by a ray.
-#[derive(Clone, Copy, Debug)]
-pub struct SurfaceHit {
-    pub t: f32,
-    pub position: Vec3,
-    /// Unit geometric normal as wound (`(p1 - p0) x (p2 - p0)`).
-    pub normal: Vec3,
-    /// Unit shading normal: the corners' normals interpolated and turned to the side of
-    /// `normal` (`normal` itself for triangles without vertex normals).
-    pub shading_normal: Vec3,
-    pub triangle: u32,
-    pub material: u32,
-    pub barycentrics: Vec2,
-}
-
 /// Triangles, materials and lights over a kd-tree: what the integrators trace.
 pub struct World {
-    mesh: Mesh,
-    tree: KdTree,
-    normals: Vec<Vec3>,
-    /// Per triangle: its corners' shading normals (empty when no triangle has any).
-    shading: Vec<[Vec3; 3]>,
-    tri_material: Vec<u32>,
+    /// Triangles, their materials and shading normals, holes and offsets: the surface layer
+    /// the engine's ray tracer shares.
+    surfaces: Surfaces,
     materials: Vec<Material>,
     sun: Option<Sun>,
     points: Vec<PointLight>,
     sky: Option<Arc<SkyFn>>,
     dark_ground: bool,
-    any_alpha: bool,
-    epsilon: f32,
     emitters: Emitters,
 }
 
@@ -272,7 +258,7 @@ impl World {
     }
 
     pub fn triangle_count(&self) -> usize {
-        self.mesh.triangle_count()
+        self.surfaces.triangle_count()
     }
 
     pub fn materials(&self) -> &[Material] {
@@ -309,30 +295,17 @@ impl World {
 
     /// Corners of triangle `t`.
     pub(crate) fn triangle(&self, t: u32) -> [Vec3; 3] {
-        self.mesh.triangle(t)
+        self.surfaces.triangle(t)
     }
 
     /// Unit geometric normal of triangle `t` as wound.
     pub(crate) fn normal(&self, t: u32) -> Vec3 {
-        self.normals[t as usize]
-    }
-
-    /// The interpolated shading normal of triangle `t` at `bary` turned to the side of
-    /// `geometric`, or `geometric` where the triangle has none.
-    fn shading_normal(&self, t: u32, bary: Vec2, geometric: Vec3) -> Vec3 {
-        let Some([a, b, c]) = self.shading.get(t as usize) else { return geometric };
-        if *a == Vec3::ZERO || *b == Vec3::ZERO || *c == Vec3::ZERO {
-            return geometric;
-        }
-        let n = *a * (1.0 - bary.x - bary.y) + *b * bary.x + *c * bary.y;
-        // Vertex normals need not follow the winding: turn the normal to the wound side.
-        let n = if n.dot(geometric) < 0.0 { -n } else { n };
-        n.try_normalize().unwrap_or(geometric)
+        self.surfaces.normal(t)
     }
 
     /// Material id of triangle `t`.
     pub(crate) fn triangle_material(&self, t: u32) -> u32 {
-        self.tri_material[t as usize]
+        self.surfaces.material(t)
     }
 
     pub fn sun(&self) -> Option<&Sun> {
@@ -366,78 +339,38 @@ impl World {
 
     /// Bounding box of the geometry.
     pub fn bounds(&self) -> Option<(Vec3, Vec3)> {
-        self.mesh.bounds()
+        self.surfaces.bounds()
     }
 
     /// Offset used to leave a surface (scaled with the scene's extent).
     pub fn epsilon(&self) -> f32 {
-        self.epsilon
+        self.surfaces.epsilon()
     }
 
     /// Checks the kd-tree and the per-triangle tables.
     pub fn validate(&self) -> Result<(), Error> {
-        self.tree.validate(&self.mesh)?;
-        if self.tri_material.len() != self.mesh.triangle_count()
-            || self.normals.len() != self.tri_material.len()
-        {
-            return Err(Error::Scene("per-triangle tables out of step with the mesh".into()));
-        }
-        Ok(())
+        Ok(self.surfaces.validate()?)
     }
 
     /// A point just off the surface at `p` on the side of `dir`.
     pub fn offset(&self, p: Vec3, normal: Vec3, dir: Vec3) -> Vec3 {
-        let e = self.epsilon.max(p.abs().max_element() * 4e-6);
-        if normal.dot(dir) >= 0.0 { p + normal * e } else { p - normal * e }
+        self.surfaces.offset(p, normal, dir)
     }
 
     pub(crate) fn passes_alpha(&self, triangle: u32, bary: Vec2) -> bool {
-        match &self.materials[self.tri_material[triangle as usize] as usize].alpha {
+        match &self.materials[self.surfaces.material(triangle) as usize].alpha {
             Some(a) => (a.coverage)(triangle, bary) >= a.cutoff,
             None => true,
         }
     }
 
-    /// Closest hit along `origin + t dir`, `t` in `(0, t_max]`, skipping alpha-tested holes.
+    /// Closest hit along `origin + t dir`, `t` in `[0, t_max]`, skipping alpha-tested holes.
     pub fn intersect(&self, origin: Vec3, dir: Vec3, t_max: f32) -> Option<SurfaceHit> {
-        let mut t_min = 0.0f32;
-        loop {
-            let ray = Ray::new(origin, dir).with_t_min(t_min);
-            let h = self.tree.intersect(&ray, t_max)?;
-            if !self.any_alpha || self.passes_alpha(h.triangle, h.barycentrics) {
-                let normal = self.normals[h.triangle as usize];
-                return Some(SurfaceHit {
-                    t: h.t,
-                    position: origin + dir * h.t,
-                    normal,
-                    shading_normal: self.shading_normal(h.triangle, h.barycentrics, normal),
-                    triangle: h.triangle,
-                    material: self.tri_material[h.triangle as usize],
-                    barycentrics: h.barycentrics,
-                });
-            }
-            let next = h.t + (h.t * 1e-6).max(1e-7);
-            if !(next > t_min) || next > t_max {
-                return None;
-            }
-            t_min = next;
-        }
+        self.surfaces.intersect(origin, dir, 0.0, t_max, &|t, b| self.passes_alpha(t, b))
     }
 
-    /// True when something opaque lies along `origin + t dir`, `t` in `(0, t_max)`.
-    ///
-    /// With alpha-tested materials the first hit the traversal meets decides when it is
-    /// opaque (most shadow rays); only a ray whose first-met hit is a hole is traced again
-    /// hit by hit in order ([`World::intersect`]), so the answer is the same either way.
+    /// True when something opaque lies along `origin + t dir`, `t` in `[0, t_max]`.
     pub fn occluded(&self, origin: Vec3, dir: Vec3, t_max: f32) -> bool {
-        let ray = Ray::new(origin, dir);
-        if !self.any_alpha {
-            return self.tree.occluded(&ray, t_max);
-        }
-        match self.tree.any_hit(&ray, t_max) {
-            None => false,
-            Some(h) if self.passes_alpha(h.triangle, h.barycentrics) => true,
-            Some(_) => self.intersect(origin, dir, t_max).is_some(),
-        }
+        self.surfaces.occluded(origin, dir, 0.0, t_max, &|t, b| self.passes_alpha(t, b))
     }
 }

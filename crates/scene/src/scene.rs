@@ -4,7 +4,7 @@ use crate::{
     Aabb, Camera, Cleanup, LpvPlacement, Material, MaterialId, Mesh, OcclusionQuad, PointLight,
     SceneError, SkyVolumePlacement, Sun, Texture, TextureId,
 };
-use glam::{Affine3A, Vec3};
+use glam::{Affine3A, Vec2, Vec3};
 use std::fmt;
 
 /// Everything a renderer needs to know about the world.
@@ -27,14 +27,23 @@ pub struct Scene {
     pub cleanup: Cleanup,
 }
 
-/// The scene flattened to world-space triangles: plain data an acceleration structure
-/// (`kdtree_tracer`, a BVH) builds from.
+/// The scene flattened to world space: plain data an acceleration structure
+/// (`kdtree_tracer`, a BVH), a vertex buffer or a ray tracer's surface layer builds from.
+/// Vertices are shared within a mesh, never across meshes.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct SceneTriangles {
     pub positions: Vec<Vec3>,
+    /// Per vertex: the unit world-space normal (the mesh's normal matrix applied), or zero
+    /// where the mesh has none or it degenerates.
+    pub normals: Vec<Vec3>,
+    /// Per vertex: the texture coordinates, or zero where the mesh has none (or a
+    /// non-finite one).
+    pub uvs: Vec<Vec2>,
     pub indices: Vec<[u32; 3]>,
     /// For each triangle, the index of its mesh in [`Scene::meshes`].
     pub mesh_ids: Vec<u32>,
+    /// For each triangle, its material's index in [`Scene::materials`].
+    pub materials: Vec<u32>,
 }
 
 impl SceneTriangles {
@@ -46,6 +55,16 @@ impl SceneTriangles {
     /// The three corners of triangle `t`.
     pub fn triangle(&self, t: usize) -> [Vec3; 3] {
         self.indices[t].map(|i| self.positions[i as usize])
+    }
+
+    /// The corners' normals of triangle `t` (zero where unknown).
+    pub fn corner_normals(&self, t: usize) -> [Vec3; 3] {
+        self.indices[t].map(|i| self.normals[i as usize])
+    }
+
+    /// The corners' texture coordinates of triangle `t`.
+    pub fn corner_uvs(&self, t: usize) -> [Vec2; 3] {
+        self.indices[t].map(|i| self.uvs[i as usize])
     }
 }
 
@@ -221,17 +240,34 @@ impl Scene {
         }
     }
 
-    /// All triangles in world space, meshes in order, vertices shared within a mesh.
+    /// All triangles in world space with their normals, texture coordinates and materials,
+    /// meshes in order, vertices shared within a mesh: the one place a scene is flattened.
     pub fn triangles(&self) -> SceneTriangles {
         let mut out = SceneTriangles::default();
-        out.positions.reserve(self.meshes.iter().map(Mesh::vertex_count).sum());
-        out.indices.reserve(self.triangle_count());
-        out.mesh_ids.reserve(self.triangle_count());
+        let (vertices, triangles) =
+            (self.meshes.iter().map(Mesh::vertex_count).sum(), self.triangle_count());
+        out.positions.reserve(vertices);
+        out.normals.reserve(vertices);
+        out.uvs.reserve(vertices);
+        out.indices.reserve(triangles);
+        out.mesh_ids.reserve(triangles);
+        out.materials.reserve(triangles);
         for (id, m) in self.meshes.iter().enumerate() {
             let base = out.positions.len() as u32;
+            let nm = m.normal_matrix();
             out.positions.extend(m.positions.iter().map(|&p| m.transform.transform_point3(p)));
+            out.normals.extend(
+                (0..m.vertex_count()).map(|v| {
+                    m.normals.get(v).map_or(Vec3::ZERO, |&n| (nm * n).normalize_or_zero())
+                }),
+            );
+            out.uvs.extend(
+                (0..m.vertex_count())
+                    .map(|v| m.uvs.get(v).copied().filter(|u| u.is_finite()).unwrap_or_default()),
+            );
             out.indices.extend(m.indices.iter().map(|t| t.map(|i| i + base)));
             out.mesh_ids.extend(std::iter::repeat_n(id as u32, m.indices.len()));
+            out.materials.extend(std::iter::repeat_n(m.material.0, m.indices.len()));
         }
         out
     }

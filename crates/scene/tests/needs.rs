@@ -171,3 +171,47 @@ fn flattened_triangles_are_world_space_with_mesh_ids() {
     assert!(moved.iter().all(|&k| t.triangle(k).iter().all(|p| p.y >= 9.99)));
     assert_eq!(t.positions_array().len(), t.positions.len());
 }
+
+#[test]
+fn flattened_normals_uvs_and_materials_follow_each_mesh() {
+    // A unit quad in y = 0 (normal +y, uvs at its corners), scaled unevenly and turned 90
+    // degrees about z: its world normal is -x, unit length whatever the scale.
+    let data = scene::MeshData {
+        positions: vec![Vec3::ZERO, Vec3::X, Vec3::new(1.0, 0.0, 1.0), Vec3::Z],
+        normals: Some(vec![Vec3::Y; 4]),
+        uvs: Some(vec![glam::Vec2::ZERO, glam::Vec2::X, glam::Vec2::ONE, glam::Vec2::Y]),
+        indices: vec![0, 2, 1, 0, 3, 2],
+    };
+    let mut s = scene::Scene::new("t");
+    s.add_material(scene::Material::default());
+    s.add_material(scene::Material::default());
+    let (mut quad, _) = scene::Mesh::build("quad", data, scene::MaterialId(1)).unwrap();
+    quad.transform = glam::Affine3A::from_scale_rotation_translation(
+        Vec3::new(3.0, 0.5, 2.0),
+        glam::Quat::from_rotation_z(std::f32::consts::FRAC_PI_2),
+        Vec3::new(0.0, 5.0, 0.0),
+    );
+    let bare = scene::MeshData {
+        positions: vec![Vec3::ZERO, Vec3::X, Vec3::Z],
+        indices: vec![0, 1, 2],
+        ..Default::default()
+    };
+    let (bare, _) = scene::Mesh::build("bare", bare, scene::MaterialId(0)).unwrap();
+    s.meshes = vec![quad, bare];
+    let t = s.triangles();
+    assert_eq!(t.materials, vec![1, 1, 0]);
+    assert_eq!((t.normals.len(), t.uvs.len()), (t.positions.len(), t.positions.len()));
+    for k in 0..2 {
+        let [a, b, c] = t.triangle(k);
+        let face = (b - a).cross(c - a).normalize();
+        for n in t.corner_normals(k) {
+            assert!((n.length() - 1.0).abs() < 1e-6 && n.dot(face).abs() > 0.9999, "{n} {face}");
+            assert!((n - Vec3::NEG_X).length() < 1e-6, "{n}");
+        }
+    }
+    assert_eq!(t.corner_uvs(0), [glam::Vec2::ZERO, glam::Vec2::ONE, glam::Vec2::X]);
+    assert_eq!(t.corner_uvs(1)[1], glam::Vec2::Y);
+    // A mesh loaded without normals has its face normals, and zero uvs.
+    assert_eq!(t.corner_normals(2), [Vec3::NEG_Y; 3]);
+    assert_eq!(t.corner_uvs(2), [glam::Vec2::ZERO; 3]);
+}
