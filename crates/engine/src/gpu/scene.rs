@@ -79,35 +79,34 @@ pub struct SceneBuffers {
     pub shadow_masks: Vec<Option<shadows::gpu::AlphaMask>>,
 }
 
-/// The scene's meshes in world space, sorted by material: vertices, indices, and one draw per
-/// material.
+/// The scene in world space ([`scene::Scene::triangles`]), triangles sorted by material:
+/// vertices, indices, and one draw per material. A vertex without a normal gets `+y`.
 fn flatten(scene: &scene::Scene) -> (Vec<Vertex>, Vec<u32>, Vec<Draw>) {
-    let mut order: Vec<usize> = (0..scene.meshes.len()).collect();
-    order.sort_by_key(|&i| scene.meshes[i].material.0);
-    let mut vertices = Vec::new();
-    let mut indices: Vec<u32> = Vec::new();
+    let tris = scene.triangles();
+    let mut material = vec![0u32; tris.positions.len()];
+    for (t, corners) in tris.indices.iter().enumerate() {
+        corners.iter().for_each(|&i| material[i as usize] = tris.materials[t]);
+    }
+    let vertices = (0..tris.positions.len())
+        .map(|v| Vertex {
+            position: tris.positions[v].to_array(),
+            normal: (if tris.normals[v] == Vec3::ZERO { Vec3::Y } else { tris.normals[v] })
+                .to_array(),
+            uv: tris.uvs[v].to_array(),
+            material: material[v],
+        })
+        .collect();
+    let mut order: Vec<usize> = (0..tris.indices.len()).collect();
+    order.sort_by_key(|&t| tris.materials[t]);
+    let mut indices = Vec::with_capacity(3 * order.len());
     let mut draws: Vec<Draw> = Vec::new();
-    for &i in &order {
-        let m = &scene.meshes[i];
-        let base = vertices.len() as u32;
-        let nm = m.normal_matrix();
-        for (k, p) in m.positions.iter().enumerate() {
-            let n = m.normals.get(k).map_or(Vec3::Y, |&n| (nm * n).normalize_or(Vec3::Y));
-            let uv = m.uvs.get(k).copied().unwrap_or_default();
-            vertices.push(Vertex {
-                position: m.transform.transform_point3(*p).to_array(),
-                normal: n.to_array(),
-                uv: uv.to_array(),
-                material: m.material.0,
-            });
-        }
+    for t in order {
         let first = indices.len() as u32;
-        indices.extend(m.indices.iter().flatten().map(|&j| base + j));
-        let count = indices.len() as u32 - first;
+        indices.extend(tris.indices[t]);
         match draws.last_mut() {
-            Some(d) if d.material == m.material.0 => d.index_count += count,
+            Some(d) if d.material == tris.materials[t] => d.index_count += 3,
             _ => {
-                draws.push(Draw { first_index: first, index_count: count, material: m.material.0 })
+                draws.push(Draw { first_index: first, index_count: 3, material: tris.materials[t] })
             }
         }
     }
