@@ -364,10 +364,9 @@ impl Tracer<'_> {
             if through > 0.0 {
                 let e = e * through;
                 irradiance += e * cos;
-                let rc = reflect(dir, n).dot(l);
-                if m.glossiness > 0.0 && rc > 0.0 {
-                    let pw = m.specular_power.max(1.0);
-                    specular = e * cos * m.glossiness * (pw + 2.0) / (2.0 * PI) * rc.powf(pw);
+                if m.glossiness > 0.0 {
+                    let lobe = scene::phong_lobe(m.specular_power.max(1.0), reflect(dir, n).dot(l));
+                    specular = e * cos * m.glossiness * lobe;
                 }
             }
         }

@@ -79,7 +79,7 @@ pub(crate) const SHARP_PEAK: f32 = 20.0;
 /// True when the base BRDF of `m` is a sharp Phong lobe (peak at least [`SHARP_PEAK`]): the
 /// photons follow it like a mirror and a camera path makes no density estimate there.
 pub(crate) fn sharp(m: &Material) -> bool {
-    m.base_weight() > 0.0 && m.glossiness * (m.specular_power + 2.0) / (2.0 * PI) >= SHARP_PEAK
+    m.base_weight() > 0.0 && m.glossiness * scene::phong_lobe(m.specular_power, 1.0) >= SHARP_PEAK
 }
 
 /// True when photons follow a material's scattering: it has a mirror or glass part or a sharp

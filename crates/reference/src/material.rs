@@ -187,10 +187,7 @@ impl Material {
         let mut f = (1.0 - self.glossiness) * self.albedo / PI;
         if self.glossiness > 0.0 {
             let c = reflect(-wo, n).dot(wi);
-            if c > 0.0 {
-                let p = self.specular_power;
-                f += Vec3::splat(self.glossiness * (p + 2.0) / (2.0 * PI) * c.powf(p));
-            }
+            f += Vec3::splat(self.glossiness * scene::phong_lobe(self.specular_power, c));
         }
         f
     }

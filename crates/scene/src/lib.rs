@@ -82,7 +82,7 @@ pub use load::gltf::{load_gltf, load_gltf_slice};
 pub use load::obj::{load_obj, load_obj_slice};
 pub use load::scene_file::{load_scene_file, load_scene_str};
 pub use load::{LoadOptions, load, load_with};
-pub use material::{AlphaMask, Material, MaterialId, RAY_TRACE_THRESHOLD};
+pub use material::{AlphaMask, Material, MaterialId, RAY_TRACE_THRESHOLD, phong_lobe};
 pub use mesh::{Cleanup, Mesh, MeshData};
 pub use needs::{Need, SKY_DARK_ELEVATION_DEG, SceneNeeds};
 pub use occluders::{DeriveSettings, derive_occlusion_quads};

@@ -6,6 +6,15 @@
 use crate::{SceneError, TextureId};
 use glam::Vec3;
 
+/// The specular lobe of the model, energy-normalised Phong: `(n + 2) / (2 pi) cos^n` at
+/// the cosine `cos_r` between the mirror direction and the light, zero behind (a material's
+/// specular BRDF is its glossiness times this). Every renderer of the model (the engine's
+/// ray tracer, the reference) evaluates it here; the WGSL twin is `base_brdf_cos` in
+/// `shaders/engine/lighting.wgsl`.
+pub fn phong_lobe(power: f32, cos_r: f32) -> f32 {
+    if cos_r > 0.0 { (power + 2.0) / (2.0 * std::f32::consts::PI) * cos_r.powf(power) } else { 0.0 }
+}
+
 /// Index of a material in [`crate::Scene::materials`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct MaterialId(pub u32);
@@ -179,5 +188,35 @@ impl Material {
             }
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::phong_lobe;
+
+    /// At normal incidence the lobe times the cosine integrates to 1 over the hemisphere
+    /// (midpoint rule in the polar angle), for any power; nothing comes from behind.
+    #[test]
+    fn the_phong_lobe_is_energy_normalised() {
+        for power in [1.0f32, 8.0, 64.0, 512.0] {
+            let n = 20_000;
+            let d = std::f64::consts::FRAC_PI_2 / n as f64;
+            let integral: f64 = (0..n)
+                .map(|i| {
+                    let th = (i as f64 + 0.5) * d;
+                    let c = th.cos() as f32;
+                    f64::from(phong_lobe(power, c))
+                        * th.cos()
+                        * th.sin()
+                        * 2.0
+                        * std::f64::consts::PI
+                        * d
+                })
+                .sum();
+            assert!((integral - 1.0).abs() < 1e-3, "power {power}: {integral}");
+            assert_eq!(phong_lobe(power, -0.5), 0.0);
+            assert_eq!(phong_lobe(power, 0.0), 0.0);
+        }
     }
 }
