@@ -10,22 +10,42 @@ use crate::frame::{
 };
 use crate::passes::display::{Exposure, Shown};
 use crate::passes::lighting::{IndirectSource, LightingInputs};
+use crate::passes::lpv::LpvState;
+use crate::passes::radiance_cache::CacheState;
 use crate::passes::raycast::RayBatch;
+use crate::passes::rsm_gather::RsmGatherState;
+use crate::passes::shadow::ShadowMaps;
+use crate::passes::sky::{SkyLight, SkyMapState, SkyVolumeState};
 use crate::settings::{Indirect, Specular};
-use crate::state::{FrameCtx, poisoned};
+use crate::state::FrameCtx;
 use crate::trace::{TraceLighting, TraceSettings, trace_rays};
-use frame_scheduler::{Budget, FrameGraph, PassBuilder, PassId, PassResult, Res, quantise_dir};
+use crate::EngineError;
+use crate::state::SunLight;
+use frame_scheduler::{
+    Budget, FrameGraph, PassBuilder, PassId, PassIo, PassResult, Res, quantise_dir,
+};
 use glam::Vec3;
-use std::sync::atomic::Ordering;
+use std::any::Any;
 
 /// Traced radiance per ray of the batch.
 pub struct Traced(pub Vec<Vec3>);
+
+/// The G-buffer targets (in `State`) hold the view of this camera.
+pub struct GBufferView(pub scene::Camera);
+
+/// The point lights' depth cubes (in `State`) are rendered.
+pub struct CubeShadows;
+
+/// The lit (combined) HDR target holds the view of this lighting component code.
+pub struct LitView(pub u32);
+pub struct CombinedView(pub u32);
 
 /// Handles to the graph's resources the renderer reads.
 pub struct Outputs {
     /// Which HDR target the display image of the frame was made from.
     pub shown: Res<Shown>,
     pub sky_volume: PassId,
+    pub cache: Res<CacheState>,
 }
 
 /// Stable pass names (the report and the tests use them).
@@ -55,8 +75,17 @@ fn sun_key(c: &FrameCtx) -> Option<[i64; 3]> {
     c.sun.map(|s| quantise_dir(s.dir.to_array(), 1e-3))
 }
 
+/// What the lighting pass binds besides the G-buffer, as the frame uniform reports it to the
+/// shaders (the passes before it write the camera part, which is all they read).
+#[derive(Clone, Copy, Default)]
+struct Bound {
+    shadows: Option<ShadowMaps>,
+    cubes: bool,
+    sky_map_size: u32,
+}
+
 /// Writes the frame uniform for this frame's camera, sun and enabled techniques.
-fn write_frame_uniform(c: &FrameCtx) {
+fn write_frame_uniform(c: &FrameCtx, bound: Bound) {
     let s = &c.state;
     let set = &s.settings;
     let mut u = FrameUniform::new(&c.camera, set.width, set.height);
@@ -65,7 +94,7 @@ fn write_frame_uniform(c: &FrameCtx) {
         u.sun_irradiance = sun.irradiance.extend(sun.angular_radius).to_array();
     }
     let mut flags = 0;
-    if s.sky.is_some() && c.needs.sky_lighting.needed {
+    if sky_needed(c) {
         flags |= FLAG_SKY | FLAG_SKY_VOLUME;
     }
     if c.needs.indirect_lpv.needed && c.indirect != Indirect::None {
@@ -86,37 +115,56 @@ fn write_frame_uniform(c: &FrameCtx) {
     if set.lpv_glossy > 0 && c.needs.indirect_lpv.needed && c.indirect == Indirect::Lpv {
         flags |= FLAG_LPV_GLOSSY;
     }
-    let maps = s.shadow_maps.lock().ok().and_then(|m| *m);
-    let cubes = s.point_shadows_ready.load(Ordering::Acquire);
-    u.csm[2] = if cubes { set.point_shadow_resolution } else { 0 };
-    if let Some(m) = maps.filter(|m| m.count > 0 && c.needs.sun_shadows.needed) {
+    u.csm[2] = if bound.cubes { set.point_shadow_resolution } else { 0 };
+    if let Some(m) = bound.shadows.filter(|m| m.count > 0) {
         flags |= FLAG_SHADOWS;
         u.csm[0] = m.count;
         u.csm[1] = set.csm_resolution;
     }
-    let sky_size = s.sky.as_ref().and_then(|k| k.read().ok()).map_or(0, |k| k.map_size());
     u.size = [set.width, set.height, s.scene_lights(), flags];
     let ao = if c.effects.is_on(Effect::AmbientOcclusion) { set.ssao_samples } else { 0 };
-    u.params = [set.ssao_radius, ao as f32, sky_size as f32, c.frame as f32];
+    u.params = [set.ssao_radius, ao as f32, bound.sky_map_size as f32, c.frame as f32];
     u.csm[3] = c.component;
     s.gpu.write(&s.frame, 0, bytemuck::bytes_of(&u));
+}
+
+/// The output's value from the pass's last run, or, on its first, a new one from `make`:
+/// a technique's state is built when a frame first needs it, not with the renderer.
+fn previous_or<T: Any + Send + Sync>(
+    io: &mut PassIo<'_, FrameCtx>,
+    res: Res<T>,
+    make: impl FnOnce(&FrameCtx) -> Result<T, EngineError>,
+) -> Result<T, Box<dyn std::error::Error + Send + Sync>> {
+    match io.take_previous(res)? {
+        Some(v) => Ok(v),
+        None => Ok(make(io.ctx())?),
+    }
+}
+
+/// The sky of this frame, when both its passes have run (the map and the volume lit from it).
+fn sky_light<'a>(io: &'a PassIo<'_, FrameCtx>, r: Resources) -> Option<SkyLight<'a>> {
+    Some(SkyLight { map: io.try_read(r.sky_map)?, volume: io.try_read(r.sky_vol)? })
+}
+
+fn sun_of(c: &FrameCtx) -> Result<SunLight, EngineError> {
+    c.sun.ok_or_else(|| EngineError::Settings("no sun".into()))
 }
 
 /// The graph's resources: what each pass writes and the passes after it read.
 #[derive(Clone, Copy)]
 struct Resources {
-    sky_map: Res<u64>,
-    sky_vol: Res<u64>,
-    shadow: Res<u64>,
-    gbuf: Res<u64>,
-    cubes: Res<u64>,
-    lpv: Res<u64>,
-    sun_rsm: Res<u64>,
-    cache: Res<u64>,
+    sky_map: Res<SkyMapState>,
+    sky_vol: Res<SkyVolumeState>,
+    shadow: Res<ShadowMaps>,
+    gbuf: Res<GBufferView>,
+    cubes: Res<CubeShadows>,
+    lpv: Res<LpvState>,
+    sun_rsm: Res<RsmGatherState>,
+    cache: Res<CacheState>,
     batch: Res<RayBatch>,
     traced: Res<Traced>,
-    lit: Res<u64>,
-    combined: Res<u64>,
+    lit: Res<LitView>,
+    combined: Res<CombinedView>,
     shown: Res<Shown>,
 }
 
@@ -182,7 +230,7 @@ pub fn build(set: &crate::Settings, sky_layers: u32) -> (FrameGraph<FrameCtx>, O
     lighting_pass(&mut g, r);
     combine_pass(&mut g, r);
     tone_mapping_pass(&mut g, r);
-    (g, Outputs { shown: r.shown, sky_volume })
+    (g, Outputs { shown: r.shown, sky_volume, cache: r.cache })
 }
 
 /// The sky map (when the sun moved) and the sky volume filled over frames.
@@ -199,16 +247,16 @@ fn sky_passes(
         .key("sun direction (0.06 deg)", sun_key)
         .run(move |io| -> PassResult {
             let c = io.ctx();
-            let dir = c.sun.map_or(Vec3::Y, |s| s.dir);
-            if let Some(sky) = &c.state.sky {
-                sky.write().map_err(poisoned)?.build_map(&c.state.gpu, dir)?;
-            }
-            io.ctx().state.gpu.take_error()?;
-            io.put(r.sky_map, c.frame)?;
+            let (s, dir) = (&c.state, c.sun.map_or(Vec3::Y, |s| s.dir));
+            let setup = s.sky.as_ref().ok_or_else(|| EngineError::Settings("no sky".into()))?;
+            let previous = io.take_previous(r.sky_map)?;
+            let map = SkyMapState::build(&s.gpu, setup, &s.settings, dir, previous)?;
+            s.gpu.take_error()?;
+            io.put(r.sky_map, map)?;
             Ok(())
         });
 
-    g.gpu_pass(pass::SKY_VOLUME)
+    g.sync_point(pass::SKY_VOLUME)
         .reads(r.sky_map)
         .writes(r.sky_vol)
         .switched(Effect::SkyLighting)
@@ -216,13 +264,15 @@ fn sky_passes(
         .cached()
         .amortised(sky_layers, Budget::Units(layers_per_frame))
         .run(move |io| -> PassResult {
-            let c = io.ctx();
             let layer = io.unit().map_or(0, |u| u.index);
-            if let Some(sky) = &c.state.sky {
-                sky.write().map_err(poisoned)?.fill_layers(&c.state.gpu, layer..layer + 1)?;
-            }
-            io.ctx().state.gpu.take_error()?;
-            io.put(r.sky_vol, c.frame)?;
+            let mut volume = previous_or(io, r.sky_vol, |c| {
+                let setup = c.state.sky.as_ref().ok_or_else(|| EngineError::Settings("no sky".into()))?;
+                SkyVolumeState::new(&c.state.gpu, setup, &c.state.settings)
+            })?;
+            let s = &io.ctx().state;
+            volume.fill_layer(&s.gpu, io.read(r.sky_map)?, layer)?;
+            s.gpu.take_error()?;
+            io.put(r.sky_vol, volume)?;
             Ok(())
         })
 }
@@ -239,19 +289,11 @@ fn shadow_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
         .key("sun direction", sun_key)
         .run(move |io| -> PassResult {
             let c = io.ctx();
-            let s = &c.state;
-            let sun = c.sun.ok_or_else(|| crate::EngineError::Settings("no sun".into()))?;
-            let maps = s.shadow.render(
-                &s.gpu,
-                &s.scene,
-                &c.camera,
-                sun.dir,
-                sun.angular_radius,
-                &s.settings,
-            )?;
-            *s.shadow_maps.lock().map_err(poisoned)? = Some(maps);
-            io.ctx().state.gpu.take_error()?;
-            io.put(r.shadow, c.frame)?;
+            let (s, sun) = (&c.state, sun_of(c)?);
+            let (dir, radius) = (sun.dir, sun.angular_radius);
+            let maps = s.shadow.render(&s.gpu, &s.scene, &c.camera, dir, radius, &s.settings)?;
+            s.gpu.take_error()?;
+            io.put(r.shadow, maps)?;
             Ok(())
         });
 
@@ -263,12 +305,10 @@ fn shadow_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
         })
         .cached()
         .run(move |io| -> PassResult {
-            let c = io.ctx();
-            let s = &c.state;
+            let s = &io.ctx().state;
             s.point_shadow.render(&s.gpu, &s.scene)?;
-            s.point_shadows_ready.store(true, Ordering::Release);
-            io.ctx().state.gpu.take_error()?;
-            io.put(r.cubes, c.frame)?;
+            s.gpu.take_error()?;
+            io.put(r.cubes, CubeShadows)?;
             Ok(())
         });
 }
@@ -279,43 +319,49 @@ fn gbuffer_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
         move |io| -> PassResult {
             let c = io.ctx();
             let s = &c.state;
-            write_frame_uniform(c);
+            write_frame_uniform(c, Bound::default());
             let mut enc = s.gpu.device.create_command_encoder(&Default::default());
             s.gbuffer.record(&s.gpu.device, &mut enc, &s.targets, &s.frame, &s.scene);
             s.gpu.queue.submit([enc.finish()]);
-            io.ctx().state.gpu.take_error()?;
-            io.put(r.gbuf, c.frame)?;
+            s.gpu.take_error()?;
+            io.put(r.gbuf, GBufferView(c.camera))?;
             Ok(())
         },
     );
 }
 
+/// Whether traced rays read the one-bounce technique on the CPU this frame.
+fn rays_traced(c: &FrameCtx) -> bool {
+    rays_switched(c) && c.needs.ray_tracing()
+}
+
 /// One bounce of sunlight: the LPV, or the RSM the lighting pass gathers from.
 fn bounce_passes(g: &mut FrameGraph<FrameCtx>, r: Resources, sky_bounce: bool) {
     let mut lpv = g
-        .gpu_pass(pass::LPV)
+        .sync_point(pass::LPV)
         .writes(r.lpv)
         .switched(Effect::IndirectLight)
         .run_if(BOUNCE_NEEDED, bounce_needed)
         .run_if("the indirect technique is the LPV", |c: &FrameCtx| c.indirect == Indirect::Lpv)
         .key("camera cell (1 m)", |c: &FrameCtx| quantise_dir(c.camera.position.to_array(), 1.0))
-        .key("sun direction", sun_key);
+        .key("sun direction", sun_key)
+        .key("traced rays read the volumes", rays_traced);
     if sky_bounce {
         // The sky-bounce VPLs are the view's surfaces lit by the sky volume.
-        lpv = lpv.reads(r.gbuf).reads(r.sky_vol);
+        lpv = lpv.reads(r.gbuf).reads(r.sky_map).reads(r.sky_vol);
     }
     lpv.run(move |io| -> PassResult {
+        let mut l = previous_or(io, r.lpv, |c| c.state.new_lpv())?;
         let c = io.ctx();
-        let s = &c.state;
-        let sun = c.sun.ok_or_else(|| crate::EngineError::Settings("no sun".into()))?;
-        let sky = match &s.sky {
-            Some(k) if c.needs.sky_lighting.needed => Some(k.read().map_err(poisoned)?),
-            _ => None,
-        };
-        let mut l = s.lpv.write().map_err(poisoned)?;
-        l.update(&s.gpu, &s.scene, &c.camera, &sun, sky.as_deref())?;
+        let (s, sun) = (&c.state, sun_of(c)?);
+        let sky = sky_light(io, r).filter(|_| sky_needed(c));
+        l.update(&s.gpu, &s.scene, &c.camera, &sun, sky)?;
+        if rays_traced(c) {
+            // The traced hits look the LPV up on the CPU.
+            l.sync_cpu(&s.gpu)?;
+        }
         s.gpu.take_error()?;
-        io.put(r.lpv, c.frame)?;
+        io.put(r.lpv, l)?;
         Ok(())
     });
 
@@ -329,13 +375,12 @@ fn bounce_passes(g: &mut FrameGraph<FrameCtx>, r: Resources, sky_bounce: bool) {
         .key("camera cell (1 m)", |c: &FrameCtx| quantise_dir(c.camera.position.to_array(), 1.0))
         .key("sun direction", sun_key)
         .run(move |io| -> PassResult {
+            let mut gather = previous_or(io, r.sun_rsm, |c| c.state.new_rsm_gather())?;
             let c = io.ctx();
-            let sun = c.sun.ok_or_else(|| crate::EngineError::Settings("no sun".into()))?;
-            let mut gather = c.state.rsm_gather.write().map_err(poisoned)?;
-            let (eye, s) = (c.camera.position, &c.state);
-            gather.update(&s.gpu, &s.scene, eye, &sun)?;
-            io.ctx().state.gpu.take_error()?;
-            io.put(r.sun_rsm, c.frame)?;
+            let (s, sun) = (&c.state, sun_of(c)?);
+            gather.update(&s.gpu, &s.scene, c.camera.position, &sun)?;
+            s.gpu.take_error()?;
+            io.put(r.sun_rsm, gather)?;
             Ok(())
         });
 }
@@ -354,14 +399,13 @@ fn cache_pass(g: &mut FrameGraph<FrameCtx>, r: Resources, cache_frames: u32) {
         .key("sun direction", sun_key)
         .amortised(cache_frames, Budget::Units(1))
         .run(move |io| -> PassResult {
+            let mut cache = previous_or(io, r.cache, |c| c.state.new_cache())?;
             let c = io.ctx();
-            let s = &c.state;
-            let sun = c.sun.ok_or_else(|| crate::EngineError::Settings("no sun".into()))?;
-            let mut cache = s.cache.write().map_err(poisoned)?;
+            let (s, sun) = (&c.state, sun_of(c)?);
             let lookup = s.lighting.lookup_io();
             cache.update(&s.gpu, &s.scene, &s.trace, &c.camera, &sun, lookup)?;
-            io.ctx().state.gpu.take_error()?;
-            io.put(r.cache, c.frame)?;
+            s.gpu.take_error()?;
+            io.put(r.cache, cache)?;
             Ok(())
         });
 }
@@ -370,9 +414,6 @@ fn cache_pass(g: &mut FrameGraph<FrameCtx>, r: Resources, cache_frames: u32) {
 fn trace_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
     g.sync_point(pass::RAY_CASTING)
         .reads(r.gbuf)
-        .reads(r.sky_vol)
-        .reads(r.lpv)
-        .reads(r.cache)
         .writes(r.batch)
         .run_if(RAYS_SWITCHED, rays_switched)
         .run_if(RAYS_NEEDED, |c: &FrameCtx| c.needs.ray_tracing())
@@ -383,19 +424,19 @@ fn trace_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
         .run(move |io| -> PassResult {
             let c = io.ctx();
             let s = &c.state;
-            write_frame_uniform(c);
-            if c.needs.indirect_lpv.needed && c.indirect == Indirect::Lpv {
-                // The traced hits look the LPV up on the CPU.
-                s.lpv.write().map_err(poisoned)?.sync_cpu(&s.gpu)?;
-            }
+            write_frame_uniform(c, Bound::default());
             let b = s.raycast.run(&s.gpu, &s.targets, &s.frame, &s.scene.materials)?;
-            io.ctx().state.gpu.take_error()?;
+            s.gpu.take_error()?;
             io.put(r.batch, b)?;
             Ok(())
         });
 
     g.cpu_job(pass::RAY_TRACING)
         .reads(r.batch)
+        .reads(r.sky_map)
+        .reads(r.sky_vol)
+        .reads(r.lpv)
+        .reads(r.cache)
         .writes(r.traced)
         .run_if(RAYS_SWITCHED, rays_switched)
         .run_if(RAYS_NEEDED, |c: &FrameCtx| c.needs.ray_tracing())
@@ -404,32 +445,16 @@ fn trace_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
             let c = io.ctx();
             let s = &c.state;
             let b = io.read(r.batch)?;
-            let sky_guard = match &s.sky {
-                Some(k) => Some(k.read().map_err(poisoned)?),
-                None => None,
-            };
-            let lpv_guard = s.lpv.read().map_err(poisoned)?;
-            let cache_guard = s.cache.read().map_err(poisoned)?;
+            let sky = sky_light(io, r).filter(|_| c.needs.sky_lighting.needed);
             // The RSM gather is per pixel of the view: traced hits get no bounce from it.
             let bounce = c.needs.indirect_lpv.needed;
-            let use_lpv = bounce && c.indirect == Indirect::Lpv;
-            let use_cache = bounce && c.indirect == Indirect::Cache;
-            let use_sky = c.needs.sky_lighting.needed;
-            let sky_fn = |d: Vec3| {
-                sky_guard.as_ref().filter(|_| use_sky).map_or(Vec3::ZERO, |k| k.radiance(d))
-            };
+            let lpv = io.try_read(r.lpv).filter(|_| bounce && c.indirect == Indirect::Lpv);
+            let cache = io.try_read(r.cache).filter(|_| bounce && c.indirect == Indirect::Cache);
+            let sky_fn = |d: Vec3| sky.map_or(Vec3::ZERO, |k| k.radiance(d));
             let ambient = |p: Vec3, n: Vec3| {
-                let mut e = Vec3::ZERO;
-                if let Some(k) = sky_guard.as_ref().filter(|_| use_sky) {
-                    e += k.volume.irradiance(p, n);
-                }
-                if use_lpv {
-                    e += lpv_guard.lpv.irradiance(p, n);
-                }
-                if use_cache {
-                    e += cache_guard.cache.irradiance(p, n);
-                }
-                e
+                sky.map_or(Vec3::ZERO, |k| k.irradiance(p, n))
+                    + lpv.map_or(Vec3::ZERO, |l| l.lpv.irradiance(p, n))
+                    + cache.map_or(Vec3::ZERO, |k| k.cache.irradiance(p, n))
             };
             let lighting = TraceLighting {
                 sun: c.sun.filter(|_| c.needs.sun_lighting.needed).map(|s| (s.dir, s.irradiance)),
@@ -444,12 +469,31 @@ fn trace_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
         });
 }
 
+/// The one-bounce source the lighting pass binds this frame.
+fn indirect_source<'a>(io: &'a PassIo<'_, FrameCtx>, r: Resources) -> IndirectSource<'a> {
+    let c = io.ctx();
+    if !c.needs.indirect_lpv.needed {
+        return IndirectSource::None;
+    }
+    let source = match c.indirect {
+        Indirect::Lpv => io.try_read(r.lpv).map(IndirectSource::Lpv),
+        Indirect::Rsm => io
+            .try_read(r.sun_rsm)
+            .filter(|g| g.ready)
+            .map(|g| IndirectSource::Rsm(g, c.camera.view_projection())),
+        Indirect::Cache => io.try_read(r.cache).filter(|k| k.ready()).map(IndirectSource::Cache),
+        Indirect::None => None,
+    };
+    source.unwrap_or(IndirectSource::None)
+}
+
 /// The deferred lighting of the view.
 fn lighting_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
     g.gpu_pass(pass::LIGHTING)
         .reads(r.gbuf)
         .reads(r.shadow)
         .reads(r.cubes)
+        .reads(r.sky_map)
         .reads(r.sky_vol)
         .reads(r.lpv)
         .reads(r.sun_rsm)
@@ -460,30 +504,17 @@ fn lighting_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
         .run(move |io| -> PassResult {
             let c = io.ctx();
             let s = &c.state;
-            write_frame_uniform(c);
-            let maps = *s.shadow_maps.lock().map_err(poisoned)?;
-            let sky = match &s.sky {
-                Some(k) => Some(k.read().map_err(poisoned)?),
-                None => None,
-            };
-            let lpv_state = s.lpv.read().map_err(poisoned)?;
-            let rsm_state = s.rsm_gather.read().map_err(poisoned)?;
-            let cache_state = s.cache.read().map_err(poisoned)?;
-            let indirect = match c.indirect {
-                _ if !c.needs.indirect_lpv.needed => IndirectSource::None,
-                Indirect::Lpv => IndirectSource::Lpv(&lpv_state),
-                Indirect::Rsm if rsm_state.ready => {
-                    IndirectSource::Rsm(&rsm_state, c.camera.view_projection())
-                }
-                Indirect::Cache if cache_state.ready() => IndirectSource::Cache(&cache_state),
-                Indirect::Rsm | Indirect::Cache | Indirect::None => IndirectSource::None,
-            };
+            let shadows = io.try_read(r.shadow).copied().filter(|_| c.needs.sun_shadows.needed);
+            let sky = sky_light(io, r);
+            let cubes = io.try_read(r.cubes).is_some();
+            let sky_map_size = sky.map_or(0, |k| k.map.size());
+            write_frame_uniform(c, Bound { shadows, cubes, sky_map_size });
             let inputs = LightingInputs {
                 frame: &s.frame,
-                shadows: s.shadow.bindings(maps.as_ref().filter(|_| c.needs.sun_shadows.needed)),
-                sky: sky.as_deref(),
+                shadows: s.shadow.bindings(shadows.as_ref()),
+                sky,
                 sky_volume: c.needs.sky_lighting.needed && sky.is_some(),
-                indirect,
+                indirect: indirect_source(io, r),
                 materials: &s.scene.materials,
                 lights: &s.lights,
                 cubes: s.point_shadow.bindings(),
@@ -491,8 +522,8 @@ fn lighting_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
             let mut enc = s.gpu.device.create_command_encoder(&Default::default());
             s.lighting.record(&s.gpu, &mut enc, &s.targets, &inputs)?;
             s.gpu.queue.submit([enc.finish()]);
-            io.ctx().state.gpu.take_error()?;
-            io.put(r.lit, c.frame)?;
+            s.gpu.take_error()?;
+            io.put(r.lit, LitView(c.component))?;
             Ok(())
         });
 }
@@ -514,17 +545,11 @@ fn combine_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
             let (b, t) = (io.read(r.batch)?, io.read(r.traced)?);
             s.combine.upload(&s.gpu, b, &t.0);
             let mut enc = s.gpu.device.create_command_encoder(&Default::default());
-            s.combine.record(
-                &s.gpu.device,
-                &mut enc,
-                &s.targets,
-                &s.frame,
-                &s.scene.materials,
-                &s.raycast,
-            );
+            let (device, targets, frame) = (&s.gpu.device, &s.targets, &s.frame);
+            s.combine.record(device, &mut enc, targets, frame, &s.scene.materials, &s.raycast);
             s.gpu.queue.submit([enc.finish()]);
-            io.ctx().state.gpu.take_error()?;
-            io.put(r.combined, c.frame)?;
+            s.gpu.take_error()?;
+            io.put(r.combined, CombinedView(c.component))?;
             Ok(())
         });
 }

@@ -98,6 +98,7 @@ pub struct Renderer {
     scheduler: Scheduler<FrameCtx>,
     shown: Res<Shown>,
     sky_volume: PassId,
+    cache: Res<crate::passes::radiance_cache::CacheState>,
     scene: scene::Scene,
     camera: scene::Camera,
     last_frame: Option<Instant>,
@@ -134,7 +135,7 @@ impl Renderer {
         gpu: crate::gpu::Gpu,
     ) -> Result<Self, EngineError> {
         let state = Arc::new(State::new(&scene, settings, gpu)?);
-        let layers = state.sky.as_ref().map_or(1, |s| s.read().map_or(1, |s| s.layers()));
+        let layers = state.sky.as_ref().map_or(1, |s| s.layers());
         let set = &state.settings;
         let (g, out) = graph::build(set, layers);
         let scheduler =
@@ -147,6 +148,7 @@ impl Renderer {
             scheduler,
             shown: out.shown,
             sky_volume: out.sky_volume,
+            cache: out.cache,
             scene,
             camera,
             last_frame: None,
@@ -216,8 +218,9 @@ impl Renderer {
         self.view
     }
 
-    /// The one-bounce technique of the next frames (both are built with the renderer, so a
-    /// switch costs one update of the new technique).
+    /// The one-bounce technique of the next frames (each is built by its pass the first time
+    /// a frame uses it and kept, so a switch costs one update of the new technique, and its
+    /// construction the first time).
     pub fn set_indirect(&mut self, indirect: crate::Indirect) {
         self.indirect = indirect;
     }
@@ -245,7 +248,7 @@ impl Renderer {
 
     /// What the radiance cache's last update did (`Indirect::Cache`; `None` before its first).
     pub fn radiance_cache(&self) -> Option<crate::CacheSummary> {
-        self.state.cache.read().ok().and_then(|c| c.summary())
+        self.scheduler.get(self.cache).and_then(|c| c.summary())
     }
 
     /// Whether the amortised sky volume has completed its current cycle.
@@ -255,7 +258,7 @@ impl Renderer {
 
     /// Frames the sky volume needs for one complete fill.
     pub fn sky_volume_frames(&self) -> u32 {
-        let layers = self.state.sky.as_ref().map_or(0, |s| s.read().map_or(0, |s| s.layers()));
+        let layers = self.state.sky.as_ref().map_or(0, |s| s.layers());
         layers.div_ceil(self.state.settings.sky_layers_per_frame)
     }
 
@@ -263,7 +266,7 @@ impl Renderer {
         let Some(sun) = &self.scene.sun else { return Ok(None) };
         let dir = sun.direction()?;
         let irradiance = match &self.state.sky {
-            Some(sky) => sky.read().map_err(crate::state::poisoned)?.sun_irradiance(sun.color, dir),
+            Some(sky) => sky.sun_irradiance(sun.color, dir),
             None => sun.color,
         };
         Ok(Some(SunLight { dir, irradiance, angular_radius: sun.angular_radius }))

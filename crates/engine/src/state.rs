@@ -12,22 +12,24 @@ use crate::passes::{
     radiance_cache::CacheState,
     raycast::RayCastPass,
     rsm_gather::RsmGatherState,
-    shadow::ShadowMaps,
     shadow::ShadowPass,
-    sky::SkyState,
+    sky::SkySetup,
     sky_bounce::SkyBounceInputs,
 };
 use crate::trace::TraceScene;
 use crate::{EngineError, Settings};
 use glam::Vec3;
-use std::sync::atomic::AtomicBool;
-use std::sync::{Mutex, RwLock};
 
-/// Everything the passes read and write, built once per scene and settings.
+/// What every frame is rendered with, built once per scene and settings and never changed
+/// by a pass: the device, the scene's buffers and the passes' pipelines and targets. What
+/// passes make and change (shadow maps, the sky, the one-bounce techniques' volumes) are
+/// the frame graph's typed resources (`crate::graph`), made on first use.
 pub struct State {
     pub gpu: Gpu,
     pub settings: Settings,
     pub scene: SceneBuffers,
+    /// The scene's bounds (where the one-bounce techniques place their maps and caches).
+    pub bounds: scene::Aabb,
     pub targets: GBufferTargets,
     pub gbuffer: GBufferPass,
     pub shadow: ShadowPass,
@@ -35,17 +37,12 @@ pub struct State {
     pub raycast: RayCastPass,
     pub combine: CombinePass,
     pub display: DisplayPass,
-    pub sky: Option<RwLock<SkyState>>,
-    pub lpv: RwLock<LpvState>,
-    pub rsm_gather: RwLock<RsmGatherState>,
-    pub cache: RwLock<CacheState>,
+    /// The atmosphere and where the sky volume goes; `None` when the scene shows no sky.
+    pub sky: Option<SkySetup>,
     pub trace: TraceScene,
     pub frame: wgpu::Buffer,
     pub lights: wgpu::Buffer,
-    pub shadow_maps: Mutex<Option<ShadowMaps>>,
     pub point_shadow: PointShadowPass,
-    /// Whether the point lights' cubes have been rendered.
-    pub point_shadows_ready: AtomicBool,
     pub point_lights: Vec<scene::PointLight>,
 }
 
@@ -84,11 +81,7 @@ impl State {
         let device = &gpu.device;
         let buffers = SceneBuffers::new(device, &gpu.queue, scene);
         let targets = GBufferTargets::new(device, settings.width, settings.height);
-        let sky = if scene.sky {
-            Some(RwLock::new(SkyState::new(&gpu, scene, &settings)?))
-        } else {
-            None
-        };
+        let sky = if scene.sky { Some(SkySetup::new(scene)?) } else { None };
         let cube_size = settings.point_shadow_resolution;
         let mut lights = gpu_lights(&scene.point_lights, cube_size);
         if lights.is_empty() {
@@ -97,9 +90,6 @@ impl State {
         }
         let frame =
             uniform(device, "frame", &[0u8; std::mem::size_of::<crate::frame::FrameUniform>()]);
-        let view =
-            SkyBounceInputs { targets: &targets, frame: &frame, materials: &buffers.materials };
-        let lpv = LpvState::new(&gpu, &buffers, &settings, &view)?;
         let state = Self {
             gbuffer: GBufferPass::new(device, &buffers)?,
             shadow: ShadowPass::new(device, &settings)?,
@@ -107,18 +97,12 @@ impl State {
             raycast: RayCastPass::new(device, &targets)?,
             combine: CombinePass::new(device, &targets)?,
             display: DisplayPass::new(device, &targets)?,
-            lpv: RwLock::new(lpv),
-            rsm_gather: RwLock::new(RsmGatherState::new(
-                &gpu, scene, &buffers, &targets, &settings,
-            )?),
-            cache: RwLock::new(CacheState::new(&gpu, scene, &buffers, &settings)?),
             trace: TraceScene::new(scene)?,
             frame,
             lights: storage(device, "point lights", bytemuck::cast_slice(&lights)),
-            shadow_maps: Mutex::new(None),
             point_shadow: PointShadowPass::new(device, &scene.point_lights, cube_size)?,
-            point_shadows_ready: AtomicBool::new(false),
             sky,
+            bounds: scene.bounds(),
             point_lights: scene.point_lights.clone(),
             scene: buffers,
             targets,
@@ -128,16 +112,30 @@ impl State {
         state.gpu.take_error()?;
         Ok(state)
     }
-}
 
-impl State {
     /// Number of point lights the lighting pass loops over.
     pub fn scene_lights(&self) -> u32 {
         self.point_lights.len() as u32
     }
-}
 
-/// Poisoned locks become errors, not panics.
-pub(crate) fn poisoned<T>(_: T) -> EngineError {
-    EngineError::Gpu("a pass panicked while holding shared state".into())
+    /// The LPV (its RSM, the sky-bounce VPLs' targets, the resident volume), for the LPV
+    /// pass's first update.
+    pub fn new_lpv(&self) -> Result<LpvState, EngineError> {
+        let view = SkyBounceInputs {
+            targets: &self.targets,
+            frame: &self.frame,
+            materials: &self.scene.materials,
+        };
+        LpvState::new(&self.gpu, &self.scene, &self.settings, &view)
+    }
+
+    /// The sun RSM and its gather, bound to the view's targets.
+    pub fn new_rsm_gather(&self) -> Result<RsmGatherState, EngineError> {
+        RsmGatherState::new(&self.gpu, &self.bounds, &self.scene, &self.targets, &self.settings)
+    }
+
+    /// The radiance cache, its RSM and its resident copy.
+    pub fn new_cache(&self) -> Result<CacheState, EngineError> {
+        CacheState::new(&self.gpu, &self.bounds, &self.scene, &self.settings)
+    }
 }

@@ -3,7 +3,7 @@
 //! or the RSM gather) by their crates' kernels, then one full-screen pass
 //! (`shaders/engine/lighting.wgsl`) into the HDR target.
 
-use super::{lpv::LpvState, radiance_cache::CacheState, rsm_gather::RsmGatherState, sky::SkyState};
+use super::{lpv::LpvState, radiance_cache::CacheState, rsm_gather::RsmGatherState, sky::SkyLight};
 use crate::EngineError;
 use crate::gpu::{
     GBufferTargets, Gpu, bind_group, compute_pipeline, dispatch, draw_fullscreen,
@@ -28,7 +28,7 @@ pub struct LightingInputs<'a> {
     pub frame: &'a wgpu::Buffer,
     /// The sun's cascades (`count` 0: no sun shadows this frame).
     pub shadows: shadows::gpu::CascadeMaps<'a>,
-    pub sky: Option<&'a SkyState>,
+    pub sky: Option<SkyLight<'a>>,
     /// Run the sky-volume lookup this frame.
     pub sky_volume: bool,
     pub indirect: IndirectSource<'a>,
@@ -127,7 +127,7 @@ impl LightingPass {
             }
             IndirectSource::None => &self.lpv_out,
         };
-        let skymap = inputs.sky.map(|s| &s.map_buffer).unwrap_or(inputs.lights);
+        let skymap = inputs.sky.map(|s| &s.map.buffer).unwrap_or(inputs.lights);
         let bg = bind_group(
             device,
             &self.pipeline.get_bind_group_layout(0),

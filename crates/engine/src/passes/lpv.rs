@@ -12,7 +12,7 @@
 //!
 //! The per-pixel lookup is the crate's own kernel either way.
 
-use super::sky::SkyState;
+use super::sky::SkyLight;
 use super::sky_bounce::{SkyBounce, SkyBounceInputs};
 use super::sun_rsm::SunRsm;
 use crate::gpu::{Gpu, SceneBuffers, compute_pipeline, dispatch_lookup, storage_empty, uniform};
@@ -114,7 +114,7 @@ impl LpvState {
         scene: &SceneBuffers,
         camera: &scene::Camera,
         sun: &SunLight,
-        sky: Option<&SkyState>,
+        sky: Option<SkyLight<'_>>,
     ) -> Result<(), EngineError> {
         self.lpv.follow(camera.position);
         let Some(region) = bounce_region(&self.lpv) else { return Ok(()) };
@@ -166,7 +166,7 @@ impl LpvState {
         gpu: &Gpu,
         camera: &scene::Camera,
         (center, radius): (glam::DVec3, f64),
-        sky: Option<&SkyState>,
+        sky: Option<SkyLight<'_>>,
     ) -> Option<RsmFrame> {
         let bounce = self.sky_bounce.as_ref()?;
         let mut frame = RsmFrame { to_light: Vec3::Y, texel_area: 0.0, max_texel_flux: 0.0 };

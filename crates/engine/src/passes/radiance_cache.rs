@@ -126,14 +126,14 @@ pub fn view_points(
 impl CacheState {
     pub fn new(
         gpu: &Gpu,
-        scene: &scene::Scene,
+        bounds: &scene::Aabb,
         buffers: &SceneBuffers,
         settings: &Settings,
     ) -> Result<Self, EngineError> {
         let s = settings.radiance_cache;
         let cache = RadianceCache::new(s).map_err(tech)?;
         let coarsest = s.spacing(s.cascades - 1) * s.resolution as f32;
-        let region = Region::of(&scene.bounds(), 0.5 * 3f64.sqrt() * coarsest as f64);
+        let region = Region::of(bounds, 0.5 * 3f64.sqrt() * coarsest as f64);
         let rsm = SunRsm::new(gpu, buffers, settings)?;
         let reduction = rsm.vpl_reduction(gpu, (rsm.resolution() / VPLS_PER_SIDE).max(1))?;
         Ok(Self {

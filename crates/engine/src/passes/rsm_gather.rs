@@ -36,7 +36,7 @@ fn tech(e: rsm_gi::RsmGiError) -> EngineError {
 impl RsmGatherState {
     pub fn new(
         gpu: &Gpu,
-        scene: &scene::Scene,
+        bounds: &scene::Aabb,
         buffers: &SceneBuffers,
         targets: &GBufferTargets,
         settings: &Settings,
@@ -62,7 +62,7 @@ impl RsmGatherState {
             view_proj: glam::Mat4::IDENTITY,
         };
         let binding = gather.bind(&gpu.device, &maps, &gbuffer).map_err(tech)?;
-        let region = Region::of(&scene.bounds(), settings.rsm_gather_radius as f64);
+        let region = Region::of(bounds, settings.rsm_gather_radius as f64);
         let world_to_texel = maps.world_to_texel;
         Ok(Self { rsm, gather, binding, world_to_texel, region, ready: false })
     }

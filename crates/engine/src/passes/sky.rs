@@ -1,26 +1,86 @@
 //! Sky light (thesis 4.3 and 5.3): the paraboloid sky map from `atmosphere`, rebuilt only when
 //! the sun moved, and the sky-light irradiance volume from `sky_volume`, filled layer by
-//! layer over frames and looked up per pixel by its own WGSL kernel.
+//! layer over frames and looked up per pixel by its own WGSL kernel. Both are the frame
+//! graph's resources ([`SkyMapState`], [`SkyVolumeState`]), made by their passes on first
+//! use and read by the passes after them through [`SkyLight`].
 
 use crate::gpu::{Gpu, compute_pipeline, dispatch_lookup, storage, storage_empty, uniform};
 use crate::{EngineError, Settings};
 use atmosphere::{Sky, SkyMap, SkyMapSettings, SkyRadiance as _};
 use glam::Vec3;
 use sky_volume::{OcclusionQuad, SkyVolume, VolumeGrid};
-use std::ops::Range;
 
-/// The sun's light and the sky's radiance as the passes use them (the `reference` crate's
-/// units: the sun's irradiance is `sun.color` times the atmosphere's transmittance; sky
-/// radiance per unit of solar irradiance).
-pub struct SkyState {
-    pub sky: Sky,
-    pub map: Option<SkyMap>,
-    map_size: u32,
-    pub map_buffer: wgpu::Buffer,
-    pub volume: SkyVolume,
-    pub probes: wgpu::Buffer,
-    lookup: wgpu::ComputePipeline,
-    lookup_params: wgpu::Buffer,
+/// What the sky passes are made from, fixed for the renderer's life: the atmosphere (its
+/// look-up tables) and where the volume goes, with the quads that occlude it.
+pub struct SkySetup {
+    pub atmosphere: Sky,
+    grid: VolumeGrid,
+    quads: Vec<OcclusionQuad>,
+}
+
+impl SkySetup {
+    pub fn new(scene: &scene::Scene) -> Result<Self, EngineError> {
+        let atmosphere = Sky::earth().map_err(|e| EngineError::technique("atmosphere", e))?;
+        let p = &scene.sky_volume;
+        let grid = VolumeGrid::new(p.bounds.min, p.resolution, p.spacing());
+        // The authored quads, or for a scene without any (a glTF or OBJ file) quads derived
+        // from its planar surfaces, so that its rooms are not flooded with sky light.
+        let quads = scene
+            .sky_occluders()
+            .iter()
+            .map(|q| {
+                OcclusionQuad::new(q.center, q.axis_u, q.axis_v, q.half_u, q.half_v)
+                    .with_opacity(q.opacity, q.tint)
+            })
+            .collect();
+        Ok(Self { atmosphere, grid, quads })
+    }
+
+    /// Layers of the volume (the units its fill is amortised over).
+    pub fn layers(&self) -> u32 {
+        self.grid.dims.y
+    }
+
+    /// Sun irradiance at the ground for a scene sun of colour `color` towards `dir` (the
+    /// `reference` crate's units: `color` times the atmosphere's transmittance).
+    pub fn sun_irradiance(&self, color: Vec3, dir: Vec3) -> Vec3 {
+        color * self.atmosphere.sun_colour(0.0, dir)
+    }
+}
+
+/// The sky map of the current sun, on the CPU (the traced rays' sky) and on the GPU.
+pub struct SkyMapState {
+    pub map: SkyMap,
+    pub buffer: wgpu::Buffer,
+    /// Counts the maps built, so the volume knows when its light is stale.
+    generation: u64,
+}
+
+impl SkyMapState {
+    /// The map for a sun towards `sun_dir`, uploaded into `previous`'s buffer when there is
+    /// one.
+    pub fn build(
+        gpu: &Gpu,
+        setup: &SkySetup,
+        settings: &Settings,
+        sun_dir: Vec3,
+        previous: Option<Self>,
+    ) -> Result<Self, EngineError> {
+        let map_settings = SkyMapSettings { size: settings.sky_map_size, ..SkyMapSettings::DEFAULT };
+        let map = SkyMap::new(&setup.atmosphere, map_settings, sun_dir)
+            .map_err(|e| EngineError::technique("atmosphere", e))?;
+        let texels: Vec<[f32; 4]> = map.texels().iter().map(|t| t.extend(0.0).to_array()).collect();
+        let (buffer, generation) = match previous {
+            Some(p) => (p.buffer, p.generation + 1),
+            None => (storage_empty(&gpu.device, "sky map", texels.len() as u64 * 16), 0),
+        };
+        gpu.write(&buffer, 0, bytemuck::cast_slice(&texels));
+        Ok(Self { map, buffer, generation })
+    }
+
+    pub fn size(&self) -> u32 {
+        self.map.size()
+    }
 }
 
 struct MapSky<'a>(&'a SkyMap);
@@ -31,25 +91,22 @@ impl sky_volume::SkyRadiance for MapSky<'_> {
     }
 }
 
-impl SkyState {
-    pub fn new(gpu: &Gpu, scene: &scene::Scene, settings: &Settings) -> Result<Self, EngineError> {
-        let tech = |e| EngineError::technique("sky_volume", e);
-        let sky = Sky::earth().map_err(|e| EngineError::technique("atmosphere", e))?;
-        let p = &scene.sky_volume;
-        let grid = VolumeGrid::new(p.bounds.min, p.resolution, p.spacing());
-        // The authored quads, or for a scene without any (a glTF or OBJ file) quads derived
-        // from its planar surfaces, so that its rooms are not flooded with sky light.
-        let quads: Vec<OcclusionQuad> = scene
-            .sky_occluders()
-            .iter()
-            .map(|q| {
-                OcclusionQuad::new(q.center, q.axis_u, q.axis_v, q.half_u, q.half_v)
-                    .with_opacity(q.opacity, q.tint)
-            })
-            .collect();
+/// The sky-light volume on the CPU (the traced rays' lookups) and its probes on the GPU.
+pub struct SkyVolumeState {
+    pub volume: SkyVolume,
+    probes: wgpu::Buffer,
+    lookup: wgpu::ComputePipeline,
+    lookup_params: wgpu::Buffer,
+    /// The map generation the volume is being lit from.
+    lit_from: Option<u64>,
+}
+
+impl SkyVolumeState {
+    pub fn new(gpu: &Gpu, setup: &SkySetup, settings: &Settings) -> Result<Self, EngineError> {
         let vs =
             sky_volume::Settings { samples: settings.sky_samples, ..sky_volume::Settings::DEFAULT };
-        let volume = SkyVolume::with_quads(grid, vs, &quads).map_err(tech)?;
+        let volume = SkyVolume::with_quads(setup.grid, vs, &setup.quads)
+            .map_err(|e| EngineError::technique("sky_volume", e))?;
         let lookup = compute_pipeline(
             &gpu.device,
             "sky volume lookup",
@@ -60,68 +117,52 @@ impl SkyState {
             storage(&gpu.device, "sky probes", bytemuck::cast_slice(volume.gpu_probe_bytes()));
         let lookup_params =
             uniform(&gpu.device, "sky lookup", bytemuck::bytes_of(&volume.gpu_lookup_params()));
-        Ok(Self {
-            sky,
-            map: None,
-            map_size: settings.sky_map_size,
-            map_buffer: storage_empty(
-                &gpu.device,
-                "sky map",
-                settings.sky_map_size as u64 * settings.sky_map_size as u64 * 16,
-            ),
-            volume,
-            probes,
-            lookup,
-            lookup_params,
-        })
+        Ok(Self { volume, probes, lookup, lookup_params, lit_from: None })
     }
 
-    /// Sun irradiance at the ground for a scene sun of colour `color` towards `dir`.
-    pub fn sun_irradiance(&self, color: Vec3, dir: Vec3) -> Vec3 {
-        color * self.sky.sun_colour(0.0, dir)
-    }
-
-    /// Sky radiance towards `dir` (zero before the first map).
-    pub fn radiance(&self, dir: Vec3) -> Vec3 {
-        self.map.as_ref().map_or(Vec3::ZERO, |m| m.radiance(dir))
-    }
-
-    /// Builds the sky map for a sun towards `sun_dir` and uploads it; the volume is marked
-    /// for re-lighting.
-    pub fn build_map(&mut self, gpu: &Gpu, sun_dir: Vec3) -> Result<(), EngineError> {
-        let tech = |e| EngineError::technique("atmosphere", e);
-        let settings = SkyMapSettings { size: self.map_size, ..SkyMapSettings::DEFAULT };
-        let map = SkyMap::new(&self.sky, settings, sun_dir).map_err(tech)?;
-        let texels: Vec<[f32; 4]> = map.texels().iter().map(|t| t.extend(0.0).to_array()).collect();
-        gpu.write(&self.map_buffer, 0, bytemuck::cast_slice(&texels));
-        self.map = Some(map);
-        self.volume.sky_changed();
+    /// Fills layer `layer` from `map` and uploads the probes (a new map marks the whole
+    /// volume for re-lighting first).
+    pub fn fill_layer(
+        &mut self,
+        gpu: &Gpu,
+        map: &SkyMapState,
+        layer: u32,
+    ) -> Result<(), EngineError> {
+        if self.lit_from != Some(map.generation) {
+            self.volume.sky_changed();
+            self.lit_from = Some(map.generation);
+        }
+        self.volume
+            .fill_layers(layer..layer + 1, &MapSky(&map.map))
+            .map_err(|e| EngineError::technique("sky_volume", e))?;
+        gpu.write(&self.probes, 0, self.volume.gpu_probe_bytes());
         Ok(())
+    }
+}
+
+/// The sky as the passes after the sky passes read it: the map and the volume lit from it.
+#[derive(Clone, Copy)]
+pub struct SkyLight<'a> {
+    pub map: &'a SkyMapState,
+    pub volume: &'a SkyVolumeState,
+}
+
+impl SkyLight<'_> {
+    /// Sky radiance towards `dir`.
+    pub fn radiance(&self, dir: Vec3) -> Vec3 {
+        self.map.map.radiance(dir)
+    }
+
+    /// Sky irradiance at `p` on a surface of normal `n` (the volume's lookup).
+    pub fn irradiance(&self, p: Vec3, n: Vec3) -> Vec3 {
+        self.volume.volume.irradiance(p, n)
     }
 
     /// A bound on the sky irradiance anywhere: pi times the brightest texel of the map
     /// (a cosine-weighted hemisphere of it), with room for the volume's SH ringing (1.5x).
     pub fn max_irradiance(&self) -> f32 {
-        let texels = self.map.as_ref().map_or(&[][..], |m| m.texels());
-        1.5 * std::f32::consts::PI * texels.iter().fold(0.0f32, |m, t| m.max(t.max_element()))
-    }
-
-    pub fn map_size(&self) -> u32 {
-        self.map.as_ref().map_or(0, |m| m.size())
-    }
-
-    pub fn layers(&self) -> u32 {
-        self.volume.grid().dims.y
-    }
-
-    /// Fills `layers` of the volume from the current sky map and uploads the probes.
-    pub fn fill_layers(&mut self, gpu: &Gpu, layers: Range<u32>) -> Result<(), EngineError> {
-        let Some(map) = &self.map else { return Ok(()) };
-        self.volume
-            .fill_layers(layers, &MapSky(map))
-            .map_err(|e| EngineError::technique("sky_volume", e))?;
-        gpu.write(&self.probes, 0, self.volume.gpu_probe_bytes());
-        Ok(())
+        let brightest = self.map.map.texels().iter().fold(0.0f32, |m, t| m.max(t.max_element()));
+        1.5 * std::f32::consts::PI * brightest
     }
 
     /// Records the per-pixel lookup: `queries` (position, normal, albedo) to `out`
@@ -134,11 +175,12 @@ impl SkyState {
         out: &wgpu::Buffer,
         count: u32,
     ) {
+        let v = self.volume;
         dispatch_lookup(
             &gpu.device,
             enc,
-            &self.lookup,
-            [&self.lookup_params, &self.probes, queries, out],
+            &v.lookup,
+            [&v.lookup_params, &v.probes, queries, out],
             count,
         );
     }

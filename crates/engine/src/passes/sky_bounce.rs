@@ -9,7 +9,7 @@
 //! Like the thesis's, these VPLs hold only the sky light that surfaces in view reflect; a
 //! surface out of view bounces none.
 
-use super::sky::SkyState;
+use super::sky::SkyLight;
 use crate::EngineError;
 use crate::gpu::{
     GBufferTargets, Gpu, compute_pipeline, dispatch, storage_empty, texture_2d, uniform,
@@ -173,7 +173,7 @@ impl SkyBounce {
         &self,
         gpu: &Gpu,
         enc: &mut wgpu::CommandEncoder,
-        sky: &SkyState,
+        sky: SkyLight<'_>,
         max_texel_flux: f32,
     ) {
         let (w, h) = self.cells;
