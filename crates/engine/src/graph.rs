@@ -3,6 +3,7 @@
 //! and a body that calls the pass's plain function. `frame_scheduler` decides, runs (the CPU
 //! ray tracing on a worker thread while the GPU lights the view) and reports.
 
+use crate::EngineError;
 use crate::effects::Effect;
 use crate::frame::{
     FLAG_BLINN, FLAG_INDIRECT, FLAG_LPV_GLOSSY, FLAG_REFLECTIONS, FLAG_REFRACTIONS, FLAG_SHADOWS,
@@ -18,9 +19,8 @@ use crate::passes::shadow::ShadowMaps;
 use crate::passes::sky::{SkyLight, SkyMapState, SkyVolumeState};
 use crate::settings::{Indirect, Specular};
 use crate::state::FrameCtx;
-use crate::trace::{TraceLighting, TraceSettings, trace_rays};
-use crate::EngineError;
 use crate::state::SunLight;
+use crate::trace::{TraceLighting, TraceSettings, trace_rays};
 use frame_scheduler::{
     Budget, FrameGraph, PassBuilder, PassId, PassIo, PassResult, Res, quantise_dir,
 };
@@ -146,6 +146,10 @@ fn sky_light<'a>(io: &'a PassIo<'_, FrameCtx>, r: Resources) -> Option<SkyLight<
     Some(SkyLight { map: io.try_read(r.sky_map)?, volume: io.try_read(r.sky_vol)? })
 }
 
+fn sky_setup(c: &FrameCtx) -> Result<&crate::passes::sky::SkySetup, EngineError> {
+    c.state.sky.as_ref().ok_or_else(|| EngineError::Settings("the scene has no sky".into()))
+}
+
 fn sun_of(c: &FrameCtx) -> Result<SunLight, EngineError> {
     c.sun.ok_or_else(|| EngineError::Settings("no sun".into()))
 }
@@ -248,9 +252,8 @@ fn sky_passes(
         .run(move |io| -> PassResult {
             let c = io.ctx();
             let (s, dir) = (&c.state, c.sun.map_or(Vec3::Y, |s| s.dir));
-            let setup = s.sky.as_ref().ok_or_else(|| EngineError::Settings("no sky".into()))?;
             let previous = io.take_previous(r.sky_map)?;
-            let map = SkyMapState::build(&s.gpu, setup, &s.settings, dir, previous)?;
+            let map = SkyMapState::build(&s.gpu, sky_setup(c)?, &s.settings, dir, previous)?;
             s.gpu.take_error()?;
             io.put(r.sky_map, map)?;
             Ok(())
@@ -266,8 +269,7 @@ fn sky_passes(
         .run(move |io| -> PassResult {
             let layer = io.unit().map_or(0, |u| u.index);
             let mut volume = previous_or(io, r.sky_vol, |c| {
-                let setup = c.state.sky.as_ref().ok_or_else(|| EngineError::Settings("no sky".into()))?;
-                SkyVolumeState::new(&c.state.gpu, setup, &c.state.settings)
+                SkyVolumeState::new(&c.state.gpu, sky_setup(c)?, &c.state.settings)
             })?;
             let s = &io.ctx().state;
             volume.fill_layer(&s.gpu, io.read(r.sky_map)?, layer)?;

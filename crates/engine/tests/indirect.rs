@@ -202,3 +202,38 @@ fn the_radiance_cache_is_amortised_over_frames() {
         common::describe(&f, pass::RADIANCE_CACHE)
     );
 }
+
+/// A one-bounce technique's state is built by its pass the first time a frame uses it, not
+/// with the renderer: a renderer on the RSM gather holds no LPV until it is switched to one,
+/// and switching back and forth builds nothing again.
+#[test]
+fn a_technique_is_built_when_a_frame_first_uses_it() {
+    let Some(ctx) = gpu_harness::gpu_test_context() else { return };
+    let device = ctx.device.clone();
+    let settings = engine::Settings::preset(engine::Preset::Low, 64, 36);
+    let scene = scene::Generated::CornellWindow.build(common::SEED);
+    let mut r =
+        engine::Renderer::on_device(scene, settings, ctx.device, ctx.queue, &ctx.adapter_info)
+            .expect("renderer");
+    assert_eq!(r.indirect(), Indirect::Rsm);
+    r.render_frame().expect("rsm frame");
+    let rsm = gpu_harness::live_objects(&device);
+    r.set_indirect(Indirect::Lpv);
+    let lpv = r.render_frame().expect("lpv frame");
+    assert_eq!(common::outcome(&lpv, pass::LPV), Outcome::Ran);
+    let with_lpv = gpu_harness::live_objects(&device);
+    assert!(
+        with_lpv.buffers > rsm.buffers && with_lpv.texture_views > rsm.texture_views,
+        "the LPV (its RSM targets, its volumes) appears with its first frame: {rsm:?} -> {with_lpv:?}"
+    );
+    r.set_indirect(Indirect::Rsm);
+    r.render_frame().expect("rsm frame again");
+    r.set_indirect(Indirect::Lpv);
+    r.render_frame().expect("lpv frame again");
+    let again = gpu_harness::live_objects(&device);
+    assert_eq!(
+        (again.buffers, again.texture_views),
+        (with_lpv.buffers, with_lpv.texture_views),
+        "both states are kept, nothing is built twice"
+    );
+}

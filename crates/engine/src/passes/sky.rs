@@ -66,7 +66,8 @@ impl SkyMapState {
         sun_dir: Vec3,
         previous: Option<Self>,
     ) -> Result<Self, EngineError> {
-        let map_settings = SkyMapSettings { size: settings.sky_map_size, ..SkyMapSettings::DEFAULT };
+        let map_settings =
+            SkyMapSettings { size: settings.sky_map_size, ..SkyMapSettings::DEFAULT };
         let map = SkyMap::new(&setup.atmosphere, map_settings, sun_dir)
             .map_err(|e| EngineError::technique("atmosphere", e))?;
         let texels: Vec<[f32; 4]> = map.texels().iter().map(|t| t.extend(0.0).to_array()).collect();
