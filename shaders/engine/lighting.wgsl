@@ -3,6 +3,7 @@
 // include: shadows/csm.inc.wgsl
 // include: shadows/cube.inc.wgsl
 // include: ssao/ssao.inc.wgsl
+// include: atmosphere/skymap_sample.inc.wgsl
 // Deferred lighting of the main view (thesis 3.3, 4.2, 5.3.6-5.3.8): the sun with Phong (or
 // Blinn-Phong) and stabilised-CSM PCSS shadows, point lights, sky light from the sky volume
 // and one diffuse bounce of sunlight (the LPV's lookup or the RSM gather, per pixel by the
@@ -90,28 +91,17 @@ fn base_brdf_cos(albedo: vec3<f32>, g: f32, power: f32, n: vec3<f32>, l: vec3<f3
     return ((1.0 - g) * albedo / PI + vec3<f32>(g * spec)) * c;
 }
 
-// Bilinear sample of the paraboloid sky map (atmosphere::SkyMap::sample).
+// The sky map's texels for atmosphere's sample snippet.
+fn skymap_texel(index: i32) -> vec3<f32> {
+    return skymap[index].xyz;
+}
+
+// Sky radiance towards `dir` (zero without a sky this frame).
 fn sky_radiance(dir: vec3<f32>) -> vec3<f32> {
-    let size = i32(frame.params.z);
-    if (frame.size.w & FLAG_SKY) == 0u || size <= 0 {
+    if (frame.size.w & FLAG_SKY) == 0u {
         return vec3<f32>(0.0);
     }
-    var d = normalize(dir);
-    if d.y < 0.0 {
-        let h = vec3<f32>(d.x, 0.0, d.z);
-        d = select(vec3<f32>(1.0, 0.0, 0.0), normalize(h), dot(h, h) > 1e-12);
-    }
-    let disk = vec2<f32>(d.x, d.z) / (1.0 + d.y);
-    let c = (disk + 1.0) * 0.5 * f32(size) - 0.5;
-    let f = floor(c);
-    let t = c - f;
-    let x0 = clamp(i32(f.x), 0, size - 1);
-    let y0 = clamp(i32(f.y), 0, size - 1);
-    let x1 = clamp(i32(f.x) + 1, 0, size - 1);
-    let y1 = clamp(i32(f.y) + 1, 0, size - 1);
-    let a = mix(skymap[y0 * size + x0].xyz, skymap[y0 * size + x1].xyz, t.x);
-    let b = mix(skymap[y1 * size + x0].xyz, skymap[y1 * size + x1].xyz, t.x);
-    return mix(a, b, t.y);
+    return skymap_sample(dir, i32(frame.params.z));
 }
 
 fn ssao_depth(x: i32, y: i32) -> f32 {

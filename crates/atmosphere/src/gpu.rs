@@ -6,7 +6,8 @@
 //! tables are computed once on the CPU and uploaded. Bindings of `@group(0)`:
 //! 0 = [`SkyMapGpuParams`] (uniform), 1 = transmittance LUT, 2 = multiple-scattering LUT
 //! (storage, read; RGB `f32` triples, row-major), 3 = the output map (storage, read-write,
-//! RGB triples, `size * size * 3` floats).
+//! RGB triples, `size * size * 3` floats). [`ResidentSkyMap`] runs it as a resident pass;
+//! `shaders/atmosphere/skymap_sample.inc.wgsl` samples the result in a consumer's shader.
 
 use crate::{AtmosphereError, LightTransmittance, Sky, SkyMap, SkyMapMethod, SkyMapSettings};
 use bytemuck::{Pod, Zeroable};
@@ -14,6 +15,21 @@ use glam::Vec3;
 
 /// The WGSL source, exactly as the GPU receives it.
 pub const SKYMAP_WGSL: &str = include_str!("../../../shaders/atmosphere/skymap.wgsl");
+/// The map's bilinear sample for consumers' shaders (the twin of [`SkyMap::sample`]):
+/// `fn skymap_sample(dir, size) -> vec3<f32>`, over a `fn skymap_texel(index: i32) ->
+/// vec3<f32>` the including shader defines on its own binding.
+pub const SKYMAP_SAMPLE_INC_WGSL: &str =
+    include_str!("../../../shaders/atmosphere/skymap_sample.inc.wgsl");
+
+/// [`SKYMAP_SAMPLE_INC_WGSL`] followed by `shaders/atmosphere/skymap_sample_eval.wgsl`
+/// (bindings: 0 = `{ size, count }` uniform, 1 = the map as RGB triples, 2 = directions as
+/// `vec4`, 3 = radiance out as `vec4`; workgroup 64), for the parity test.
+pub fn skymap_sample_eval_shader() -> String {
+    format!(
+        "{SKYMAP_SAMPLE_INC_WGSL}\n{}",
+        include_str!("../../../shaders/atmosphere/skymap_sample_eval.wgsl")
+    )
+}
 /// Entry point of [`SKYMAP_WGSL`].
 pub const SKYMAP_ENTRY: &str = "main";
 /// Workgroup size of [`SKYMAP_WGSL`] (x and y).
@@ -121,15 +137,40 @@ pub fn sky_map_from_gpu(
     )
 }
 
-/// A compiled sky-map pipeline on a wgpu device: the engine-facing GPU entry point.
-pub struct GpuSkyMapper {
+/// The sky map as a resident pass: made once for a [`Sky`] and map settings on a device, it
+/// owns its pipeline, the uploaded tables, its uniform and its output buffer, and
+/// [`ResidentSkyMap::record`] re-fills the output for a new sun into the caller's encoder,
+/// creating nothing. The output (RGB `f32` triples, row-major, row `j` = +Z; `STORAGE` and
+/// `COPY_SRC`) is what a consumer binds and samples with `shaders/atmosphere/
+/// skymap_sample.inc.wgsl` ([`SKYMAP_SAMPLE_INC_WGSL`]); [`ResidentSkyMap::read_back`] is
+/// for tests and tools.
+pub struct ResidentSkyMap {
     pipeline: wgpu::ComputePipeline,
+    bind_group: wgpu::BindGroup,
+    params_buffer: wgpu::Buffer,
+    output: wgpu::Buffer,
+    /// The uniform block without its sun (filled per record).
+    params: SkyMapGpuParams,
+    settings: SkyMapSettings,
+    workgroups: [u32; 3],
+    // The tables the bind group reads, kept alive with it.
+    _tables: [wgpu::Buffer; 2],
 }
 
-impl GpuSkyMapper {
-    /// Compiles [`SKYMAP_WGSL`] on `device`; a shader or pipeline error is
-    /// [`AtmosphereError::Gpu`].
-    pub fn new(device: &wgpu::Device) -> Result<Self, AtmosphereError> {
+fn gpu_err(e: impl std::fmt::Display) -> AtmosphereError {
+    AtmosphereError::Gpu(e.to_string())
+}
+
+impl ResidentSkyMap {
+    /// Compiles [`SKYMAP_WGSL`] and uploads `sky`'s tables; a shader or pipeline error is
+    /// [`AtmosphereError::Gpu`], bad settings their own error.
+    pub fn new(
+        device: &wgpu::Device,
+        sky: &Sky,
+        settings: &SkyMapSettings,
+    ) -> Result<Self, AtmosphereError> {
+        use wgpu::util::DeviceExt;
+        let inputs = SkyMapGpuInputs::new(sky, settings, Vec3::Y)?;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("atmosphere skymap"),
@@ -143,21 +184,6 @@ impl GpuSkyMapper {
             compilation_options: Default::default(),
             cache: None,
         });
-        if let Some(err) = pollster::block_on(scope.pop()) {
-            return Err(AtmosphereError::Gpu(err.to_string()));
-        }
-        Ok(Self { pipeline })
-    }
-
-    /// Records the dispatch into `encoder` and returns the output storage buffer (RGB `f32`
-    /// triples, usable as `STORAGE` and `COPY_SRC`).
-    pub fn record(
-        &self,
-        device: &wgpu::Device,
-        encoder: &mut wgpu::CommandEncoder,
-        inputs: &SkyMapGpuInputs,
-    ) -> wgpu::Buffer {
-        use wgpu::util::DeviceExt;
         let init = |label: &str, contents: &[u8], usage| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(label),
@@ -165,19 +191,24 @@ impl GpuSkyMapper {
                 usage,
             })
         };
-        let params =
-            init("skymap params", bytemuck::bytes_of(&inputs.params), wgpu::BufferUsages::UNIFORM);
-        let tlut = init(
-            "skymap transmittance",
-            bytemuck::cast_slice(&inputs.transmittance),
-            wgpu::BufferUsages::STORAGE,
+        let params_buffer = init(
+            "skymap params",
+            bytemuck::bytes_of(&inputs.params),
+            wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         );
-        let ms = init(
-            "skymap multiple scattering",
-            bytemuck::cast_slice(&inputs.multiple_scattering),
-            wgpu::BufferUsages::STORAGE,
-        );
-        let out = device.create_buffer(&wgpu::BufferDescriptor {
+        let tables = [
+            init(
+                "skymap transmittance",
+                bytemuck::cast_slice(&inputs.transmittance),
+                wgpu::BufferUsages::STORAGE,
+            ),
+            init(
+                "skymap multiple scattering",
+                bytemuck::cast_slice(&inputs.multiple_scattering),
+                wgpu::BufferUsages::STORAGE,
+            ),
+        ];
+        let output = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("skymap output"),
             size: inputs.output_bytes.max(4),
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
@@ -185,62 +216,94 @@ impl GpuSkyMapper {
         });
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("atmosphere skymap"),
-            layout: &self.pipeline.get_bind_group_layout(0),
+            layout: &pipeline.get_bind_group_layout(0),
             entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: params.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: tlut.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 2, resource: ms.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 3, resource: out.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 0, resource: params_buffer.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: tables[0].as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 2, resource: tables[1].as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 3, resource: output.as_entire_binding() },
             ],
         });
-        let mut pass = encoder.begin_compute_pass(&Default::default());
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &bind_group, &[]);
-        let [x, y, z] = inputs.workgroups;
-        pass.dispatch_workgroups(x, y, z);
-        drop(pass);
-        out
+        if let Some(err) = pollster::block_on(scope.pop()) {
+            return Err(gpu_err(err));
+        }
+        Ok(Self {
+            pipeline,
+            bind_group,
+            params_buffer,
+            output,
+            params: inputs.params,
+            settings: *settings,
+            workgroups: inputs.workgroups,
+            _tables: tables,
+        })
     }
 
-    /// Computes a whole sky map on the GPU and reads it back (blocking).
-    pub fn compute_blocking(
+    /// Writes the sun (towards `sun`, normalised here) into the uniform through `queue` and
+    /// records the fill of [`Self::output`] into `encoder`. A zero or non-finite `sun` is an
+    /// error and records nothing.
+    pub fn record(
+        &self,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        sun: Vec3,
+    ) -> Result<(), AtmosphereError> {
+        let sun = sun.try_normalize().filter(|s| s.is_finite()).ok_or(
+            AtmosphereError::InvalidVector { name: "sun", reason: "must be finite and non-zero" },
+        )?;
+        let mut params = self.params;
+        params.sun = sun.extend(params.sun[3]).to_array();
+        queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&params));
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("atmosphere skymap"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &self.bind_group, &[]);
+        let [x, y, z] = self.workgroups;
+        pass.dispatch_workgroups(x, y, z);
+        Ok(())
+    }
+
+    /// The map's storage buffer (RGB triples).
+    pub fn output(&self) -> &wgpu::Buffer {
+        &self.output
+    }
+
+    /// The map's size in texels per side.
+    pub fn size(&self) -> u32 {
+        self.settings.size
+    }
+
+    /// Reads the output back as a [`SkyMap`] for a sun towards `sun` (the one last recorded;
+    /// blocking, tests and tools only).
+    pub fn read_back(
         &self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
-        sky: &Sky,
-        settings: &SkyMapSettings,
         sun: Vec3,
     ) -> Result<SkyMap, AtmosphereError> {
-        let inputs = SkyMapGpuInputs::new(sky, settings, sun)?;
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let mut encoder = device.create_command_encoder(&Default::default());
-        let out = self.record(device, &mut encoder, &inputs);
+        let size = self.output.size();
         let staging = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("skymap staging"),
-            size: out.size(),
+            size,
             usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        encoder.copy_buffer_to_buffer(&out, 0, &staging, 0, out.size());
+        let mut encoder = device.create_command_encoder(&Default::default());
+        encoder.copy_buffer_to_buffer(&self.output, 0, &staging, 0, size);
         queue.submit([encoder.finish()]);
-        if let Some(err) = pollster::block_on(scope.pop()) {
-            return Err(AtmosphereError::Gpu(err.to_string()));
-        }
         let slice = staging.slice(..);
         let (tx, rx) = std::sync::mpsc::channel();
         slice.map_async(wgpu::MapMode::Read, move |r| {
             let _ = tx.send(r);
         });
-        device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| AtmosphereError::Gpu(e.to_string()))?;
-        rx.recv()
-            .map_err(|e| AtmosphereError::Gpu(e.to_string()))?
-            .map_err(|e| AtmosphereError::Gpu(e.to_string()))?;
-        let bytes =
-            slice.get_mapped_range().map_err(|e| AtmosphereError::Gpu(e.to_string()))?.to_vec();
+        device.poll(wgpu::PollType::wait_indefinitely()).map_err(gpu_err)?;
+        rx.recv().map_err(gpu_err)?.map_err(gpu_err)?;
+        let bytes = slice.get_mapped_range().map_err(gpu_err)?.to_vec();
         staging.unmap();
-        let rgb: Vec<f32> = bytemuck::pod_collect_to_vec(&bytes[..inputs.output_bytes as usize]);
-        sky_map_from_gpu(settings, sun, &rgb)
+        let n = (self.settings.size as usize).pow(2) * 3;
+        let rgb: Vec<f32> = bytemuck::pod_collect_to_vec(&bytes[..n * 4]);
+        sky_map_from_gpu(&self.settings, sun, &rgb)
     }
 }
