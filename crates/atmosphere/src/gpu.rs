@@ -283,25 +283,8 @@ impl ResidentSkyMap {
         queue: &wgpu::Queue,
         sun: Vec3,
     ) -> Result<SkyMap, AtmosphereError> {
-        let size = self.output.size();
-        let staging = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("skymap staging"),
-            size,
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let mut encoder = device.create_command_encoder(&Default::default());
-        encoder.copy_buffer_to_buffer(&self.output, 0, &staging, 0, size);
-        queue.submit([encoder.finish()]);
-        let slice = staging.slice(..);
-        let (tx, rx) = std::sync::mpsc::channel();
-        slice.map_async(wgpu::MapMode::Read, move |r| {
-            let _ = tx.send(r);
-        });
-        device.poll(wgpu::PollType::wait_indefinitely()).map_err(gpu_err)?;
-        rx.recv().map_err(gpu_err)?.map_err(gpu_err)?;
-        let bytes = slice.get_mapped_range().map_err(gpu_err)?.to_vec();
-        staging.unmap();
+        let bytes = gpu_harness::read_buffer(device, queue, &self.output, self.output.size())
+            .map_err(gpu_err)?;
         let n = (self.settings.size as usize).pow(2) * 3;
         let rgb: Vec<f32> = bytemuck::pod_collect_to_vec(&bytes[..n * 4]);
         sky_map_from_gpu(&self.settings, sun, &rgb)

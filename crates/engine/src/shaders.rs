@@ -29,9 +29,7 @@ pub fn gbuffer() -> String {
 pub fn lighting() -> String {
     use shadows::gpu::{CSM_INC_WGSL, CUBE_INC_WGSL, PCSS_INC_WGSL};
     let (ssao, sky) = (ssao::SSAO_INC_WGSL, atmosphere::gpu::SKYMAP_SAMPLE_INC_WGSL);
-    format!(
-        "{COMMON}\n{PCSS_INC_WGSL}\n{CSM_INC_WGSL}\n{CUBE_INC_WGSL}\n{ssao}\n{sky}\n{LIGHTING}"
-    )
+    format!("{COMMON}\n{PCSS_INC_WGSL}\n{CSM_INC_WGSL}\n{CUBE_INC_WGSL}\n{ssao}\n{sky}\n{LIGHTING}")
 }
 
 pub fn queries() -> String {

@@ -198,21 +198,7 @@ impl GpuContext {
 
     /// Maps a `MAP_READ` buffer, copies it out and unmaps it (blocking).
     pub fn read_buffer(&self, buffer: &wgpu::Buffer) -> Result<Vec<u8>, GpuError> {
-        let slice = buffer.slice(..);
-        let (tx, rx) = std::sync::mpsc::channel();
-        slice.map_async(wgpu::MapMode::Read, move |r| {
-            let _ = tx.send(r);
-        });
-        self.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| GpuError::Readback(e.to_string()))?;
-        rx.recv()
-            .map_err(|e| GpuError::Readback(e.to_string()))?
-            .map_err(|e| GpuError::Readback(e.to_string()))?;
-        let data =
-            slice.get_mapped_range().map_err(|e| GpuError::Readback(e.to_string()))?.to_vec();
-        buffer.unmap();
-        Ok(data)
+        crate::map_read(&self.device, buffer)
     }
 }
 

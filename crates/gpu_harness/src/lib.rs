@@ -1,4 +1,6 @@
-//! A wgpu device on whatever adapter exists, for tests, parity checks and benchmarks.
+//! A wgpu device on whatever adapter exists, for tests, parity checks and benchmarks, and
+//! the buffer read-back every crate's GPU path offers beside its resident passes
+//! ([`read_buffer`], [`map_read`]).
 //!
 //! Every GPU kernel in the workspace is tested against its CPU path on small inputs. Those
 //! tests need a device, and CI machines have no GPU: wgpu then finds Mesa's software
@@ -29,10 +31,12 @@
 
 mod context;
 mod error;
+mod readback;
 mod support;
 
 pub use context::{Binding, GpuContext, device_descriptor};
 pub use error::GpuError;
+pub use readback::{map_read, read_buffer, read_buffer_after, read_texture};
 pub use support::{
     LiveObjects, SKIP_ENV, cast_vec, gpu_test_context, live_objects, skip_requested,
 };

@@ -779,20 +779,9 @@ impl GpuGather {
         let mut encoder = device.create_command_encoder(&Default::default());
         encoder.copy_buffer_to_buffer(result, 0, &self.readback, 0, self.readback.size());
         queue.submit([encoder.finish()]);
-        let slice = self.readback.slice(..);
-        let (tx, rx) = std::sync::mpsc::channel();
-        slice.map_async(wgpu::MapMode::Read, move |r| {
-            let _ = tx.send(r);
-        });
-        device
-            .poll(wgpu::PollType::wait_indefinitely())
+        let bytes = gpu_harness::map_read(device, &self.readback)
             .map_err(|e| RsmGiError::Gpu(e.to_string()))?;
-        rx.recv()
-            .map_err(|e| RsmGiError::Gpu(e.to_string()))?
-            .map_err(|e| RsmGiError::Gpu(e.to_string()))?;
-        let bytes = slice.get_mapped_range().map_err(|e| RsmGiError::Gpu(e.to_string()))?.to_vec();
         let data: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&bytes);
-        self.readback.unmap();
         Ok(data
             .iter()
             .take((self.width * self.height) as usize)

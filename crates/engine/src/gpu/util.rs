@@ -54,40 +54,12 @@ pub(crate) fn storage_empty(device: &wgpu::Device, label: &str, size: u64) -> wg
 pub(crate) fn read_back(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
-    mut encoder: wgpu::CommandEncoder,
+    encoder: wgpu::CommandEncoder,
     src: &wgpu::Buffer,
     size: u64,
 ) -> Result<Vec<u8>, EngineError> {
-    let staging = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("readback"),
-        size: size.max(4),
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    encoder.copy_buffer_to_buffer(src, 0, &staging, 0, size);
-    queue.submit([encoder.finish()]);
-    map_read(device, &staging, size)
-}
-
-fn map_read(
-    device: &wgpu::Device,
-    staging: &wgpu::Buffer,
-    size: u64,
-) -> Result<Vec<u8>, EngineError> {
-    let slice = staging.slice(..size);
-    let (tx, rx) = std::sync::mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |r| {
-        let _ = tx.send(r);
-    });
-    device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map_err(|e| EngineError::Gpu(e.to_string()))?;
-    rx.recv()
-        .map_err(|e| EngineError::Gpu(e.to_string()))?
-        .map_err(|e| EngineError::Gpu(e.to_string()))?;
-    let data = slice.get_mapped_range().map_err(|e| EngineError::Gpu(e.to_string()))?.to_vec();
-    staging.unmap();
-    Ok(data)
+    gpu_harness::read_buffer_after(device, queue, encoder, src, size.max(4))
+        .map_err(|e| EngineError::Gpu(e.to_string()))
 }
 
 /// Reads a whole 2D texture (`bytes_per_texel` per texel) back, rows unpadded.
@@ -97,36 +69,8 @@ pub(crate) fn read_texture(
     texture: &wgpu::Texture,
     bytes_per_texel: u32,
 ) -> Result<Vec<u8>, EngineError> {
-    let (w, h) = (texture.width(), texture.height());
-    let row = (w * bytes_per_texel).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
-    let size = (row * h) as u64;
-    let staging = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("texture readback"),
-        size,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let mut enc = device.create_command_encoder(&Default::default());
-    enc.copy_texture_to_buffer(
-        texture.as_image_copy(),
-        wgpu::TexelCopyBufferInfo {
-            buffer: &staging,
-            layout: wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(row),
-                rows_per_image: Some(h),
-            },
-        },
-        wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
-    );
-    queue.submit([enc.finish()]);
-    let padded = map_read(device, &staging, size)?;
-    let tight = (w * bytes_per_texel) as usize;
-    let mut out = Vec::with_capacity(tight * h as usize);
-    for y in 0..h as usize {
-        out.extend_from_slice(&padded[y * row as usize..y * row as usize + tight]);
-    }
-    Ok(out)
+    gpu_harness::read_texture(device, queue, texture, 0, wgpu::TextureAspect::All, bytes_per_texel)
+        .map_err(|e| EngineError::Gpu(e.to_string()))
 }
 
 /// A 2D texture of one mip level and sample.

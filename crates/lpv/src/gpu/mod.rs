@@ -215,30 +215,12 @@ fn dispatch(
 fn read_back(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
-    mut enc: wgpu::CommandEncoder,
+    enc: wgpu::CommandEncoder,
     src: &wgpu::Buffer,
     bytes: u64,
 ) -> Result<Vec<u8>, LpvError> {
-    let staging = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("lpv staging"),
-        size: bytes,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    enc.copy_buffer_to_buffer(src, 0, &staging, 0, bytes);
-    queue.submit([enc.finish()]);
-    let slice = staging.slice(..);
-    let (tx, rx) = std::sync::mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |r| {
-        let _ = tx.send(r);
-    });
-    device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| LpvError::Gpu(e.to_string()))?;
-    rx.recv()
-        .map_err(|e| LpvError::Gpu(e.to_string()))?
-        .map_err(|e| LpvError::Gpu(e.to_string()))?;
-    let data = slice.get_mapped_range().map_err(|e| LpvError::Gpu(e.to_string()))?.to_vec();
-    staging.unmap();
-    Ok(data)
+    gpu_harness::read_buffer_after(device, queue, enc, src, bytes)
+        .map_err(|e| LpvError::Gpu(e.to_string()))
 }
 
 impl GpuLpv {

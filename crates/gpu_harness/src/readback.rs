@@ -1,0 +1,101 @@
+//! Reading GPU buffers back to the CPU (blocking): what every crate's GPU path offers for its
+//! parity tests and tools, written once.
+
+use crate::GpuError;
+
+fn readback_err(e: impl std::fmt::Display) -> GpuError {
+    GpuError::Readback(e.to_string())
+}
+
+/// The bytes of a `MAP_READ` buffer once the queue has finished writing it (blocking; the
+/// buffer is unmapped again).
+pub fn map_read(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<Vec<u8>, GpuError> {
+    let slice = buffer.slice(..);
+    let (tx, rx) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    device.poll(wgpu::PollType::wait_indefinitely()).map_err(readback_err)?;
+    rx.recv().map_err(readback_err)?.map_err(readback_err)?;
+    let data = slice.get_mapped_range().map_err(readback_err)?.to_vec();
+    buffer.unmap();
+    Ok(data)
+}
+
+/// Records a copy of the first `bytes` of `src` (`COPY_SRC`) into a new staging buffer at the
+/// end of `encoder`, submits it and returns the bytes (blocking).
+pub fn read_buffer_after(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    mut encoder: wgpu::CommandEncoder,
+    src: &wgpu::Buffer,
+    bytes: u64,
+) -> Result<Vec<u8>, GpuError> {
+    let staging = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("read-back staging"),
+        size: bytes,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    encoder.copy_buffer_to_buffer(src, 0, &staging, 0, bytes);
+    queue.submit([encoder.finish()]);
+    map_read(device, &staging)
+}
+
+/// The first `bytes` of `src` (`COPY_SRC`), once the work already submitted has written it.
+pub fn read_buffer(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    src: &wgpu::Buffer,
+    bytes: u64,
+) -> Result<Vec<u8>, GpuError> {
+    read_buffer_after(device, queue, device.create_command_encoder(&Default::default()), src, bytes)
+}
+
+/// The texels of array layer `layer` of mip level 0 of `texture` (`aspect`, `bytes_per_texel`
+/// each), rows without the copy's padding (blocking). A layer past the texture's is an error.
+pub fn read_texture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    texture: &wgpu::Texture,
+    layer: u32,
+    aspect: wgpu::TextureAspect,
+    bytes_per_texel: u32,
+) -> Result<Vec<u8>, GpuError> {
+    if layer >= texture.depth_or_array_layers() {
+        return Err(GpuError::Readback(format!(
+            "layer {layer} of a texture of {} layers",
+            texture.depth_or_array_layers()
+        )));
+    }
+    let (w, h) = (texture.width(), texture.height());
+    let row = (w * bytes_per_texel).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+    let staging = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("texture read-back"),
+        size: row as u64 * h as u64,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let mut encoder = device.create_command_encoder(&Default::default());
+    encoder.copy_texture_to_buffer(
+        wgpu::TexelCopyTextureInfo {
+            texture,
+            mip_level: 0,
+            origin: wgpu::Origin3d { x: 0, y: 0, z: layer },
+            aspect,
+        },
+        wgpu::TexelCopyBufferInfo {
+            buffer: &staging,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(row),
+                rows_per_image: Some(h),
+            },
+        },
+        wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+    );
+    queue.submit([encoder.finish()]);
+    let padded = map_read(device, &staging)?;
+    let tight = (w * bytes_per_texel) as usize;
+    Ok(padded.chunks(row as usize).flat_map(|r| &r[..tight]).copied().collect())
+}
