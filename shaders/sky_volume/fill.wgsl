@@ -8,9 +8,10 @@
 struct FillParams {
     origin: vec4<f32>,
     spacing: vec4<f32>,
-    // x, y, z points; w = total points.
+    // x, y, z points; w = one past the last point to fill.
     dims: vec4<u32>,
-    // x = samples, y = quads.
+    // x = samples, y = quads, z = the first point to fill (points are in grid order, so a
+    // range of layers is a range of points).
     counts: vec4<u32>,
 }
 
@@ -58,7 +59,7 @@ fn transmittance(p: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
 
 @compute @workgroup_size(64)
 fn fill(@builtin(global_invocation_id) gid: vec3<u32>) {
-    let i = gid.x;
+    let i = gid.x + params.counts.z;
     if (i >= params.dims.w) {
         return;
     }

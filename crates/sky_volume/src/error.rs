@@ -15,6 +15,9 @@ pub enum SkyVolumeError {
     /// A layer index past the volume's height.
     #[error("layer range {start}..{end} is outside the volume's {layers} layers")]
     LayerOutOfRange { start: u32, end: u32, layers: u32 },
+    /// The GPU refused a pipeline, or a read-back failed (the resident pass).
+    #[error("sky volume GPU path: {0}")]
+    Gpu(String),
     /// The structure's invariants do not hold (from `validate()`).
     #[error("sky volume invariant broken: {0}")]
     Invariant(String),

@@ -3,8 +3,10 @@
 //!
 //! Storage layout: one `array<f32>` of 27 floats per point (r, g, b x 9 radiance SH), in grid
 //! order (x fastest, then z, then y): exactly [`SkyVolume::probes`] as bytes. Bindings are
-//! listed at the top of each shader; the engine builds the pipelines.
+//! listed at the top of each shader. [`ResidentSkyVolume`] runs both as resident passes (the
+//! fill layer by layer, the lookup bound once to the caller's buffers).
 
+pub use crate::resident::{LookupBinding, ResidentSkyVolume};
 use crate::sky::sanitize;
 use crate::{OcclusionQuad, SkyRadiance, SkyVolume};
 use bytemuck::{Pod, Zeroable};
@@ -52,9 +54,9 @@ const _: () = assert!(std::mem::size_of::<Query>() == 48);
 pub struct FillParams {
     pub origin: [f32; 4],
     pub spacing: [f32; 4],
-    /// Points along x, y, z; total points.
+    /// Points along x, y, z; one past the last point to fill.
     pub dims: [u32; 4],
-    /// Samples, quads.
+    /// Samples, quads, the first point to fill.
     pub counts: [u32; 4],
 }
 const _: () = assert!(std::mem::size_of::<FillParams>() == 64);

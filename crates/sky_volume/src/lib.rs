@@ -71,6 +71,8 @@ mod grid;
 mod lookup;
 mod masked;
 mod quad;
+#[cfg(feature = "gpu")]
+mod resident;
 mod samples;
 mod settings;
 mod sky;

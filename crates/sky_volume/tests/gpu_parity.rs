@@ -115,3 +115,75 @@ fn lookup_matches_cpu() {
         );
     }
 }
+
+/// The resident fill, recorded in two layer ranges into one encoder, gives the CPU's probes;
+/// its lookup, bound once, gives the CPU's diffuse light; recording both again creates no GPU
+/// object; a layer range past the volume is a typed error.
+#[test]
+fn resident_fill_and_lookup_match_cpu_and_allocate_nothing_per_record() {
+    use wgpu::util::DeviceExt;
+    let Some(ctx) = gpu_test_context() else { return };
+    let (v, sky) = volume(FillMethod::BruteForce);
+    let (device, queue) = (&ctx.device, &ctx.queue);
+    let resident = ResidentSkyVolume::new(device, &v).unwrap();
+    resident.set_sky(queue, &sky);
+    let layers = v.grid().dims.y;
+    let queries: Vec<Query> = (0..100u32)
+        .map(|i| {
+            let f = |k: u32| ((i * 7919 + k * 104_729) % 1000) as f32 / 1000.0;
+            let n = Vec3::new(f(1) - 0.5, f(2) - 0.3, f(3) - 0.5).normalize_or(Vec3::Y);
+            let p = v.grid().origin
+                + (v.grid().max_corner() - v.grid().origin) * Vec3::new(f(4), f(5), f(6));
+            Query {
+                position: p.extend(1.0).to_array(),
+                normal: n.extend(0.0).to_array(),
+                albedo: [0.8, 0.5, 0.2, 1.0],
+            }
+        })
+        .collect();
+    let q = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: None,
+        contents: bytemuck::cast_slice(&queries),
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    let out = device.create_buffer(&wgpu::BufferDescriptor {
+        label: None,
+        size: queries.len() as u64 * 16,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let binding = resident.bind_lookup(device, &q, &out, queries.len() as u32);
+    let mut live = None;
+    for _ in 0..2 {
+        let mut enc = device.create_command_encoder(&Default::default());
+        resident.record_fill(&mut enc, 0..layers / 2).unwrap();
+        resident.record_fill(&mut enc, layers / 2..layers).unwrap();
+        resident.record_lookup(&mut enc, &binding);
+        queue.submit([enc.finish()]);
+        let now = gpu_harness::live_objects(device);
+        assert!(live.is_none_or(|l| l == now), "{live:?} -> {now:?}");
+        live = Some(now);
+    }
+    let gpu = resident.read_back(device, queue).unwrap();
+    let cpu: Vec<f32> = cast_vec::<f32>(v.gpu_probe_bytes());
+    let (mut num, mut den) = (0.0f64, 0.0f64);
+    for (a, b) in gpu.iter().zip(&cpu) {
+        num += ((a - b) as f64).powi(2);
+        den += (*b as f64).powi(2);
+    }
+    assert!((num / den).sqrt() < 1e-3, "resident fill rel RMS {}", (num / den).sqrt());
+    let light: Vec<[f32; 4]> =
+        cast_vec(&gpu_harness::read_buffer(device, queue, &out, out.size()).unwrap());
+    for (q, got) in queries.iter().zip(&light) {
+        let (p, n) = (Vec3::from_slice(&q.position[..3]), Vec3::from_slice(&q.normal[..3]));
+        let want = v.diffuse(p, n, Vec3::new(0.8, 0.5, 0.2));
+        let got = Vec3::from_slice(&got[..3]);
+        assert!(
+            (got - want).abs().max_element() <= 1e-3 * (1.0 + want.max_element()),
+            "{p}: {got} vs {want}"
+        );
+    }
+    let mut enc = device.create_command_encoder(&Default::default());
+    let e = resident.record_fill(&mut enc, 0..layers + 1).unwrap_err();
+    assert!(matches!(e, SkyVolumeError::LayerOutOfRange { .. }), "{e}");
+}

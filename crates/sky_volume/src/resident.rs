@@ -1,0 +1,286 @@
+//! The volume as resident GPU passes: the brute-force fill layer by layer into a probe
+//! buffer the pass owns, and the per-pixel lookup bound once to the caller's query and
+//! output buffers. Made once for a volume's grid, samples and quads; recording creates
+//! nothing (the fill reads its layer range from a uniform slot per layer, written once).
+
+use std::ops::Range;
+
+use crate::gpu::{FillParams, fill_shader, lookup_shader};
+use crate::sky::sanitize;
+use crate::{SkyRadiance, SkyVolume, SkyVolumeError};
+
+/// Stride of the fill's per-layer uniform slots (the largest offset alignment wgpu allows).
+const SLOT: u64 = 256;
+
+fn gpu_err(e: impl std::fmt::Display) -> SkyVolumeError {
+    SkyVolumeError::Gpu(e.to_string())
+}
+
+/// The fill and the lookup of one volume, resident on a device.
+pub struct ResidentSkyVolume {
+    fill: wgpu::ComputePipeline,
+    fill_group: wgpu::BindGroup,
+    lookup: wgpu::ComputePipeline,
+    lookup_params: wgpu::Buffer,
+    /// Sky radiance per sample direction (rewritten by [`ResidentSkyVolume::set_sky`]).
+    sky: wgpu::Buffer,
+    probes: wgpu::Buffer,
+    directions: Vec<glam::Vec3>,
+    layers: u32,
+    points_per_layer: u32,
+    // What the fill's bind group reads, kept alive with it: the per-layer uniform slots,
+    // the sample directions and the quads.
+    _fill_inputs: [wgpu::Buffer; 3],
+}
+
+/// The lookup bound to a caller's query and output buffers ([`ResidentSkyVolume::bind_lookup`]).
+pub struct LookupBinding {
+    group: wgpu::BindGroup,
+    count: u32,
+}
+
+fn buffer(
+    device: &wgpu::Device,
+    label: &str,
+    bytes: &[u8],
+    usage: wgpu::BufferUsages,
+) -> wgpu::Buffer {
+    use wgpu::util::DeviceExt;
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents: bytes,
+        usage,
+    })
+}
+
+fn storage_entry(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+fn pipeline(
+    device: &wgpu::Device,
+    source: &str,
+    entry: &str,
+    layout: Option<&wgpu::PipelineLayout>,
+) -> wgpu::ComputePipeline {
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("sky volume"),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    });
+    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(entry),
+        layout,
+        module: &module,
+        entry_point: Some(entry),
+        compilation_options: Default::default(),
+        cache: None,
+    })
+}
+
+impl ResidentSkyVolume {
+    /// The passes for `volume`'s grid, sample directions and quads (its probes are not
+    /// uploaded: the GPU fills its own). A pipeline the device refuses is
+    /// [`SkyVolumeError::Gpu`].
+    pub fn new(device: &wgpu::Device, volume: &SkyVolume) -> Result<Self, SkyVolumeError> {
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let inputs = volume.gpu_fill_inputs(&crate::ConstantSky(glam::Vec3::ZERO));
+        let g = volume.grid();
+        let (layers, points_per_layer) = (g.dims.y, g.dims.x * g.dims.z);
+        let slots: Vec<u8> = (0..layers)
+            .flat_map(|y| {
+                let mut p = inputs.params;
+                p.counts[2] = y * points_per_layer;
+                p.dims[3] = (y + 1) * points_per_layer;
+                let mut slot = bytemuck::bytes_of::<FillParams>(&p).to_vec();
+                slot.resize(SLOT as usize, 0);
+                slot
+            })
+            .collect();
+        let storage = wgpu::BufferUsages::STORAGE;
+        let mut quads = bytemuck::cast_slice(&inputs.quads).to_vec();
+        quads.resize(quads.len().max(std::mem::size_of::<crate::gpu::GpuQuad>()), 0);
+        let fill_inputs = [
+            buffer(device, "sky volume fill params", &slots, wgpu::BufferUsages::UNIFORM),
+            buffer(device, "sky volume samples", bytemuck::cast_slice(&inputs.samples), storage),
+            buffer(device, "sky volume quads", &quads, storage),
+        ];
+        let sky = buffer(
+            device,
+            "sky volume sky",
+            bytemuck::cast_slice(&inputs.sky),
+            storage | wgpu::BufferUsages::COPY_DST,
+        );
+        let probes = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("sky volume probes"),
+            size: (g.len() * 27 * 4) as u64,
+            usage: storage | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("sky volume fill"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: true,
+                        min_binding_size: wgpu::BufferSize::new(
+                            std::mem::size_of::<FillParams>() as u64
+                        ),
+                    },
+                    count: None,
+                },
+                storage_entry(1, true),
+                storage_entry(2, true),
+                storage_entry(3, true),
+                storage_entry(4, false),
+            ],
+        });
+        let fill_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("sky volume fill"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let fill = pipeline(device, &fill_shader(), "fill", Some(&fill_layout));
+        let params = wgpu::BufferBinding {
+            buffer: &fill_inputs[0],
+            offset: 0,
+            size: wgpu::BufferSize::new(std::mem::size_of::<FillParams>() as u64),
+        };
+        let fill_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("sky volume fill"),
+            layout: &layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::Buffer(params),
+                },
+                wgpu::BindGroupEntry { binding: 1, resource: fill_inputs[1].as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 2, resource: sky.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 3, resource: fill_inputs[2].as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 4, resource: probes.as_entire_binding() },
+            ],
+        });
+        let lookup = pipeline(device, &lookup_shader(), "lookup", None);
+        let lookup_params = buffer(
+            device,
+            "sky volume lookup params",
+            bytemuck::bytes_of(&volume.gpu_lookup_params()),
+            wgpu::BufferUsages::UNIFORM,
+        );
+        if let Some(e) = pollster::block_on(scope.pop()) {
+            return Err(gpu_err(e));
+        }
+        Ok(Self {
+            fill,
+            fill_group,
+            lookup,
+            lookup_params,
+            sky,
+            probes,
+            directions: volume.sample_directions().to_vec(),
+            layers,
+            points_per_layer,
+            _fill_inputs: fill_inputs,
+        })
+    }
+
+    /// Samples `sky` in every fill direction (a few hundred evaluations on the CPU) and
+    /// uploads them: the fills recorded after it light the volume with this sky.
+    pub fn set_sky(&self, queue: &wgpu::Queue, sky: &impl SkyRadiance) {
+        let texels: Vec<[f32; 4]> = self
+            .directions
+            .iter()
+            .map(|d| sanitize(sky.radiance(*d)).extend(0.0).to_array())
+            .collect();
+        queue.write_buffer(&self.sky, 0, bytemuck::cast_slice(&texels));
+    }
+
+    /// Records the fill of `layers` (one dispatch per layer). A range outside the volume is
+    /// [`SkyVolumeError::LayerOutOfRange`] and records nothing.
+    pub fn record_fill(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        layers: Range<u32>,
+    ) -> Result<(), SkyVolumeError> {
+        if layers.start > layers.end || layers.end > self.layers {
+            return Err(SkyVolumeError::LayerOutOfRange {
+                start: layers.start,
+                end: layers.end,
+                layers: self.layers,
+            });
+        }
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("sky volume fill"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.fill);
+        for y in layers {
+            pass.set_bind_group(0, &self.fill_group, &[(u64::from(y) * SLOT) as u32]);
+            pass.dispatch_workgroups(self.points_per_layer.div_ceil(64), 1, 1);
+        }
+        Ok(())
+    }
+
+    /// The probes (27 floats per point in grid order, as [`SkyVolume::probes`]).
+    pub fn probes(&self) -> &wgpu::Buffer {
+        &self.probes
+    }
+
+    /// Binds the lookup once to `queries` (`gpu::Query` per pixel) and `out` (`vec4` per
+    /// pixel: `albedo / pi * E`), for `count` queries.
+    pub fn bind_lookup(
+        &self,
+        device: &wgpu::Device,
+        queries: &wgpu::Buffer,
+        out: &wgpu::Buffer,
+        count: u32,
+    ) -> LookupBinding {
+        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("sky volume lookup"),
+            layout: &self.lookup.get_bind_group_layout(0),
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: self.lookup_params.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry { binding: 1, resource: self.probes.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 2, resource: queries.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 3, resource: out.as_entire_binding() },
+            ],
+        });
+        LookupBinding { group, count }
+    }
+
+    /// Records the lookup over a binding made by [`Self::bind_lookup`].
+    pub fn record_lookup(&self, encoder: &mut wgpu::CommandEncoder, binding: &LookupBinding) {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("sky volume lookup"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.lookup);
+        pass.set_bind_group(0, &binding.group, &[]);
+        pass.dispatch_workgroups(binding.count.div_ceil(64), 1, 1);
+    }
+
+    /// Reads the probes back (blocking; tests and tools).
+    pub fn read_back(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> Result<Vec<f32>, SkyVolumeError> {
+        let bytes = gpu_harness::read_buffer(device, queue, &self.probes, self.probes.size())
+            .map_err(gpu_err)?;
+        Ok(bytemuck::pod_collect_to_vec(&bytes))
+    }
+}
