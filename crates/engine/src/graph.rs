@@ -269,7 +269,8 @@ fn sky_passes(
         .run(move |io| -> PassResult {
             let layer = io.unit().map_or(0, |u| u.index);
             let mut volume = previous_or(io, r.sky_vol, |c| {
-                SkyVolumeState::new(&c.state.gpu, sky_setup(c)?, &c.state.settings)
+                let s = &c.state;
+                SkyVolumeState::new(&s.gpu, sky_setup(c)?, &s.settings, s.lighting.sky_io())
             })?;
             let s = &io.ctx().state;
             volume.fill_layer(&s.gpu, io.read(r.sky_map)?, layer)?;

@@ -72,6 +72,12 @@ impl LightingPass {
         })
     }
 
+    /// The sky volume's per-pixel queries (position, normal, albedo), the buffer the lighting
+    /// shader reads its light from, and the pixel count.
+    pub fn sky_io(&self) -> (&wgpu::Buffer, &wgpu::Buffer, u32) {
+        (&self.sky_q, &self.sky_out, self.pixels)
+    }
+
     /// The per-pixel lookup queries (position, normal; what the queries pass writes for the
     /// LPV), the buffer the lighting shader reads the bounce from, and the pixel count: what a
     /// lookup kernel of a one-bounce technique binds to.
@@ -112,7 +118,7 @@ impl LightingPass {
             );
         }
         if let (true, Some(sky)) = (inputs.sky_volume, inputs.sky) {
-            sky.record_lookup(gpu, enc, &self.sky_q, &self.sky_out, self.pixels);
+            sky.record_view_lookup(enc);
         }
         let indirect = match inputs.indirect {
             IndirectSource::Lpv(lpv) => {

@@ -4,10 +4,11 @@
 //! graph's resources ([`SkyMapState`], [`SkyVolumeState`]), made by their passes on first
 //! use and read by the passes after them through [`SkyLight`].
 
-use crate::gpu::{Gpu, compute_pipeline, dispatch_lookup, storage, storage_empty, uniform};
+use crate::gpu::{Gpu, storage_empty};
 use crate::{EngineError, Settings};
 use atmosphere::{Sky, SkyMap, SkyMapSettings, SkyRadiance as _};
 use glam::Vec3;
+use sky_volume::gpu::{LookupBinding, ResidentSkyVolume};
 use sky_volume::{OcclusionQuad, SkyVolume, VolumeGrid};
 
 /// What the sky passes are made from, fixed for the renderer's life: the atmosphere (its
@@ -92,33 +93,36 @@ impl sky_volume::SkyRadiance for MapSky<'_> {
     }
 }
 
-/// The sky-light volume on the CPU (the traced rays' lookups) and its probes on the GPU.
+/// The sky-light volume, filled on the CPU (the traced rays' lookups read it there) and
+/// uploaded into the crate's resident pass, whose lookup is bound once to the lighting
+/// pass's per-pixel queries.
 pub struct SkyVolumeState {
     pub volume: SkyVolume,
-    probes: wgpu::Buffer,
-    lookup: wgpu::ComputePipeline,
-    lookup_params: wgpu::Buffer,
+    resident: ResidentSkyVolume,
+    view: LookupBinding,
     /// The map generation the volume is being lit from.
     lit_from: Option<u64>,
 }
 
+fn tech(e: sky_volume::SkyVolumeError) -> EngineError {
+    EngineError::technique("sky_volume", e)
+}
+
 impl SkyVolumeState {
-    pub fn new(gpu: &Gpu, setup: &SkySetup, settings: &Settings) -> Result<Self, EngineError> {
+    /// The volume, its resident passes, and its lookup bound to `view` (the lighting pass's
+    /// queries, its output and their count).
+    pub fn new(
+        gpu: &Gpu,
+        setup: &SkySetup,
+        settings: &Settings,
+        (queries, out, count): (&wgpu::Buffer, &wgpu::Buffer, u32),
+    ) -> Result<Self, EngineError> {
         let vs =
             sky_volume::Settings { samples: settings.sky_samples, ..sky_volume::Settings::DEFAULT };
-        let volume = SkyVolume::with_quads(setup.grid, vs, &setup.quads)
-            .map_err(|e| EngineError::technique("sky_volume", e))?;
-        let lookup = compute_pipeline(
-            &gpu.device,
-            "sky volume lookup",
-            &sky_volume::gpu::lookup_shader(),
-            "lookup",
-        )?;
-        let probes =
-            storage(&gpu.device, "sky probes", bytemuck::cast_slice(volume.gpu_probe_bytes()));
-        let lookup_params =
-            uniform(&gpu.device, "sky lookup", bytemuck::bytes_of(&volume.gpu_lookup_params()));
-        Ok(Self { volume, probes, lookup, lookup_params, lit_from: None })
+        let volume = SkyVolume::with_quads(setup.grid, vs, &setup.quads).map_err(tech)?;
+        let resident = ResidentSkyVolume::new(&gpu.device, &volume).map_err(tech)?;
+        let view = resident.bind_lookup(&gpu.device, queries, out, count);
+        Ok(Self { volume, resident, view, lit_from: None })
     }
 
     /// Fills layer `layer` from `map` and uploads the probes (a new map marks the whole
@@ -133,10 +137,8 @@ impl SkyVolumeState {
             self.volume.sky_changed();
             self.lit_from = Some(map.generation);
         }
-        self.volume
-            .fill_layers(layer..layer + 1, &MapSky(&map.map))
-            .map_err(|e| EngineError::technique("sky_volume", e))?;
-        gpu.write(&self.probes, 0, self.volume.gpu_probe_bytes());
+        self.volume.fill_layers(layer..layer + 1, &MapSky(&map.map)).map_err(tech)?;
+        gpu.write(self.resident.probes(), 0, self.volume.gpu_probe_bytes());
         Ok(())
     }
 }
@@ -166,8 +168,13 @@ impl SkyLight<'_> {
         1.5 * std::f32::consts::PI * brightest
     }
 
-    /// Records the per-pixel lookup: `queries` (position, normal, albedo) to `out`
-    /// (`albedo / pi * E`).
+    /// Records the lookup of the view's queries (bound when the volume was made).
+    pub fn record_view_lookup(&self, enc: &mut wgpu::CommandEncoder) {
+        self.volume.resident.record_lookup(enc, &self.volume.view);
+    }
+
+    /// Records the lookup of other `queries` (position, normal, albedo) to `out`
+    /// (`albedo / pi * E`), binding them for this call.
     pub fn record_lookup(
         &self,
         gpu: &Gpu,
@@ -176,13 +183,7 @@ impl SkyLight<'_> {
         out: &wgpu::Buffer,
         count: u32,
     ) {
-        let v = self.volume;
-        dispatch_lookup(
-            &gpu.device,
-            enc,
-            &v.lookup,
-            [&v.lookup_params, &v.probes, queries, out],
-            count,
-        );
+        let resident = &self.volume.resident;
+        resident.record_lookup(enc, &resident.bind_lookup(&gpu.device, queries, out, count));
     }
 }
