@@ -17,6 +17,32 @@ struct CsmCascade {
 // The cascade the current PCSS evaluation reads (for the includer's pcss_depth).
 var<private> csm_layer: i32;
 
+// The receiver of world point p (unit geometry normal gn) in map cs, moved along its normal
+// by the map's offset; false when p lies outside the map (lit). The twin of
+// CsmCascade::receiver (crates/shadows/src/csm_lookup.rs).
+fn csm_receiver(cs: CsmCascade, p: vec3<f32>, gn: vec3<f32>, r: ptr<function, PcssReceiver>) -> bool {
+    let q = p + gn * (cs.info.y * cs.info.w);
+    let clip = cs.view_proj * vec4<f32>(q, 1.0);
+    let res = f32(cs.pcss.width);
+    let x = (clip.x * 0.5 + 0.5) * res;
+    let y = (0.5 - clip.y * 0.5) * res;
+    if x < 0.0 || y < 0.0 || x >= res || y >= res || clip.z > 1.0 {
+        return false;
+    }
+    let nl = vec3<f32>(dot(cs.light_rot[0].xyz, gn), dot(cs.light_rot[1].xyz, gn), dot(cs.light_rot[2].xyz, gn));
+    var nz = nl.z;
+    if abs(nz) < 1e-4 {
+        nz = select(-1e-4, 1e-4, nz >= 0.0);
+    }
+    let s = cs.info.y / cs.info.z / nz;
+    (*r).x = x;
+    (*r).y = y;
+    (*r).depth = clip.z;
+    (*r).gx = nl.x * s;
+    (*r).gy = -nl.y * s;
+    return true;
+}
+
 // Visibility (1 lit) of world point p with unit geometry normal gn at view depth view_depth.
 fn csm_visibility(p: vec3<f32>, gn: vec3<f32>, view_depth: f32) -> f32 {
     let count = csm_count();
@@ -25,26 +51,10 @@ fn csm_visibility(p: vec3<f32>, gn: vec3<f32>, view_depth: f32) -> f32 {
         if view_depth > cs.info.x && c < count - 1 {
             continue;
         }
-        let q = p + gn * (cs.info.y * cs.info.w);
-        let clip = cs.view_proj * vec4<f32>(q, 1.0);
-        let res = f32(cs.pcss.width);
-        let x = (clip.x * 0.5 + 0.5) * res;
-        let y = (0.5 - clip.y * 0.5) * res;
-        if x < 0.0 || y < 0.0 || x >= res || y >= res || clip.z > 1.0 {
+        var r: PcssReceiver;
+        if !csm_receiver(cs, p, gn, &r) {
             return 1.0;
         }
-        let nl = vec3<f32>(dot(cs.light_rot[0].xyz, gn), dot(cs.light_rot[1].xyz, gn), dot(cs.light_rot[2].xyz, gn));
-        var nz = nl.z;
-        if abs(nz) < 1e-4 {
-            nz = select(-1e-4, 1e-4, nz >= 0.0);
-        }
-        let s = cs.info.y / cs.info.z / nz;
-        var r: PcssReceiver;
-        r.x = x;
-        r.y = y;
-        r.depth = clip.z;
-        r.gx = nl.x * s;
-        r.gy = -nl.y * s;
         csm_layer = c;
         return pcss_soft(cs.pcss, r);
     }

@@ -1,8 +1,10 @@
 // include: shadows/pcss.inc.wgsl
 // include: shadows/csm.inc.wgsl
+// include: shadows/osm.inc.wgsl
 //
-// Evaluates csm_visibility for a list of queries over cascades whose depths sit in a storage
-// buffer, one map after another (the CPU/GPU parity test uses it).
+// Evaluates csm_visibility (entry point main) or osm_visibility (main_osm) for a list of
+// queries over maps whose depths sit in a storage buffer, one map after another (the CPU/GPU
+// parity tests use it).
 
 struct Query {
     // xyz world position, w view depth
@@ -42,4 +44,14 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let q = queries[i];
     results[i] = csm_visibility(q.p.xyz, q.gn.xyz, q.p.w);
+}
+
+@compute @workgroup_size(64)
+fn main_osm(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = id.x;
+    if i >= arrayLength(&queries) {
+        return;
+    }
+    let q = queries[i];
+    results[i] = osm_visibility(q.p.xyz, q.gn.xyz);
 }

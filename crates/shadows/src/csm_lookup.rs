@@ -1,9 +1,11 @@
 //! The sun-visibility lookup in a set of cascades, on the CPU: the twin of
 //! `csm_visibility` in `shaders/shadows/csm.inc.wgsl` (same cascade choice, normal offset,
-//! receiver plane and filter, kept equal by a CPU/GPU parity test).
+//! receiver plane and filter, kept equal by a CPU/GPU parity test), and the same lookup in
+//! overlapped shadow maps (`osm_visibility`, `shaders/shadows/osm.inc.wgsl`).
 
 use crate::csm::Cascade;
 use crate::depth_map::DepthMap;
+use crate::light_space::ShadowView;
 use crate::pcss::{Pcss, PcssParams, Receiver};
 use glam::{Mat4, Vec3, Vec4};
 
@@ -30,15 +32,21 @@ const _: () = assert!(std::mem::size_of::<CsmCascade>() == 176);
 impl CsmCascade {
     /// The block of `cascade` filtered with `pcss`.
     pub fn new(cascade: &Cascade, pcss: &Pcss) -> Self {
-        let rows = cascade.view.basis.world_to_light.transpose();
+        Self::of_view(&cascade.view, cascade.split_far as f32, pcss)
+    }
+
+    /// The block of any shadow map `view` (an overlapped shadow map's, whose lookup ignores
+    /// `split_far`) filtered with `pcss`.
+    pub fn of_view(view: &ShadowView, split_far: f32, pcss: &Pcss) -> Self {
+        let rows = view.basis.world_to_light.transpose();
         let row = |v: glam::DVec3| v.as_vec3().extend(0.0).to_array();
         Self {
-            view_proj: cascade.view.view_proj().to_cols_array_2d(),
+            view_proj: view.view_proj().to_cols_array_2d(),
             pcss: *pcss.params(),
             info: [
-                cascade.split_far as f32,
-                cascade.view.texel_size as f32,
-                cascade.view.depth_range() as f32,
+                split_far,
+                view.texel_size as f32,
+                view.depth_range() as f32,
                 CSM_NORMAL_OFFSET_TEXELS,
             ],
             light_rot: [row(rows.x_axis), row(rows.y_axis), row(rows.z_axis)],
@@ -80,4 +88,22 @@ pub fn csm_visibility(
         return 1.0;
     };
     cascades[c].receiver(p, gn).map_or(1.0, |r| pcss[c].pcss(&maps[c], &r))
+}
+
+/// Sun visibility of world point `p` with unit geometry normal `gn` in overlapped shadow maps
+/// (thesis 6.3.1: maps centred on the camera, smallest first, for points the view's cascades
+/// do not cover, such as those seen in reflections): the first map that holds the point,
+/// filtered as [`csm_visibility`] filters a cascade. Outside every map: lit. The twin of
+/// `osm_visibility` in `shaders/shadows/osm.inc.wgsl`.
+pub fn osm_visibility(
+    maps: &[CsmCascade],
+    pcss: &[Pcss],
+    depths: &[DepthMap],
+    p: Vec3,
+    gn: Vec3,
+) -> f32 {
+    let count = maps.len().min(pcss.len()).min(depths.len());
+    (0..count)
+        .find_map(|c| maps[c].receiver(p, gn).map(|r| pcss[c].pcss(&depths[c], &r)))
+        .unwrap_or(1.0)
 }

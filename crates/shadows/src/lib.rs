@@ -61,7 +61,7 @@ mod taps;
 pub mod gpu;
 
 pub use csm::{Camera, Cascade, CascadedShadowMap, CsmSettings, split_distances};
-pub use csm_lookup::{CSM_NORMAL_OFFSET_TEXELS, CsmCascade, csm_visibility};
+pub use csm_lookup::{CSM_NORMAL_OFFSET_TEXELS, CsmCascade, csm_visibility, osm_visibility};
 pub use cube::{CUBE_FACES, cube_face_of, cube_face_view_proj, cube_shadow_depth};
 pub use depth_map::DepthMap;
 pub use error::ShadowError;

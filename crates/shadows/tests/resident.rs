@@ -145,6 +145,78 @@ fn csm_lookup_cpu_gpu_parity() {
     assert!(vis(behind) < 0.1 && vis(front) > 0.9, "{} {}", vis(behind), vis(front));
 }
 
+/// `osm.inc.wgsl` and `osm_visibility` agree over overlapped maps the resident cascade pass
+/// rendered (the maps are cascade blocks): each point reads the smallest map that holds it,
+/// points outside the small one read a larger one, the box's shadow is seen, and a point
+/// outside every map is lit.
+#[test]
+fn osm_lookup_cpu_gpu_parity() {
+    let Some(ctx) = gpu_test_context() else { return };
+    let scene = PlaneBox::DEFAULT;
+    let buffers = Buffers::new(&ctx.device, &scene.triangles());
+    let settings = OsmSettings {
+        maps: 2,
+        resolution: 256,
+        base_radius: 1.5,
+        growth: 4.0,
+        caster_extension: 20.0,
+    };
+    let osm =
+        OverlappedShadowMaps::fit(glam::DVec3::new(0.5, 1.0, 0.5), scene.sun_direction, &settings)
+            .unwrap();
+    let pcss: Vec<Pcss> = osm
+        .maps
+        .iter()
+        .map(|v| Pcss::directional(v, scene.sun_angular_radius * 4.0, &PcssSettings::DEFAULT))
+        .collect::<Result<_, _>>()
+        .unwrap();
+    let blocks: Vec<CsmCascade> =
+        osm.maps.iter().zip(&pcss).map(|(v, p)| CsmCascade::of_view(v, f32::INFINITY, p)).collect();
+    let pass = CascadeShadows::new(&ctx.device, VertexLayout::POSITION_NORMAL, 256, 2).unwrap();
+    submit(&ctx, |enc| {
+        pass.record(&ctx.queue, enc, &buffers.geometry(), &blocks, pcss[0].taps()).unwrap();
+    });
+    let maps: Vec<DepthMap> =
+        (0..2).map(|c| pass.read_back(&ctx.device, &ctx.queue, c).unwrap()).collect();
+    let (lo, hi) = (scene.region_min, scene.region_max);
+    let mut queries: Vec<[f32; 8]> = Vec::new();
+    for i in 0..40 * 40 {
+        let (u, v) = ((i % 40) as f32 / 39.0, (i / 40) as f32 / 39.0);
+        let p = Vec3::new(lo.x + (hi.x - lo.x) * u, 0.0, lo.y + (hi.y - lo.y) * v);
+        queries.push([p.x, p.y, p.z, 0.0, 0.0, 1.0, 0.0, 0.0]);
+    }
+    let depths: Vec<f32> = maps.iter().flat_map(|m| m.as_slice().iter().copied()).collect();
+    let out = ctx
+        .run_compute(
+            CSM_EVAL_WGSL,
+            "main_osm",
+            &[
+                Binding::Read(bytemuck::cast_slice(&blocks)),
+                Binding::Read(bytemuck::cast_slice(&depths)),
+                Binding::Read(bytemuck::cast_slice(pcss[0].taps())),
+                Binding::Read(bytemuck::cast_slice(&queries)),
+                Binding::Output(queries.len() as u64 * 4),
+            ],
+            [(queries.len() as u32).div_ceil(64), 1, 1],
+        )
+        .unwrap();
+    let gpu: &[f32] = bytemuck::cast_slice(&out[4]);
+    let (mut differ, mut outer, mut shadowed) = (0, 0, 0);
+    for (q, g) in queries.iter().zip(gpu) {
+        let p = Vec3::new(q[0], q[1], q[2]);
+        let cpu = osm_visibility(&blocks, &pcss, &maps, p, Vec3::Y);
+        differ += ((cpu - g).abs() > 1e-5) as usize;
+        outer += (osm.select(p.as_dvec3(), 0.0) == Some(1)) as usize;
+        shadowed += (cpu < 0.1) as usize;
+    }
+    let n = queries.len();
+    assert!(differ * 100 < n, "{differ} of {n} visibilities differ");
+    assert!(outer > n / 10, "{outer} of {n} points read the larger map");
+    assert!(shadowed > n / 100, "the box's shadow: {shadowed} of {n}");
+    let far = Vec3::new(500.0, 0.0, 500.0);
+    assert_eq!(osm_visibility(&blocks, &pcss, &maps, far, Vec3::Y), 1.0, "outside every map: lit");
+}
+
 const CUBE_EVAL: &str = "
 @group(0) @binding(0) var maps: texture_depth_cube_array;
 @group(0) @binding(1) var cmp: sampler_comparison;

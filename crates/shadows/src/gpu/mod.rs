@@ -58,14 +58,22 @@ pub const PCSS_EVAL_WGSL: &str = concat!(
     include_str!("../../../../shaders/shadows/pcss_eval.wgsl")
 );
 
-/// The PCSS and cascade snippets followed by `shaders/shadows/csm_eval.wgsl` (bindings:
-/// 0 `array<CsmCascade>`, 1 depths of every cascade one after another `array<f32>`, 2 taps,
+/// The overlapped shadow maps' lookup (`shaders/shadows/osm.inc.wgsl`, after the PCSS and
+/// cascade snippets; the maps are [`crate::CsmCascade`] blocks rendered by
+/// [`CascadeShadows`]).
+pub const OSM_INC_WGSL: &str = include_str!("../../../../shaders/shadows/osm.inc.wgsl");
+
+/// The PCSS, cascade and overlapped-map snippets followed by `shaders/shadows/csm_eval.wgsl`
+/// (entry points `main` for the cascades, `main_osm` for overlapped maps; bindings:
+/// 0 `array<CsmCascade>`, 1 depths of every map one after another `array<f32>`, 2 taps,
 /// 3 queries `array<vec4<f32>, 2>` = position + view depth, geometry normal, 4 output
 /// `array<f32>` visibility).
 pub const CSM_EVAL_WGSL: &str = concat!(
     include_str!("../../../../shaders/shadows/pcss.inc.wgsl"),
     "\n",
     include_str!("../../../../shaders/shadows/csm.inc.wgsl"),
+    "\n",
+    include_str!("../../../../shaders/shadows/osm.inc.wgsl"),
     "\n",
     include_str!("../../../../shaders/shadows/csm_eval.wgsl")
 );
