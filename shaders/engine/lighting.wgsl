@@ -4,6 +4,7 @@
 // include: shadows/cube.inc.wgsl
 // include: ssao/ssao.inc.wgsl
 // include: atmosphere/skymap_sample.inc.wgsl
+// include: engine/shading.inc.wgsl
 // Deferred lighting of the main view (thesis 3.3, 4.2, 5.3.6-5.3.8): the sun with Phong (or
 // Blinn-Phong) and stabilised-CSM PCSS shadows, point lights, sky light from the sky volume
 // and one diffuse bounce of sunlight (the LPV's lookup or the RSM gather, per pixel by the
@@ -11,15 +12,6 @@
 // geometry was drawn. The base BRDF is the reference's:
 // w_b ((1 - g) albedo / pi + g (n + 2) / (2 pi) cos^n), w_b = 1 - reflectivity - transparency;
 // the mirror and glass parts come from the ray tracer in the combine pass.
-
-struct PointLight {
-    // xyz position, w radius of influence
-    position: vec4<f32>,
-    // rgb intensity, w index of the light's cube in `cubes` (-1: no shadows)
-    color: vec4<f32>,
-    // cube near, cube far, cube face size, unused
-    shadow: vec4<f32>,
-}
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var albedo_t: texture_2d<f32>;
@@ -61,34 +53,6 @@ fn sun_visibility(p: vec3<f32>, gn: vec3<f32>, view_depth: f32) -> f32 {
         return 1.0;
     }
     return csm_visibility(p, gn, view_depth);
-}
-
-// Visibility of point light i from p (shadows/cube.inc.wgsl); frame.csm.z is 0 until the
-// cubes have been rendered.
-fn point_visibility(i: u32, p: vec3<f32>, gn: vec3<f32>) -> f32 {
-    let c = lights[i].color.w;
-    if c < 0.0 || frame.csm.z == 0u {
-        return 1.0;
-    }
-    let s = lights[i].shadow;
-    return cube_visibility(cubes, cube_cmp, i32(c), lights[i].position.xyz, s.x, s.y, s.z, p, gn);
-}
-
-// Base BRDF times cos for light from `l` seen from `v`.
-fn base_brdf_cos(albedo: vec3<f32>, g: f32, power: f32, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
-    let c = dot(n, l);
-    if c <= 0.0 {
-        return vec3<f32>(0.0);
-    }
-    var spec: f32;
-    if (frame.size.w & FLAG_BLINN) != 0u {
-        let h = normalize(l + v);
-        spec = (power + 8.0) / (8.0 * PI) * pow(max(dot(n, h), 0.0), power);
-    } else {
-        let r = reflect(-v, n);
-        spec = (power + 2.0) / (2.0 * PI) * pow(max(dot(r, l), 0.0), power);
-    }
-    return ((1.0 - g) * albedo / PI + vec3<f32>(g * spec)) * c;
 }
 
 // The sky map's texels for atmosphere's sample snippet.
@@ -197,19 +161,7 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
             glint = w_delta * lobe * e;
         }
     }
-    var points = vec3<f32>(0.0);
-    for (var i = 0u; i < frame.size.z; i = i + 1u) {
-        let l = lights[i].position;
-        let d = l.xyz - p;
-        let dist2 = max(dot(d, d), 1e-4);
-        if dist2 > l.w * l.w {
-            continue;
-        }
-        let f = base_brdf_cos(a.rgb, g, power, n, d * inverseSqrt(dist2), v);
-        if any(f > vec3<f32>(0.0)) {
-            points += f * lights[i].color.rgb / dist2 * point_visibility(i, p, gn);
-        }
-    }
+    let points = point_lights(a.rgb, g, power, n, v, p, gn);
     let i = u32(px.y) * frame.size.x + u32(px.x);
     // The sky volume's lookup is albedo E / pi with albedo 1 (queries.wgsl): E / pi.
     var sky_e_over_pi = vec3<f32>(0.0);

@@ -7,6 +7,7 @@ const QUERIES: &str = include_str!("../../../shaders/engine/queries.wgsl");
 const RAYCAST: &str = include_str!("../../../shaders/engine/raycast.wgsl");
 const COMBINE: &str = include_str!("../../../shaders/engine/combine.wgsl");
 const SKY_VPLS: &str = include_str!("../../../shaders/engine/sky_vpls.wgsl");
+const SHADING: &str = include_str!("../../../shaders/engine/shading.inc.wgsl");
 const TONEMAP: &str = include_str!("../../../shaders/engine/tonemap.wgsl");
 
 /// Every complete shader as `(name, source)`, for the pipelines and the naga test.
@@ -29,7 +30,9 @@ pub fn gbuffer() -> String {
 pub fn lighting() -> String {
     use shadows::gpu::{CSM_INC_WGSL, CUBE_INC_WGSL, PCSS_INC_WGSL};
     let (ssao, sky) = (ssao::SSAO_INC_WGSL, atmosphere::gpu::SKYMAP_SAMPLE_INC_WGSL);
-    format!("{COMMON}\n{PCSS_INC_WGSL}\n{CSM_INC_WGSL}\n{CUBE_INC_WGSL}\n{ssao}\n{sky}\n{LIGHTING}")
+    format!(
+        "{COMMON}\n{PCSS_INC_WGSL}\n{CSM_INC_WGSL}\n{CUBE_INC_WGSL}\n{ssao}\n{sky}\n{SHADING}\n{LIGHTING}"
+    )
 }
 
 pub fn queries() -> String {

@@ -267,6 +267,69 @@ pub fn trace_rays(
     rays: &[TraceRay],
     settings: &TraceSettings,
 ) -> Vec<Vec3> {
+    map_rays(scene, lighting, rays, settings, Vec3::ZERO, |tracer, origin, dir, depth| {
+        finite(tracer.radiance(origin, dir, depth, 0.0))
+    })
+}
+
+/// One traced ray's first surface, for lighting on the GPU (thesis 6.3: the traced
+/// G-buffer); `TracedHit` in `shaders/engine/traced.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct TracedHit {
+    /// The surface point; w: where the lit radiance goes (set by the caller).
+    pub position: [f32; 4],
+    /// Unit shading normal on the ray's side; w: the base part's weight (0: nothing to
+    /// light, as for a ray that left the scene).
+    pub normal: [f32; 4],
+    /// Unit geometric normal on the ray's side; w: glossiness.
+    pub geometric: [f32; 4],
+    /// Albedo with its texture; w: specular power.
+    pub albedo: [f32; 4],
+    /// The ray's light the GPU does not compute: emission, the sky for a miss, the mirror and
+    /// glass parts followed on the CPU up to the settings' depth.
+    pub other: [f32; 4],
+    /// Unit ray direction.
+    pub dir: [f32; 4],
+}
+const _: () = assert!(std::mem::size_of::<TracedHit>() == 96);
+
+/// The first surface of each ray with everything but its base part's light (which the
+/// GPU adds, `passes::traced_lighting`): rayon-parallel, deterministic; invalid rays give
+/// an empty record.
+pub fn trace_surfaces(
+    scene: &TraceScene,
+    lighting: &TraceLighting,
+    rays: &[TraceRay],
+    settings: &TraceSettings,
+) -> Vec<TracedHit> {
+    map_rays(scene, lighting, rays, settings, TracedHit::default(), |tracer, origin, dir, depth| {
+        let found = tracer.find(origin, dir, depth, 0.0);
+        let mut hit = TracedHit {
+            other: finite(found.other).extend(0.0).to_array(),
+            dir: dir.extend(0.0).to_array(),
+            ..TracedHit::default()
+        };
+        if let Some(b) = found.base {
+            let m = b.material;
+            hit.position = b.p.extend(0.0).to_array();
+            hit.normal = b.n.extend(b.weight).to_array();
+            hit.geometric = b.ng.extend(m.glossiness).to_array();
+            hit.albedo = b.albedo.extend(m.specular_power.max(1.0)).to_array();
+        }
+        hit
+    })
+}
+
+/// `f` over every valid ray (its direction normalised), `invalid` for the others.
+fn map_rays<T: Send + Sync + Copy>(
+    scene: &TraceScene,
+    lighting: &TraceLighting,
+    rays: &[TraceRay],
+    settings: &TraceSettings,
+    invalid: T,
+    f: impl Fn(&Tracer, Vec3, Vec3, u32) -> T + Sync,
+) -> Vec<T> {
     let sun = lighting.sun.and_then(|(d, e)| Some((d.try_normalize()?, finite(e))));
     let tracer = Tracer { scene, lighting, sun, alpha: settings.alpha_test };
     let depth = settings.max_depth.clamp(1, MAX_TRACE_DEPTH);
@@ -276,10 +339,8 @@ pub fn trace_rays(
             // Scale first so that huge or tiny directions normalise too.
             let dir = (r.dir / r.dir.abs().max_element()).try_normalize();
             match dir {
-                Some(dir) if r.origin.is_finite() => {
-                    finite(tracer.radiance(r.origin, dir, depth, 0.0))
-                }
-                _ => Vec3::ZERO,
+                Some(dir) if r.origin.is_finite() => f(&tracer, r.origin, dir, depth),
+                _ => invalid,
             }
         })
         .collect()
@@ -301,13 +362,39 @@ struct Tracer<'a> {
     alpha: bool,
 }
 
+/// The base (diffuse + Phong) part of a surface a ray found, as it is lit.
+struct Base<'a> {
+    /// `1 - reflectivity - transparency`.
+    weight: f32,
+    material: &'a Material,
+    albedo: Vec3,
+    p: Vec3,
+    /// Unit geometric and shading normals, on the side the ray came from.
+    ng: Vec3,
+    n: Vec3,
+    dir: Vec3,
+}
+
+/// What a ray finds: all its light but the base part's (emission, the sky for a miss, the
+/// mirror and glass parts followed as deep as asked), and the base part to light.
+struct Found<'a> {
+    other: Vec3,
+    base: Option<Base<'a>>,
+}
+
 impl Tracer<'_> {
     /// Radiance arriving at `origin` from unit direction `dir`; `dist` is the distance the
     /// ray has already travelled (for mip selection).
     fn radiance(&self, origin: Vec3, dir: Vec3, depth: u32, dist: f32) -> Vec3 {
+        let found = self.find(origin, dir, depth, dist);
+        found.other + found.base.map_or(Vec3::ZERO, |b| b.weight * self.light_base(&b))
+    }
+
+    /// The surface along the ray and everything but its base part's light.
+    fn find(&self, origin: Vec3, dir: Vec3, depth: u32, dist: f32) -> Found<'_> {
         let s = self.scene;
         let Some(h) = s.intersect(origin, dir, 0.0, f32::INFINITY, self.alpha) else {
-            return finite((self.lighting.sky)(dir));
+            return Found { other: finite((self.lighting.sky)(dir)), base: None };
         };
         let p = h.position;
         let m = s.material(h.triangle);
@@ -315,14 +402,14 @@ impl Tracer<'_> {
         let front = h.normal.dot(dir) < 0.0;
         let ng = if front { h.normal } else { -h.normal };
         let n = if h.shading_normal.dot(dir) > 0.0 { -h.shading_normal } else { h.shading_normal };
-        let mut l = finite(m.emission);
-        let base = (1.0 - m.reflectivity - m.transparency).max(0.0);
-        if base > 0.0 {
+        let weight = (1.0 - m.reflectivity - m.transparency).max(0.0);
+        let base = (weight > 0.0).then(|| {
             let albedo = self.albedo(m, &h, dist + h.t);
-            l += base * self.direct(m, albedo, p, s.surfaces.offset(p, ng, -dir), n, dir);
-        }
+            Base { weight, material: m, albedo, p, ng, n, dir }
+        });
+        let mut l = finite(m.emission);
         if depth <= 1 {
-            return l;
+            return Found { other: l, base };
         }
         let mut w_reflect = if m.is_mirror() { m.reflectivity } else { 0.0 };
         let mut refracted = None;
@@ -348,7 +435,14 @@ impl Tracer<'_> {
         if let Some((w, t)) = refracted {
             follow(w, t);
         }
-        l
+        Found { other: l, base }
+    }
+
+    /// The base part's light (per unit of its weight) from the sun, the point lights and
+    /// the ambient light, with shadow rays.
+    fn light_base(&self, b: &Base) -> Vec3 {
+        let po = self.scene.surfaces.offset(b.p, b.ng, -b.dir);
+        self.direct(b.material, b.albedo, b.p, po, b.n, b.dir)
     }
 
     /// The diffuse + Phong part lit by the sun, the point lights and the ambient light.

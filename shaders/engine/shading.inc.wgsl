@@ -1,0 +1,62 @@
+// The base BRDF and the point lights, shared by the deferred lighting of the view and the
+// lighting of the traced G-buffer (thesis 3.3, 6.3). The including shader declares `frame`,
+// `lights: array<PointLight>`, `cubes: texture_depth_cube_array` and `cube_cmp`, and
+// includes shadows/cube.inc.wgsl.
+
+struct PointLight {
+    // xyz position, w radius of influence
+    position: vec4<f32>,
+    // rgb intensity, w index of the light's cube in `cubes` (-1: no shadows)
+    color: vec4<f32>,
+    // cube near, cube far, cube face size, unused
+    shadow: vec4<f32>,
+}
+
+// The base BRDF times the cosine for light from `l` seen from `v`: the reference's
+// (1 - g) albedo / pi + g (n + 2) / (2 pi) cos^n (energy-normalised Phong,
+// scene::phong_lobe), or Blinn-Phong with the frame's flag.
+fn base_brdf_cos(albedo: vec3<f32>, g: f32, power: f32, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
+    let c = dot(n, l);
+    if c <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    var spec: f32;
+    if (frame.size.w & FLAG_BLINN) != 0u {
+        let h = normalize(l + v);
+        spec = (power + 8.0) / (8.0 * PI) * pow(max(dot(n, h), 0.0), power);
+    } else {
+        let r = reflect(-v, n);
+        spec = (power + 2.0) / (2.0 * PI) * pow(max(dot(r, l), 0.0), power);
+    }
+    return ((1.0 - g) * albedo / PI + vec3<f32>(g * spec)) * c;
+}
+
+// Visibility of point light i from p (shadows/cube.inc.wgsl); frame.csm.z is 0 until the
+// cubes have been rendered.
+fn point_visibility(i: u32, p: vec3<f32>, gn: vec3<f32>) -> f32 {
+    let c = lights[i].color.w;
+    if c < 0.0 || frame.csm.z == 0u {
+        return 1.0;
+    }
+    let s = lights[i].shadow;
+    return cube_visibility(cubes, cube_cmp, i32(c), lights[i].position.xyz, s.x, s.y, s.z, p, gn);
+}
+
+// The light of every point light in reach reflected by the base BRDF at p (shading normal
+// n, geometric normal gn, towards v).
+fn point_lights(albedo: vec3<f32>, g: f32, power: f32, n: vec3<f32>, v: vec3<f32>, p: vec3<f32>, gn: vec3<f32>) -> vec3<f32> {
+    var sum = vec3<f32>(0.0);
+    for (var i = 0u; i < frame.size.z; i = i + 1u) {
+        let l = lights[i].position;
+        let d = l.xyz - p;
+        let dist2 = max(dot(d, d), 1e-4);
+        if dist2 > l.w * l.w {
+            continue;
+        }
+        let f = base_brdf_cos(albedo, g, power, n, d * inverseSqrt(dist2), v);
+        if any(f > vec3<f32>(0.0)) {
+            sum += f * lights[i].color.rgb / dist2 * point_visibility(i, p, gn);
+        }
+    }
+    return sum;
+}
