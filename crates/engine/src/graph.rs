@@ -17,18 +17,25 @@ use crate::passes::raycast::RayBatch;
 use crate::passes::rsm_gather::RsmGatherState;
 use crate::passes::shadow::ShadowMaps;
 use crate::passes::sky::{SkyLight, SkyMapState, SkyVolumeState};
+use crate::passes::traced_lighting::{OsmPass, TracedInputs, TracedLightingPass};
+use crate::settings::TracedShading;
 use crate::settings::{Indirect, Specular};
 use crate::state::FrameCtx;
 use crate::state::SunLight;
-use crate::trace::{TraceLighting, TraceSettings, trace_rays};
+use crate::trace::{TraceLighting, TraceSettings, TracedHit, trace_rays, trace_surfaces};
 use frame_scheduler::{
     Budget, FrameGraph, PassBuilder, PassId, PassIo, PassResult, Res, quantise_dir,
 };
 use glam::Vec3;
 use std::any::Any;
 
-/// Traced radiance per ray of the batch.
-pub struct Traced(pub Vec<Vec3>);
+/// What the ray tracing job made of the batch's rays.
+pub enum Traced {
+    /// Each ray's radiance, shaded on the CPU (`TracedShading::Cpu`).
+    Radiance(Vec<Vec3>),
+    /// Each ray's first surface, for the GPU to light (`TracedShading::Gpu`).
+    Surfaces(Vec<TracedHit>),
+}
 
 /// The G-buffer targets (in `State`) hold the view of this camera.
 pub struct GBufferView(pub scene::Camera);
@@ -61,6 +68,8 @@ pub mod pass {
     pub const RAY_CASTING: &str = "ray casting buffer";
     pub const RAY_TRACING: &str = "ray tracing";
     pub const LIGHTING: &str = "lighting";
+    pub const OSM: &str = "overlapped shadow maps";
+    pub const TRACED_LIGHTING: &str = "traced g-buffer lighting";
     pub const COMBINE: &str = "traced upload + combine";
     pub const TONE_MAPPING: &str = "tone mapping";
 }
@@ -167,6 +176,8 @@ struct Resources {
     cache: Res<CacheState>,
     batch: Res<RayBatch>,
     traced: Res<Traced>,
+    osm: Res<OsmPass>,
+    traced_lit: Res<TracedLightingPass>,
     lit: Res<LitView>,
     combined: Res<CombinedView>,
     shown: Res<Shown>,
@@ -185,6 +196,8 @@ impl Resources {
             cache: g.resource("radiance cache"),
             batch: g.resource("ray batch"),
             traced: g.resource("traced radiance"),
+            osm: g.resource("overlapped shadow maps"),
+            traced_lit: g.resource("traced g-buffer, lit"),
             lit: g.resource("lit view"),
             combined: g.resource("combined view"),
             shown: g.resource("display image"),
@@ -231,6 +244,7 @@ pub fn build(set: &crate::Settings, sky_layers: u32) -> (FrameGraph<FrameCtx>, O
     bounce_passes(&mut g, r, set.sky_bounce > 0);
     cache_pass(&mut g, r, set.cache_frames);
     trace_passes(&mut g, r);
+    traced_gbuffer_passes(&mut g, r);
     lighting_pass(&mut g, r);
     combine_pass(&mut g, r);
     tone_mapping_pass(&mut g, r);
@@ -466,8 +480,15 @@ fn trace_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
                 ambient: &ambient,
             };
             let settings = TraceSettings { max_depth: s.settings.trace_depth, alpha_test: true };
-            let radiance = trace_rays(&s.trace, &lighting, &b.rays, &settings);
-            io.put(r.traced, Traced(radiance))?;
+            let traced = match s.settings.traced_shading {
+                TracedShading::Cpu => {
+                    Traced::Radiance(trace_rays(&s.trace, &lighting, &b.rays, &settings))
+                }
+                TracedShading::Gpu => {
+                    Traced::Surfaces(trace_surfaces(&s.trace, &lighting, &b.rays, &settings))
+                }
+            };
+            io.put(r.traced, traced)?;
             Ok(())
         });
 }
@@ -531,12 +552,88 @@ fn lighting_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
         });
 }
 
-/// The traced radiance uploaded and combined with the lit view.
+const GPU_SHADING: &str = "the traced G-buffer is lit on the GPU";
+fn gpu_shading(c: &FrameCtx) -> bool {
+    c.state.settings.traced_shading == TracedShading::Gpu
+}
+
+/// The traced G-buffer lit on the GPU (`TracedShading::Gpu`): the sun's overlapped shadow
+/// maps around the camera, and the lighting of the traced surfaces into the combine pass's
+/// traced radiance.
+fn traced_gbuffer_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
+    g.gpu_pass(pass::OSM)
+        .writes(r.osm)
+        .switched(Effect::SunShadows)
+        .run_if(GPU_SHADING, gpu_shading)
+        .run_if(RAYS_SWITCHED, rays_switched)
+        .run_if(RAYS_NEEDED, |c: &FrameCtx| c.needs.ray_tracing())
+        .run_if("the sun casts shadows", |c: &FrameCtx| {
+            c.needs.sun_shadows.needed && c.sun.is_some()
+        })
+        .key("camera cell (1 m)", |c: &FrameCtx| quantise_dir(c.camera.position.to_array(), 1.0))
+        .key("sun direction", sun_key)
+        .run(move |io| -> PassResult {
+            let mut osm =
+                previous_or(io, r.osm, |c| OsmPass::new(&c.state.gpu.device, &c.state.settings))?;
+            let c = io.ctx();
+            let (s, sun) = (&c.state, sun_of(c)?);
+            osm.render(&s.gpu, &s.scene, c.camera.position, &sun)?;
+            s.gpu.take_error()?;
+            io.put(r.osm, osm)?;
+            Ok(())
+        });
+
+    g.sync_point(pass::TRACED_LIGHTING)
+        .reads(r.batch)
+        .reads(r.traced)
+        .reads(r.osm)
+        .reads(r.cubes)
+        .reads(r.sky_map)
+        .reads(r.sky_vol)
+        .reads(r.lpv)
+        .writes(r.traced_lit)
+        .run_if(GPU_SHADING, gpu_shading)
+        .run_if(RAYS_SWITCHED, rays_switched)
+        .run_if(RAYS_NEEDED, |c: &FrameCtx| c.needs.ray_tracing())
+        .cached()
+        .run(move |io| -> PassResult {
+            let mut pass =
+                previous_or(io, r.traced_lit, |c| TracedLightingPass::new(&c.state.gpu.device))?;
+            let c = io.ctx();
+            let s = &c.state;
+            let Traced::Surfaces(hits) = io.read(r.traced)? else {
+                return Err(
+                    EngineError::Settings("the ray tracing job shaded on the CPU".into()).into()
+                );
+            };
+            let osm = io.try_read(r.osm).filter(|_| c.needs.sun_shadows.needed);
+            let bounce = c.needs.indirect_lpv.needed && c.indirect == Indirect::Lpv;
+            let sky = sky_light(io, r).filter(|_| c.needs.sky_lighting.needed);
+            let cubes = io.try_read(r.cubes).is_some();
+            write_frame_uniform(c, Bound { shadows: None, cubes, sky_map_size: 0 });
+            let inputs = TracedInputs {
+                frame: &s.frame,
+                osm: osm.map_or_else(|| s.shadow.bindings(None), OsmPass::bindings),
+                sky,
+                lpv: io.try_read(r.lpv).filter(|_| bounce),
+                lights: &s.lights,
+                cubes: s.point_shadow.bindings(),
+                out: s.combine.traced(),
+            };
+            pass.run(&s.gpu, io.read(r.batch)?, hits, &inputs)?;
+            s.gpu.take_error()?;
+            io.put(r.traced_lit, pass)?;
+            Ok(())
+        });
+}
+
+/// The traced radiance (uploaded from the CPU, or lit on the GPU) combined with the lit view.
 fn combine_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
     g.sync_point(pass::COMBINE)
         .reads(r.lit)
         .reads(r.batch)
         .reads(r.traced)
+        .reads(r.traced_lit)
         .writes(r.combined)
         .run_if(RAYS_SWITCHED, rays_switched)
         .run_if(RAYS_NEEDED, |c: &FrameCtx| c.needs.ray_tracing())
@@ -545,8 +642,9 @@ fn combine_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
         .run(move |io| -> PassResult {
             let c = io.ctx();
             let s = &c.state;
-            let (b, t) = (io.read(r.batch)?, io.read(r.traced)?);
-            s.combine.upload(&s.gpu, b, &t.0);
+            if let Traced::Radiance(radiance) = io.read(r.traced)? {
+                s.combine.upload(&s.gpu, io.read(r.batch)?, radiance);
+            }
             let mut enc = s.gpu.device.create_command_encoder(&Default::default());
             let (device, targets, frame) = (&s.gpu.device, &s.targets, &s.frame);
             s.combine.record(device, &mut enc, targets, frame, &s.scene.materials, &s.raycast);

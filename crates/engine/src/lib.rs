@@ -94,5 +94,5 @@ pub use gpu::TransferCounts;
 pub use graph::pass;
 pub use passes::radiance_cache::CacheSummary;
 pub use renderer::{Frame, FrameStats, HdrFrame, Renderer};
-pub use settings::{Indirect, Preset, Settings, Specular};
+pub use settings::{Indirect, Preset, Settings, Specular, TracedShading};
 pub use views::{Channel, View};

@@ -128,6 +128,47 @@ pub enum Specular {
     BlinnPhong,
 }
 
+/// Where the surfaces the traced rays find are lit (thesis 6.3).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TracedShading {
+    /// On the CPU where they are found, with shadow rays through the kd-tree (the presets'):
+    /// glass lets the sun through, and the sky volume, the LPV and the radiance cache light
+    /// them.
+    #[default]
+    Cpu,
+    /// The thesis's design: the first surfaces go to the GPU as a traced G-buffer and are lit
+    /// there with the deferred pass's BRDF, the sun through overlapped shadow maps
+    /// ([`Settings::osm`]), the point lights through their cubes, the sky volume and the LPV
+    /// by their lookup kernels (the radiance cache does not light them; glass casts the
+    /// shadow maps' opaque shadows). The CPU traces no shadow rays for them.
+    Gpu,
+}
+
+impl TracedShading {
+    pub const ALL: [TracedShading; 2] = [TracedShading::Cpu, TracedShading::Gpu];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            TracedShading::Cpu => "cpu",
+            TracedShading::Gpu => "gpu",
+        }
+    }
+}
+
+impl fmt::Display for TracedShading {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for TracedShading {
+    type Err = EngineError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        parse_named(&TracedShading::ALL, TracedShading::name, s, "traced shading")
+    }
+}
+
 /// Every knob of the engine. Build with [`Settings::preset`] and adjust fields.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Settings {
@@ -203,6 +244,12 @@ pub struct Settings {
     pub ssao_radius: f32,
     /// Ray tracing: on when the scene needs it; depth 1 is the thesis (no recursion).
     pub trace_depth: u32,
+    /// Where the traced rays' surfaces are lit (the presets: on the CPU).
+    pub traced_shading: TracedShading,
+    /// The overlapped shadow maps that light the traced G-buffer
+    /// ([`TracedShading::Gpu`]; thesis 6.3.1).
+    #[serde(skip)]
+    pub osm: shadows::OsmSettings,
     pub specular: Specular,
     /// The sun's glint in mirror and glass parts (off in the presets): the lighting pass adds
     /// `w_delta E_sun V_sun` times the density of the pixel's reflected directions at the
@@ -263,6 +310,8 @@ impl Settings {
             ssao_radius: 0.5,
             trace_depth: 1,
             specular: Specular::Phong,
+            traced_shading: TracedShading::Cpu,
+            osm: shadows::OsmSettings::DEFAULT,
             sun_glints: false,
             key: 0.18,
             adaptation_per_s: 1.5,
@@ -278,6 +327,7 @@ impl Settings {
                 sky_layers_per_frame: 16,
                 sky_map_size: 128,
                 lpv: lpv::LpvSettings::low(),
+                osm: shadows::OsmSettings::low(),
                 rsm_resolution: 128,
                 rsm_gi: rsm_gi::Settings::LOW,
                 // Not the crate's low preset: its 1 m caches and 32 moment rays let the sunlit
@@ -323,6 +373,7 @@ impl Settings {
                 cache_frames: 16,
                 ssao_samples: 16,
                 trace_depth: 2,
+                osm: shadows::OsmSettings::high(),
                 ..base
             },
         }
@@ -354,6 +405,7 @@ impl Settings {
         if self.sky_bounce > 1024 {
             return bad(format!("{} sky-bounce VPL columns (0..1024)", self.sky_bounce));
         }
+        self.osm.validate().map_err(|e| EngineError::Settings(e.to_string()))?;
         if !(1..=3).contains(&self.trace_depth) {
             return bad(format!("trace depth {} (1..3)", self.trace_depth));
         }

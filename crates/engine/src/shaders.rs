@@ -8,6 +8,7 @@ const RAYCAST: &str = include_str!("../../../shaders/engine/raycast.wgsl");
 const COMBINE: &str = include_str!("../../../shaders/engine/combine.wgsl");
 const SKY_VPLS: &str = include_str!("../../../shaders/engine/sky_vpls.wgsl");
 const SHADING: &str = include_str!("../../../shaders/engine/shading.inc.wgsl");
+const TRACED: &str = include_str!("../../../shaders/engine/traced.wgsl");
 const TONEMAP: &str = include_str!("../../../shaders/engine/tonemap.wgsl");
 
 /// Every complete shader as `(name, source)`, for the pipelines and the naga test.
@@ -19,6 +20,7 @@ pub fn all() -> Vec<(&'static str, String)> {
         ("sky_vpls", sky_vpls()),
         ("raycast", raycast()),
         ("combine", combine()),
+        ("traced", traced()),
         ("tonemap", tonemap()),
     ]
 }
@@ -33,6 +35,12 @@ pub fn lighting() -> String {
     format!(
         "{COMMON}\n{PCSS_INC_WGSL}\n{CSM_INC_WGSL}\n{CUBE_INC_WGSL}\n{ssao}\n{sky}\n{SHADING}\n{LIGHTING}"
     )
+}
+
+pub fn traced() -> String {
+    use shadows::gpu::{CSM_INC_WGSL, CUBE_INC_WGSL, OSM_INC_WGSL, PCSS_INC_WGSL};
+    let shadows = format!("{PCSS_INC_WGSL}\n{CSM_INC_WGSL}\n{OSM_INC_WGSL}\n{CUBE_INC_WGSL}");
+    format!("{COMMON}\n{shadows}\n{SHADING}\n{TRACED}")
 }
 
 pub fn queries() -> String {

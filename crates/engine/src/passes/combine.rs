@@ -28,6 +28,12 @@ impl CombinePass {
         })
     }
 
+    /// The traced radiance the combination reads (two `vec4` slots per texel: reflection,
+    /// refraction), which the traced G-buffer's lighting writes on the GPU.
+    pub fn traced(&self) -> &wgpu::Buffer {
+        &self.traced
+    }
+
     /// Uploads the radiance traced for `batch` (`radiance[i]` for `batch.rays[i]`).
     pub fn upload(&self, gpu: &Gpu, batch: &RayBatch, radiance: &[Vec3]) {
         let mut data = vec![[0.0f32; 4]; self.texels * 2];

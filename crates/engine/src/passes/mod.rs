@@ -15,3 +15,4 @@ pub mod sky;
 pub mod sky_bounce;
 pub mod sun_rsm;
 pub mod tonemap;
+pub mod traced_lighting;

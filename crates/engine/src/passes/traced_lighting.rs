@@ -1,0 +1,233 @@
+//! The traced G-buffer lit on the GPU (thesis 6.3, `Settings::traced_shading` =
+//! `TracedShading::Gpu`): the sun's overlapped shadow maps (6.3.1, `shadows::osm`, rendered
+//! by the crate's resident cascade pass), and the lighting of the first surfaces the CPU ray
+//! tracer found (`trace::TracedHit`) by `shaders/engine/traced.wgsl`: their queries, the sky
+//! volume's and the LPV's lookup kernels over them, then the base BRDF with the sun, the
+//! point lights and that irradiance, into the combine pass's traced radiance.
+
+use super::lpv::LpvState;
+use super::raycast::RayBatch;
+use super::sky::SkyLight;
+use crate::gpu::{Gpu, SceneBuffers, compute_pipeline, dispatch, storage_empty, uniform};
+use crate::state::SunLight;
+use crate::trace::TracedHit;
+use crate::{EngineError, Settings};
+use glam::Vec3;
+use shadows::gpu::{CascadeMaps, CascadeShadows};
+use shadows::{CsmCascade, OsmSettings, OverlappedShadowMaps, Pcss, PcssSettings};
+
+fn tech(e: shadows::ShadowError) -> EngineError {
+    EngineError::technique("shadows", e)
+}
+
+/// The overlapped shadow maps of the last render: how many there are.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct OsmMaps {
+    pub count: u32,
+}
+
+/// The sun's overlapped shadow maps around the camera, and what their last render left.
+pub struct OsmPass {
+    maps: CascadeShadows,
+    settings: OsmSettings,
+    pcss: PcssSettings,
+    pub rendered: OsmMaps,
+}
+
+impl OsmPass {
+    pub fn new(device: &wgpu::Device, settings: &Settings) -> Result<Self, EngineError> {
+        let osm = settings.osm;
+        let maps =
+            CascadeShadows::new(device, SceneBuffers::SHADOW_LAYOUT, osm.resolution, osm.maps)
+                .map_err(tech)?;
+        let pcss = PcssSettings {
+            blocker_taps: settings.pcss_blocker_taps.max(1),
+            pcf_taps: settings.pcss_pcf_taps.max(1),
+            ..PcssSettings::DEFAULT
+        };
+        Ok(Self { maps, settings: osm, pcss, rendered: OsmMaps::default() })
+    }
+
+    /// Fits the maps around `eye` for the sun and renders them.
+    pub fn render(
+        &mut self,
+        gpu: &Gpu,
+        scene: &SceneBuffers,
+        eye: Vec3,
+        sun: &SunLight,
+    ) -> Result<(), EngineError> {
+        let osm =
+            OverlappedShadowMaps::fit(eye.as_dvec3(), -sun.dir, &self.settings).map_err(tech)?;
+        let mut taps = Vec::new();
+        let mut blocks = Vec::with_capacity(osm.maps.len());
+        for view in &osm.maps {
+            let pcss = Pcss::directional(view, sun.angular_radius, &self.pcss).map_err(tech)?;
+            taps = pcss.taps().to_vec();
+            blocks.push(CsmCascade::of_view(view, f32::INFINITY, &pcss));
+        }
+        let mut enc = gpu.device.create_command_encoder(&Default::default());
+        let geometry = scene.shadow_geometry(false);
+        let maps =
+            self.maps.record(&gpu.queue, &mut enc, &geometry, &blocks, &taps).map_err(tech)?;
+        gpu.queue.submit([enc.finish()]);
+        self.rendered = OsmMaps { count: maps.count };
+        Ok(())
+    }
+
+    /// The lighting's bindings for the maps of the last render.
+    pub fn bindings(&self) -> CascadeMaps<'_> {
+        self.maps.maps(self.rendered.count)
+    }
+}
+
+/// What the traced lighting reads besides the hits.
+pub struct TracedInputs<'a> {
+    pub frame: &'a wgpu::Buffer,
+    /// The sun's overlapped maps (`count` 0: no sun shadows).
+    pub osm: CascadeMaps<'a>,
+    pub sky: Option<SkyLight<'a>>,
+    pub lpv: Option<&'a LpvState>,
+    pub lights: &'a wgpu::Buffer,
+    pub cubes: (&'a wgpu::TextureView, &'a wgpu::Sampler),
+    /// The combine pass's traced radiance (two `vec4` slots per texel), written here.
+    pub out: &'a wgpu::Buffer,
+}
+
+/// The traced G-buffer's per-hit buffers, for `capacity` hits.
+struct HitBuffers {
+    hits: wgpu::Buffer,
+    sky_q: wgpu::Buffer,
+    sky_out: wgpu::Buffer,
+    lpv_q: wgpu::Buffer,
+    lpv_out: wgpu::Buffer,
+    capacity: usize,
+}
+
+impl HitBuffers {
+    fn new(device: &wgpu::Device, capacity: usize) -> Self {
+        let n = capacity as u64;
+        Self {
+            hits: storage_empty(device, "traced g-buffer", n * 96),
+            sky_q: storage_empty(device, "traced sky queries", n * 48),
+            sky_out: storage_empty(device, "traced sky light", n * 16),
+            lpv_q: storage_empty(device, "traced lpv queries", n * 32),
+            lpv_out: storage_empty(device, "traced lpv light", n * 16),
+            capacity,
+        }
+    }
+}
+
+/// The traced G-buffer's kernels and buffers (grown to the most hits a frame has had, by
+/// powers of two, so a steady view allocates nothing).
+pub struct TracedLightingPass {
+    queries: wgpu::ComputePipeline,
+    lighting: wgpu::ComputePipeline,
+    params: wgpu::Buffer,
+    buffers: HitBuffers,
+}
+
+impl TracedLightingPass {
+    pub fn new(device: &wgpu::Device) -> Result<Self, EngineError> {
+        let source = crate::shaders::traced();
+        Ok(Self {
+            queries: compute_pipeline(device, "traced queries", &source, "traced_queries")?,
+            lighting: compute_pipeline(device, "traced lighting", &source, "traced_lighting")?,
+            params: uniform(device, "traced params", &[0u8; 16]),
+            buffers: HitBuffers::new(device, 1024),
+        })
+    }
+
+    /// Uploads the hits traced for `batch` (their slots set here), records their queries,
+    /// the lookups and the lighting into `inputs.out` (cleared first), and submits.
+    pub fn run(
+        &mut self,
+        gpu: &Gpu,
+        batch: &RayBatch,
+        hits: &[TracedHit],
+        inputs: &TracedInputs<'_>,
+    ) -> Result<(), EngineError> {
+        let count = hits.len().min(batch.slots.len());
+        if count > self.buffers.capacity {
+            self.buffers = HitBuffers::new(&gpu.device, count.next_power_of_two());
+        }
+        let b = &self.buffers;
+        let count = count as u32;
+        let records: Vec<TracedHit> = hits
+            .iter()
+            .zip(&batch.slots)
+            .take(count as usize)
+            .map(|(h, &(texel, refract))| {
+                let mut h = *h;
+                h.position[3] = (texel * 2 + u32::from(refract)) as f32;
+                h
+            })
+            .collect();
+        gpu.write(&b.hits, 0, bytemuck::cast_slice(&records));
+        let bounce = u32::from(inputs.lpv.is_some());
+        gpu.write(&self.params, 0, bytemuck::cast_slice(&[count, inputs.osm.count, bounce, 0]));
+        let device = &gpu.device;
+        let mut enc = device.create_command_encoder(&Default::default());
+        enc.clear_buffer(inputs.out, 0, None);
+        let groups = [count.div_ceil(64).max(1), 1, 1];
+        let queries = numbered_group(
+            device,
+            &self.queries,
+            &[
+                (1, self.params.as_entire_binding()),
+                (2, b.hits.as_entire_binding()),
+                (3, b.sky_q.as_entire_binding()),
+                (4, b.lpv_q.as_entire_binding()),
+            ],
+        );
+        dispatch(&mut enc, &self.queries, &queries, groups);
+        if let Some(sky) = &inputs.sky {
+            sky.record_lookup(gpu, &mut enc, &b.sky_q, &b.sky_out, count);
+        }
+        if let Some(lpv) = inputs.lpv {
+            lpv.record_lookup(gpu, &mut enc, &b.lpv_q, &b.lpv_out, count);
+        }
+        let tv = wgpu::BindingResource::TextureView;
+        let lighting = numbered_group(
+            device,
+            &self.lighting,
+            &[
+                (0, inputs.frame.as_entire_binding()),
+                (1, self.params.as_entire_binding()),
+                (2, b.hits.as_entire_binding()),
+                (5, tv(inputs.osm.depth)),
+                (6, inputs.osm.cascades.as_entire_binding()),
+                (7, inputs.osm.taps.as_entire_binding()),
+                (8, b.sky_out.as_entire_binding()),
+                (9, b.lpv_out.as_entire_binding()),
+                (10, inputs.lights.as_entire_binding()),
+                (11, tv(inputs.cubes.0)),
+                (12, wgpu::BindingResource::Sampler(inputs.cubes.1)),
+                (13, inputs.out.as_entire_binding()),
+            ],
+        );
+        dispatch(&mut enc, &self.lighting, &lighting, groups);
+        gpu.queue.submit([enc.finish()]);
+        Ok(())
+    }
+}
+
+/// A bind group for group 0 of `pipeline` with the given binding numbers (the two kernels of
+/// `traced.wgsl` share one numbering, each using part of it).
+fn numbered_group(
+    device: &wgpu::Device,
+    pipeline: &wgpu::ComputePipeline,
+    entries: &[(u32, wgpu::BindingResource<'_>)],
+) -> wgpu::BindGroup {
+    let entries: Vec<wgpu::BindGroupEntry<'_>> = entries
+        .iter()
+        .map(|(binding, resource)| wgpu::BindGroupEntry {
+            binding: *binding,
+            resource: resource.clone(),
+        })
+        .collect();
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("traced lighting"),
+        layout: &pipeline.get_bind_group_layout(0),
+        entries: &entries,
+    })
+}

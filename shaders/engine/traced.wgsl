@@ -1,0 +1,121 @@
+// include: engine/common.inc.wgsl
+// include: shadows/pcss.inc.wgsl
+// include: shadows/csm.inc.wgsl
+// include: shadows/osm.inc.wgsl
+// include: shadows/cube.inc.wgsl
+// include: engine/shading.inc.wgsl
+// The traced G-buffer lit on the GPU (thesis 6.3): the CPU ray tracer hands over each
+// traced ray's first surface (`engine::trace::TracedHit`), and its base part is lit here as
+// the deferred pass lights the view: the sun through the overlapped shadow maps (6.3.1: the
+// view's cascades do not cover what reflections see), the point lights through their cubes,
+// the sky volume's and the one-bounce technique's irradiance from their crates' lookup
+// kernels (fed by `traced_queries`). The result goes to the ray's slot of the combine pass's
+// traced radiance.
+
+struct TracedHit {
+    // xyz surface point, w the ray's slot in `out`
+    position: vec4<f32>,
+    // xyz unit shading normal (ray side), w base weight (0: nothing to light)
+    normal: vec4<f32>,
+    // xyz unit geometric normal (ray side), w glossiness
+    geometric: vec4<f32>,
+    // rgb albedo, w specular power
+    albedo: vec4<f32>,
+    // rgb light the CPU computed (emission, sky, mirror and glass parts)
+    other: vec4<f32>,
+    // xyz unit ray direction
+    dir: vec4<f32>,
+}
+
+struct LpvQuery {
+    position: vec4<f32>,
+    normal: vec4<f32>,
+}
+
+// x hits, y overlapped shadow maps, z 1 when `bounce` holds irradiance
+struct TracedParams {
+    counts: vec4<u32>,
+}
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<uniform> params: TracedParams;
+@group(0) @binding(2) var<storage, read> hits: array<TracedHit>;
+// traced_queries
+@group(0) @binding(3) var<storage, read_write> sky_q: array<SkyQuery>;
+@group(0) @binding(4) var<storage, read_write> lpv_q: array<LpvQuery>;
+// traced_lighting
+@group(0) @binding(5) var osm_t: texture_depth_2d_array;
+@group(0) @binding(6) var<storage, read> osm_maps: array<CsmCascade>;
+@group(0) @binding(7) var<storage, read> taps: array<vec2<f32>>;
+@group(0) @binding(8) var<storage, read> sky: array<vec4<f32>>;
+@group(0) @binding(9) var<storage, read> bounce: array<vec4<f32>>;
+@group(0) @binding(10) var<storage, read> lights: array<PointLight>;
+@group(0) @binding(11) var cubes: texture_depth_cube_array;
+@group(0) @binding(12) var cube_cmp: sampler_comparison;
+@group(0) @binding(13) var<storage, read_write> out: array<vec4<f32>>;
+
+fn csm_count() -> i32 {
+    return i32(params.counts.y);
+}
+
+fn csm_cascade(i: i32) -> CsmCascade {
+    return osm_maps[i];
+}
+
+fn pcss_depth(tx: i32, ty: i32) -> f32 {
+    return textureLoad(osm_t, vec2<i32>(tx, ty), csm_layer, 0);
+}
+
+fn pcss_tap(i: u32) -> vec2<f32> {
+    return taps[i];
+}
+
+// The lookup kernels' queries for every hit: the sky volume's with the base part's diffuse
+// albedo (its lookup returns albedo / pi * E), the LPV's position and normal.
+@compute @workgroup_size(64)
+fn traced_queries(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = id.x;
+    if i >= params.counts.x {
+        return;
+    }
+    let h = hits[i];
+    let lit = h.normal.w > 0.0;
+    let n = select(vec3<f32>(0.0), h.normal.xyz, lit);
+    let diffuse = select(vec3<f32>(0.0), (1.0 - h.geometric.w) * h.albedo.rgb, lit);
+    sky_q[i] = SkyQuery(vec4<f32>(h.position.xyz, 1.0), vec4<f32>(n, 0.0), vec4<f32>(diffuse, 1.0));
+    lpv_q[i] = LpvQuery(vec4<f32>(h.position.xyz, 1.0), vec4<f32>(n, 0.0));
+}
+
+@compute @workgroup_size(64)
+fn traced_lighting(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = id.x;
+    if i >= params.counts.x {
+        return;
+    }
+    let h = hits[i];
+    var c = h.other.rgb;
+    let base = h.normal.w;
+    if base > 0.0 {
+        let p = h.position.xyz;
+        let n = h.normal.xyz;
+        let gn = h.geometric.xyz;
+        let g = h.geometric.w;
+        let power = h.albedo.w;
+        let v = -h.dir.xyz;
+        var light = point_lights(h.albedo.rgb, g, power, n, v, p, gn);
+        if frame.sun_dir.w > 0.0 {
+            let f = base_brdf_cos(h.albedo.rgb, g, power, n, frame.sun_dir.xyz, v);
+            if any(f > vec3<f32>(0.0)) {
+                light += f * frame.sun_irradiance.rgb * osm_visibility(p, gn);
+            }
+        }
+        if (frame.size.w & FLAG_SKY_VOLUME) != 0u {
+            light += sky[i].xyz;
+        }
+        if params.counts.z != 0u {
+            light += (1.0 - g) * h.albedo.rgb / PI * bounce[i].xyz;
+        }
+        c += base * light;
+    }
+    out[u32(h.position.w)] = vec4<f32>(max(c, vec3<f32>(0.0)), 1.0);
+}
