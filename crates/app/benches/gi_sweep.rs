@@ -32,6 +32,10 @@
 //!   the reference's light of more than one bounce (`app::beyond`): error = its rel RMS
 //!   against the full reference, the floor of an engine that computes one bounce; settings:
 //!   its luminance share, and the share of the preset's full-frame squared error it is.
+//! - `engine/traced_shading_{city,cornell_window}_320x180_{cpu,gpu}_{default,high}`: the
+//!   traced rays' surfaces shaded on the CPU with shadow rays against the thesis's traced
+//!   G-buffer lit on the GPU with overlapped shadow maps (`engine::TracedShading`): error =
+//!   the reflections component against the reference's, time = the passes that make it.
 //! - Full sweep only: the same at 1600x900 (`engine/city_1600x900_*`,
 //!   `engine/cornell_window_1600x900_*`, `engine/flythrough_city_1600x900_100`), with
 //!   references of more samples per pixel.
@@ -392,6 +396,58 @@ fn lpv_option_entries(sweep: &mut Sweep, view: &View) {
                 .threads(rayon::current_num_threads())
                 .note(timing_note(software, timed_pass)),
         );
+    }
+}
+
+/// `engine/traced_shading_<scene>_<w>x<h>_{cpu,gpu}_<preset>` (technique "traced shading
+/// <scene>"): the traced rays' surfaces shaded on the CPU with shadow rays against the thesis's
+/// traced G-buffer lit on the GPU with overlapped shadow maps (`engine::TracedShading`);
+/// error = the reflections component against the reference's, time = the passes that make
+/// it (casting, tracing, the maps and the traced lighting, combine).
+fn traced_shading_race(
+    sweep: &mut Sweep,
+    which: Generated,
+    (w, h): (u32, u32),
+    (reference, rname): &(ReferenceRender, String),
+) {
+    use engine::{Component, TracedShading};
+    let name = which.name();
+    let scene = which.build(1);
+    let mut camera = scene.camera;
+    camera.aspect = w as f32 / h as f32;
+    for preset in [Preset::Default, Preset::High] {
+        for shading in TracedShading::ALL {
+            let tag = format!("{name}_{w}x{h}_{shading}_{preset}");
+            sweep.stage(&format!("traced shading {tag}"));
+            let settings = Settings { traced_shading: shading, ..Settings::preset(preset, w, h) };
+            let depth = settings.trace_depth;
+            let mut r = renderer(&scene, settings);
+            r.set_camera(camera).expect("camera");
+            warm_up(&mut r);
+            r.set_component(Some(Component::Reflections));
+            r.set_camera(nudged(&camera, 1)).expect("camera");
+            let frame = render(&mut r);
+            let image = app::image_of(&frame.hdr);
+            let f = app::ledger::figures("all", &image, reference, 0..image.pixels.len(), 1.0);
+            let software = r.is_software();
+            sweep.entry(
+                Entry::new(
+                    format!("engine/traced_shading_{tag}"),
+                    format!("traced shading {name}"),
+                    passes_ms(&frame.report, Component::Reflections),
+                )
+                .setting("scene", name)
+                .setting("traced_shading", shading.name())
+                .setting("preset", preset)
+                .setting("trace_depth", depth)
+                .setting("luminance_ratio", f.luminance_ratio)
+                .setting("uploaded_bytes", frame.transfers.uploaded_bytes)
+                .setting("software_adapter", software)
+                .error("rel_rms", f.rel_rms, rname)
+                .threads(rayon::current_num_threads())
+                .note(timing_note(software, "the passes that make the reflections component")),
+            );
+        }
     }
 }
 
@@ -770,6 +826,10 @@ fn main() {
                 let bounce = COMPONENTS.iter().position(|&c| c == Component::SunIndirectDiffuse);
                 if let Some(k) = bounce {
                     indirect_race(&mut sweep, which, (w, h), &refs[k]);
+                }
+                let reflections = COMPONENTS.iter().position(|&c| c == Component::Reflections);
+                if let (Some(k), true) = (reflections, which != Generated::TwoRooms) {
+                    traced_shading_race(&mut sweep, which, (w, h), &refs[k]);
                 }
             }
         }

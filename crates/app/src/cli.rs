@@ -26,6 +26,8 @@ pub struct RenderJob {
     pub sky_bounce: u32,
     /// The LPV's glossy lookup, cells marched (`engine::Settings::lpv_glossy`; 0 off).
     pub lpv_glossy: u32,
+    /// Where the traced rays' surfaces are lit (`engine::Settings::traced_shading`).
+    pub traced_shading: engine::TracedShading,
     pub frames: u32,
     pub out: PathBuf,
     /// Samples per pixel of the reference image, if wanted.
@@ -51,6 +53,7 @@ impl Default for RenderJob {
             sun_glints: false,
             sky_bounce: 0,
             lpv_glossy: 0,
+            traced_shading: engine::TracedShading::Cpu,
             frames: 24,
             out: PathBuf::from("target/render"),
             reference_spp: None,
@@ -192,6 +195,7 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
         sun_glints: job.sun_glints,
         sky_bounce: job.sky_bounce,
         lpv_glossy: job.lpv_glossy,
+        traced_shading: job.traced_shading,
         ..Settings::preset(job.preset, job.width, job.height)
     };
     let mut renderer = Renderer::new(scene, settings)?;
@@ -244,6 +248,11 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
         .collect();
     notes.push(format!("sky volume complete: {}", renderer.sky_volume_complete()));
     notes.push(format!("one-bounce technique: {}", job.indirect));
+    if job.traced_shading == engine::TracedShading::Gpu {
+        notes.push(
+            "traced surfaces lit on the GPU (traced G-buffer, overlapped shadow maps)".into(),
+        );
+    }
     if let Some(c) = renderer.radiance_cache().filter(|_| job.indirect == Indirect::Cache) {
         notes.push(format!("radiance cache: {c}"));
     }

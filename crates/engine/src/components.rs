@@ -93,9 +93,14 @@ pub fn passes(component: Component) -> &'static [&'static str] {
         Component::SkyIrradiance => {
             &[pass::SKY_MAP, pass::SKY_VOLUME, pass::GBUFFER, pass::LIGHTING]
         }
-        Component::Reflections => {
-            &[pass::GBUFFER, pass::RAY_CASTING, pass::RAY_TRACING, pass::COMBINE]
-        }
+        Component::Reflections => &[
+            pass::GBUFFER,
+            pass::RAY_CASTING,
+            pass::RAY_TRACING,
+            pass::OSM,
+            pass::TRACED_LIGHTING,
+            pass::COMBINE,
+        ],
         Component::PointLights => &[pass::POINT_SHADOWS, pass::GBUFFER, pass::LIGHTING],
         Component::Emission => &[pass::GBUFFER, pass::LIGHTING],
         Component::Full => &[
@@ -109,6 +114,8 @@ pub fn passes(component: Component) -> &'static [&'static str] {
             pass::RADIANCE_CACHE,
             pass::RAY_CASTING,
             pass::RAY_TRACING,
+            pass::OSM,
+            pass::TRACED_LIGHTING,
             pass::LIGHTING,
             pass::COMBINE,
         ],

@@ -19,6 +19,8 @@
 //! | `ray casting buffer` | quarter-res origins + reflection/refraction rays, read back | 6.2.1 | - |
 //! | `ray tracing` | CPU kd-tree tracing and shading of those rays, on a worker thread | 6.2-6.3 | `kdtree_tracer` |
 //! | `lighting` | sun (Phong/Blinn-Phong, PCSS), point lights, sky volume + LPV lookups or the RSM gather, SSAO (the crates' WGSL snippets) | 3.3, 5.3.6-5.3.8 | `shadows`, `ssao`, `sky_volume`, `lpv`, `rsm_gi` |
+//! | `overlapped shadow maps` | with `TracedShading::Gpu`: the sun's maps around the camera for what reflections see (resident pass) | 6.3.1 | `shadows` |
+//! | `traced g-buffer lighting` | with `TracedShading::Gpu`: the traced hits uploaded and lit with the deferred pass's BRDF, the maps above, the sky volume's and the LPV's lookups | 6.3 | `shadows`, `sky_volume`, `lpv` |
 //! | `traced upload + combine` | traced radiance added with Fresnel weights, depth-aware 3x3 gather | 6.3.4-6.3.5 | - |
 //! | `tone mapping` | on the GPU, every frame: log-average luminance, eye adaptation, Reinhard, sRGB | 3.7 | - |
 //!
@@ -58,9 +60,11 @@
 //!   bounce's error at the same or less time ([`Indirect`] has the figures);
 //!   `Settings::indirect` (`--indirect lpv`) brings back the thesis's LPV, and
 //!   [`Renderer::set_indirect`] switches between them per frame.
-//! - The traced hits are shaded on the CPU with the same BRDF as the deferred pass (sun with
-//!   shadow rays instead of overlapped shadow maps, sky volume + LPV irradiance), instead of
-//!   uploading a traced G-buffer and lighting it on the GPU.
+//! - The presets shade the traced hits on the CPU with the same BRDF as the deferred pass
+//!   (the sun with shadow rays instead of overlapped shadow maps, so glass lets it through;
+//!   sky volume + LPV or radiance-cache irradiance). The thesis's traced G-buffer, uploaded
+//!   and lit on the GPU with overlapped shadow maps, is `Settings::traced_shading =
+//!   TracedShading::Gpu`; the bench's `engine/traced_shading_*` entries compare the two.
 //! - The LPV is looked up 1.5 cells along the normal at the default and high presets (half a
 //!   cell in the thesis and the `lpv` crate): a surface sees less of its own injected bounce
 //!   ([`settings::ENGINE_LPV_LOOKUP_OFFSET`] has the ledger's figures).

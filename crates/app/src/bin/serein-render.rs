@@ -46,6 +46,11 @@ struct Args {
     /// `engine::Settings::lpv_glossy`); 0: off, as in the presets.
     #[arg(long, default_value_t = 0)]
     lpv_glossy: u32,
+    /// Where the traced rays' surfaces are lit: cpu (with shadow rays, the presets') or gpu
+    /// (the thesis's traced G-buffer with overlapped shadow maps; see
+    /// `engine::TracedShading`).
+    #[arg(long, default_value = "cpu")]
+    traced_shading: engine::TracedShading,
     /// No progress bars.
     #[arg(long)]
     quiet: bool,
@@ -62,6 +67,7 @@ fn main() -> anyhow::Result<()> {
         sun_glints: a.sun_glints,
         sky_bounce: a.sky_bounce,
         lpv_glossy: a.lpv_glossy,
+        traced_shading: a.traced_shading,
         frames: a.frames,
         out: a.out.clone(),
         reference_spp: a.reference,
