@@ -12,7 +12,8 @@
 use super::sky::SkyLight;
 use crate::EngineError;
 use crate::gpu::{
-    GBufferTargets, Gpu, compute_pipeline, dispatch, storage_empty, texture_2d, uniform,
+    GBufferTargets, Gpu, compute_pipeline, dispatch, numbered_bind_group, storage_empty,
+    texture_2d, uniform,
 };
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
@@ -55,26 +56,6 @@ fn rsm_target(device: &wgpu::Device, label: &str, size: (u32, u32)) -> wgpu::Tex
     texture_2d(device, label, size, wgpu::TextureFormat::Rgba32Float, usage)
 }
 
-/// A bind group of `pipeline`'s group 0 from `(binding, resource)` pairs.
-fn group(
-    device: &wgpu::Device,
-    pipeline: &wgpu::ComputePipeline,
-    entries: &[(u32, wgpu::BindingResource<'_>)],
-) -> wgpu::BindGroup {
-    let entries: Vec<wgpu::BindGroupEntry<'_>> = entries
-        .iter()
-        .map(|(binding, resource)| wgpu::BindGroupEntry {
-            binding: *binding,
-            resource: resource.clone(),
-        })
-        .collect();
-    device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("sky vpls"),
-        layout: &pipeline.get_bind_group_layout(0),
-        entries: &entries,
-    })
-}
-
 impl SkyBounce {
     /// `columns` VPLs across the view (rows follow the aspect ratio), bound once to the
     /// G-buffer, frame uniform and materials of `inputs`.
@@ -100,7 +81,7 @@ impl SkyBounce {
             .map(|label| rsm_target(device, label, cells));
         let views = textures.each_ref().map(|t| t.create_view(&Default::default()));
         let tv = wgpu::BindingResource::TextureView;
-        let queries_group = group(
+        let queries_group = numbered_bind_group(
             device,
             &queries_pipeline,
             &[
@@ -113,7 +94,7 @@ impl SkyBounce {
                 (6, tv(&views[2])),
             ],
         );
-        let flux_group = group(
+        let flux_group = numbered_bind_group(
             device,
             &flux_pipeline,
             &[

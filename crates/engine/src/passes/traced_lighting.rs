@@ -8,7 +8,9 @@
 use super::lpv::LpvState;
 use super::raycast::RayBatch;
 use super::sky::SkyLight;
-use crate::gpu::{Gpu, SceneBuffers, compute_pipeline, dispatch, storage_empty, uniform};
+use crate::gpu::{
+    Gpu, SceneBuffers, compute_pipeline, dispatch, numbered_bind_group, storage_empty, uniform,
+};
 use crate::state::SunLight;
 use crate::trace::TracedHit;
 use crate::{EngineError, Settings};
@@ -169,7 +171,7 @@ impl TracedLightingPass {
         let mut enc = device.create_command_encoder(&Default::default());
         enc.clear_buffer(inputs.out, 0, None);
         let groups = [count.div_ceil(64).max(1), 1, 1];
-        let queries = numbered_group(
+        let queries = numbered_bind_group(
             device,
             &self.queries,
             &[
@@ -187,7 +189,7 @@ impl TracedLightingPass {
             lpv.record_lookup(gpu, &mut enc, &b.lpv_q, &b.lpv_out, count);
         }
         let tv = wgpu::BindingResource::TextureView;
-        let lighting = numbered_group(
+        let lighting = numbered_bind_group(
             device,
             &self.lighting,
             &[
@@ -209,25 +211,4 @@ impl TracedLightingPass {
         gpu.queue.submit([enc.finish()]);
         Ok(())
     }
-}
-
-/// A bind group for group 0 of `pipeline` with the given binding numbers (the two kernels of
-/// `traced.wgsl` share one numbering, each using part of it).
-fn numbered_group(
-    device: &wgpu::Device,
-    pipeline: &wgpu::ComputePipeline,
-    entries: &[(u32, wgpu::BindingResource<'_>)],
-) -> wgpu::BindGroup {
-    let entries: Vec<wgpu::BindGroupEntry<'_>> = entries
-        .iter()
-        .map(|(binding, resource)| wgpu::BindGroupEntry {
-            binding: *binding,
-            resource: resource.clone(),
-        })
-        .collect();
-    device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("traced lighting"),
-        layout: &pipeline.get_bind_group_layout(0),
-        entries: &entries,
-    })
 }
