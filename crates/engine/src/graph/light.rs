@@ -1,0 +1,269 @@
+//! The passes that light the view: the sky map and volume, the shadow maps, the G-buffer,
+//! the one-bounce techniques, the deferred lighting and the tone mapping.
+
+use super::*;
+
+/// The sky map (when the sun moved) and the sky volume filled over frames.
+pub(super) fn sky_passes(
+    g: &mut FrameGraph<FrameCtx>,
+    r: Resources,
+    sky_layers: u32,
+    layers_per_frame: u32,
+) -> PassId {
+    g.sync_point(pass::SKY_MAP)
+        .writes(r.sky_map)
+        .switched(Effect::SkyLighting)
+        .run_if(SKY_NEEDED, sky_needed)
+        .key("sun direction (0.06 deg)", sun_key)
+        .run(move |io| -> PassResult {
+            let c = io.ctx();
+            let (s, dir) = (&c.state, c.sun.map_or(Vec3::Y, |s| s.dir));
+            let previous = io.take_previous(r.sky_map)?;
+            let map = SkyMapState::build(&s.gpu, sky_setup(c)?, &s.settings, dir, previous)?;
+            s.gpu.take_error()?;
+            io.put(r.sky_map, map)?;
+            Ok(())
+        });
+
+    g.sync_point(pass::SKY_VOLUME)
+        .reads(r.sky_map)
+        .writes(r.sky_vol)
+        .switched(Effect::SkyLighting)
+        .run_if(SKY_NEEDED, sky_needed)
+        .cached()
+        .amortised(sky_layers, Budget::Units(layers_per_frame))
+        .run(move |io| -> PassResult {
+            let layer = io.unit().map_or(0, |u| u.index);
+            let mut volume = previous_or(io, r.sky_vol, |c| {
+                let s = &c.state;
+                SkyVolumeState::new(&s.gpu, sky_setup(c)?, &s.settings, s.lighting.sky_io())
+            })?;
+            let s = &io.ctx().state;
+            volume.fill_layer(&s.gpu, io.read(r.sky_map)?, layer)?;
+            s.gpu.take_error()?;
+            io.put(r.sky_vol, volume)?;
+            Ok(())
+        })
+}
+
+/// The sun's cascades and the point lights' cube maps.
+pub(super) fn shadow_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
+    g.gpu_pass(pass::SHADOW_MAPS)
+        .writes(r.shadow)
+        .switched(Effect::SunShadows)
+        .run_if("the sun casts shadows in view", |c: &FrameCtx| {
+            c.needs.sun_shadows.needed && c.sun.is_some()
+        })
+        .key("camera", camera_key)
+        .key("sun direction", sun_key)
+        .run(move |io| -> PassResult {
+            let c = io.ctx();
+            let (s, sun) = (&c.state, sun_of(c)?);
+            let (dir, radius) = (sun.dir, sun.angular_radius);
+            let maps = s.shadow.render(&s.gpu, &s.scene, &c.camera, dir, radius, &s.settings)?;
+            s.gpu.take_error()?;
+            io.put(r.shadow, maps)?;
+            Ok(())
+        });
+
+    g.gpu_pass(pass::POINT_SHADOWS)
+        .writes(r.cubes)
+        .switched(Effect::PointLightShadows)
+        .run_if("a shadow-casting point light reaches geometry in view", |c: &FrameCtx| {
+            c.needs.point_light_shadows.needed
+        })
+        .cached()
+        .run(move |io| -> PassResult {
+            let s = &io.ctx().state;
+            s.point_shadow.render(&s.gpu, &s.scene)?;
+            s.gpu.take_error()?;
+            io.put(r.cubes, CubeShadows)?;
+            Ok(())
+        });
+}
+
+/// The G-buffer of the camera.
+pub(super) fn gbuffer_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
+    g.gpu_pass(pass::GBUFFER).writes(r.gbuf).key("camera", camera_key).run(
+        move |io| -> PassResult {
+            let c = io.ctx();
+            let s = &c.state;
+            write_frame_uniform(c, Bound::default());
+            let mut enc = s.gpu.device.create_command_encoder(&Default::default());
+            s.gbuffer.record(&s.gpu.device, &mut enc, &s.targets, &s.frame, &s.scene);
+            s.gpu.queue.submit([enc.finish()]);
+            s.gpu.take_error()?;
+            io.put(r.gbuf, GBufferView(c.camera))?;
+            Ok(())
+        },
+    );
+}
+
+/// Whether traced rays read the one-bounce technique on the CPU this frame.
+fn rays_traced(c: &FrameCtx) -> bool {
+    rays_switched(c) && c.needs.ray_tracing()
+}
+
+/// One bounce of sunlight: the LPV, or the RSM the lighting pass gathers from.
+pub(super) fn bounce_passes(g: &mut FrameGraph<FrameCtx>, r: Resources, sky_bounce: bool) {
+    let mut lpv = g
+        .sync_point(pass::LPV)
+        .writes(r.lpv)
+        .switched(Effect::IndirectLight)
+        .run_if(BOUNCE_NEEDED, bounce_needed)
+        .run_if("the indirect technique is the LPV", |c: &FrameCtx| c.indirect == Indirect::Lpv)
+        .key("camera cell (1 m)", |c: &FrameCtx| quantise_dir(c.camera.position.to_array(), 1.0))
+        .key("sun direction", sun_key)
+        .key("traced rays read the volumes", rays_traced);
+    if sky_bounce {
+        // The sky-bounce VPLs are the view's surfaces lit by the sky volume.
+        lpv = lpv.reads(r.gbuf).reads(r.sky_map).reads(r.sky_vol);
+    }
+    lpv.run(move |io| -> PassResult {
+        let mut l = previous_or(io, r.lpv, |c| c.state.new_lpv())?;
+        let c = io.ctx();
+        let (s, sun) = (&c.state, sun_of(c)?);
+        let sky = sky_light(io, r).filter(|_| sky_needed(c));
+        l.update(&s.gpu, &s.scene, &c.camera, &sun, sky)?;
+        if rays_traced(c) {
+            // The traced hits look the LPV up on the CPU.
+            l.sync_cpu(&s.gpu)?;
+        }
+        s.gpu.take_error()?;
+        io.put(r.lpv, l)?;
+        Ok(())
+    });
+
+    g.gpu_pass(pass::SUN_RSM)
+        .writes(r.sun_rsm)
+        .switched(Effect::IndirectLight)
+        .run_if(BOUNCE_NEEDED, bounce_needed)
+        .run_if("the indirect technique is the RSM gather", |c: &FrameCtx| {
+            c.indirect == Indirect::Rsm
+        })
+        .key("camera cell (1 m)", |c: &FrameCtx| quantise_dir(c.camera.position.to_array(), 1.0))
+        .key("sun direction", sun_key)
+        .run(move |io| -> PassResult {
+            let mut gather = previous_or(io, r.sun_rsm, |c| c.state.new_rsm_gather())?;
+            let c = io.ctx();
+            let (s, sun) = (&c.state, sun_of(c)?);
+            gather.update(&s.gpu, &s.scene, c.camera.position, &sun)?;
+            s.gpu.take_error()?;
+            io.put(r.sun_rsm, gather)?;
+            Ok(())
+        });
+}
+
+/// The radiance cache: allocated from the view, lit on the CPU, written to its GPU copy;
+/// `cache_frames` frames after each camera or sun move (one unit per frame), then reused.
+pub(super) fn cache_pass(g: &mut FrameGraph<FrameCtx>, r: Resources, cache_frames: u32) {
+    g.sync_point(pass::RADIANCE_CACHE)
+        .writes(r.cache)
+        .switched(Effect::IndirectLight)
+        .run_if(BOUNCE_NEEDED, bounce_needed)
+        .run_if("the indirect technique is the radiance cache", |c: &FrameCtx| {
+            c.indirect == Indirect::Cache
+        })
+        .key("camera", camera_key)
+        .key("sun direction", sun_key)
+        .amortised(cache_frames, Budget::Units(1))
+        .run(move |io| -> PassResult {
+            let mut cache = previous_or(io, r.cache, |c| c.state.new_cache())?;
+            let c = io.ctx();
+            let (s, sun) = (&c.state, sun_of(c)?);
+            let lookup = s.lighting.lookup_io();
+            cache.update(&s.gpu, &s.scene, &s.trace, &c.camera, &sun, lookup)?;
+            s.gpu.take_error()?;
+            io.put(r.cache, cache)?;
+            Ok(())
+        });
+}
+
+/// The one-bounce source the lighting pass binds this frame.
+pub(super) fn indirect_source<'a>(
+    io: &'a PassIo<'_, FrameCtx>,
+    r: Resources,
+) -> IndirectSource<'a> {
+    let c = io.ctx();
+    if !c.needs.indirect_lpv.needed {
+        return IndirectSource::None;
+    }
+    let source = match c.indirect {
+        Indirect::Lpv => io.try_read(r.lpv).map(IndirectSource::Lpv),
+        Indirect::Rsm => io
+            .try_read(r.sun_rsm)
+            .filter(|g| g.ready)
+            .map(|g| IndirectSource::Rsm(g, c.camera.view_projection())),
+        Indirect::Cache => io.try_read(r.cache).filter(|k| k.ready()).map(IndirectSource::Cache),
+        Indirect::None => None,
+    };
+    source.unwrap_or(IndirectSource::None)
+}
+
+/// The deferred lighting of the view.
+pub(super) fn lighting_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
+    g.gpu_pass(pass::LIGHTING)
+        .reads(r.gbuf)
+        .reads(r.shadow)
+        .reads(r.cubes)
+        .reads(r.sky_map)
+        .reads(r.sky_vol)
+        .reads(r.lpv)
+        .reads(r.sun_rsm)
+        .reads(r.cache)
+        .writes(r.lit)
+        .cached()
+        .key("view shown", |c: &FrameCtx| c.component)
+        .run(move |io| -> PassResult {
+            let c = io.ctx();
+            let s = &c.state;
+            let shadows = io.try_read(r.shadow).copied().filter(|_| c.needs.sun_shadows.needed);
+            let sky = sky_light(io, r);
+            let cubes = io.try_read(r.cubes).is_some();
+            let sky_map_size = sky.map_or(0, |k| k.map.size());
+            write_frame_uniform(c, Bound { shadows, cubes, sky_map_size });
+            let inputs = LightingInputs {
+                frame: &s.frame,
+                shadows: s.shadow.bindings(shadows.as_ref()),
+                sky,
+                sky_volume: c.needs.sky_lighting.needed && sky.is_some(),
+                indirect: indirect_source(io, r),
+                materials: &s.scene.materials,
+                lights: &s.lights,
+                cubes: s.point_shadow.bindings(),
+            };
+            let mut enc = s.gpu.device.create_command_encoder(&Default::default());
+            s.lighting.record(&s.gpu, &mut enc, &s.targets, &inputs)?;
+            s.gpu.queue.submit([enc.finish()]);
+            s.gpu.take_error()?;
+            io.put(r.lit, LitView(c.component))?;
+            Ok(())
+        });
+}
+
+/// Tone mapping and eye adaptation, every frame.
+pub(super) fn tone_mapping_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
+    // Every frame: eye adaptation moves on even when the view is unchanged.
+    g.gpu_pass(pass::TONE_MAPPING).reads(r.lit).reads(r.combined).writes(r.shown).run(
+        move |io| -> PassResult {
+            let c = io.ctx();
+            let s = &c.state;
+            let combined = io.try_read(r.combined).is_some() && c.needs.ray_tracing();
+            let which = if combined { Shown::Combined } else { Shown::Lit };
+            let set = &s.settings;
+            let mut enc = s.gpu.device.create_command_encoder(&Default::default());
+            let exposure = Exposure {
+                dt: c.dt,
+                rate: set.adaptation_per_s,
+                key: set.key,
+                reset: c.reset_exposure,
+                raw: crate::views::View::of_code(c.component).is_some_and(|v| v.is_raw()),
+            };
+            s.display.record(&s.gpu, &mut enc, which, exposure);
+            s.gpu.queue.submit([enc.finish()]);
+            s.gpu.take_error()?;
+            io.put(r.shown, which)?;
+            Ok(())
+        },
+    );
+}
