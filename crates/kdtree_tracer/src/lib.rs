@@ -9,10 +9,13 @@
 //!   O(N log N)", IEEE RT 2006), optional perfect splits, explicit costs in [`Settings`],
 //!   parallel subtrees (rayon), deterministic whatever the thread count.
 //! - **Layout**: 8-byte nodes (I. Wald, "Realtime Ray Tracing and Interactive Global
-//!   Illumination", PhD thesis 2004), siblings adjacent; each leaf's triangles packed four at
-//!   a time in structure-of-arrays form and tested together with SSE (bit-for-bit the scalar
-//!   test, including its exact-zero rule) with their triangle and mesh ids, and the SAH counts
-//!   a leaf's cost in such packs.
+//!   Illumination", PhD thesis 2004), siblings adjacent; each leaf's triangles in one
+//!   structure-of-arrays block (rows of the nine corner coordinates, the triangle ids and the
+//!   mesh ids, a multiple of four lanes), tested eight lanes at a time with AVX where the CPU
+//!   has it (`is_x86_feature_detected!`; the traversal is compiled a second time with AVX so
+//!   that the test is inlined into it) and four at a time with SSE otherwise, bit for bit the
+//!   scalar test (including its exact-zero rule) whatever the width; the SAH counts a leaf's
+//!   cost in packs of four.
 //! - **Queries**: [`KdTree::intersect`] (closest hit) and [`KdTree::occluded`] (any hit)
 //!   through the [`RayQuery`] trait; fixed stack, no allocation per ray; robust to zero and
 //!   negative-zero direction components, rays in and on split planes, `t_min`/`t_max` edges.
@@ -28,7 +31,9 @@
 //!   with an obvhs CWBVH rebuilt per frame, and [`SceneAccel`] combines a static kd-tree with
 //!   it, keeping the closer hit.
 //! - [`BruteForce`] is the reference every structure is tested against; [`test_util`] has
-//!   the seeded scenes (city block, spheres, random soup, Cornell box) and ray generators.
+//!   the seeded scenes (city block, spheres, random soup, Cornell box) and ray generators,
+//!   among them a view's mirror-reflection buffer (the thesis's reflection rays) and its
+//!   incoherent (random hemisphere) worst case.
 //!
 //!
 //! ## What each change bought
@@ -48,6 +53,21 @@
 //! | SAH cost sweep: traversal 8 : intersection 1.5 (bigger leaves) | 1.03-1.37 | 0.80 | 1.33-1.46 | 1.33-1.37 | 1.11-1.21 |
 //! | SAH counting packs, `ceil(N/4)`, costs 1 : 0.4 | 1.00-1.08 | 0.82-0.95 | 1.35-1.56 | 1.26-1.37 | 1.12-1.19 |
 //! | ids in the packs, no separate 48-byte records (54 B/tri on the city, was 106) | 1.14 | 0.91-0.99 | 1.30-1.51 | 1.42-1.53 | 1.22 |
+//! | one block per leaf, 8 lanes at a time with AVX, traversal compiled with AVX (same trees) | 1.12-1.31 | 0.87-0.98 | 1.40-1.45 | 1.63-1.68 | 1.23-1.32 |
+//!
+//! The last row's race ran at load 5.4-5.7, alternating with the step before it (1.23-1.28,
+//! 0.89-1.05, 1.39-1.44, 1.54-1.63; geomean 1.24-1.32): no gain in the race beyond the
+//! scatter, although the step runs a fifth fewer instructions (callgrind, `kdrace --kd-only
+//! --rays 5000 --rounds 2`, instructions in `kd_rounds`: city 33.2 M -> 26.0 M, blob 56.8 M ->
+//! 42.1 M, cable 32.6 M -> 24.3 M, atrium 27.2 M -> 21.0 M, mirror rays 32.8 M -> 25.8 M; of
+//! that, 1% came from factoring the single-ray walk out and 7-12% from compiling the traversal
+//! with AVX rather than calling the AVX leaf test from SSE code). Incoherent rays wait on
+//! memory (the blob's first load of a leaf is still its hottest instruction), so fewer
+//! instructions barely show; in one process, the same tree and rays with the AVX path against
+//! the SSE path gave geomean 1.04-1.09 (three runs, load 2.2-2.9). Coherent rays, whose leaves
+//! are in cache, gained: the bench's primary rays 1600x900 went from 1.34 / 1.30 (one / two
+//! threads) to 2.10 / 1.64 in the quick sweep (load 3.6), the mirror rays 1.76-1.82 -> 1.83-2.02
+//! in the race above.
 //!
 //! The reflection buffer (`trace_tiles`, 800x450 incoherent hemisphere rays over the city,
 //! 2 threads): tiles in Z-order instead of row-major order, 5% faster (row-major / Z-order
@@ -95,6 +115,11 @@
 //! BVH makes; the test itself is cheap, so catching up needs trees whose rays cross fewer
 //! full leaves, which no SAH setting tried gives.
 //!
+//! Tried with the 8-lane leaf blocks and not kept (load 1.4-2.2): the SAH counting 8-lane
+//! chunks (`ceil(N/8)`) at intersection cost 0.4 / 0.5 / 0.6 / 0.8 (same rays, old tree
+//! against new in one process: at 0.4, city / blob / cable 1.05-1.10 faster but atrium 0.98
+//! and the mirror rays 0.92-0.93, two runs; the others within 3%).
+//!
 //! ```
 //! use glam::Vec3;
 //! use kdtree_tracer::{KdTree, Mesh, Ray, Settings};
@@ -128,7 +153,7 @@ mod build;
 mod bvh;
 mod differentials;
 mod error;
-mod leaf4;
+mod leaf;
 mod mesh;
 mod node;
 mod ray;

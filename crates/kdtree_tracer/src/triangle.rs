@@ -61,6 +61,8 @@ pub(crate) struct PreparedRay {
     pub sx: f32,
     pub sy: f32,
     pub sz: f32,
+    /// The leaf test's 8-wide path is available ([`crate::leaf::avx`]).
+    pub wide: bool,
 }
 
 impl PreparedRay {
@@ -78,6 +80,7 @@ impl PreparedRay {
             sx: d[kx] / d[kz],
             sy: d[ky] / d[kz],
             sz: 1.0 / d[kz],
+            wide: crate::leaf::avx(),
         }
     }
 
