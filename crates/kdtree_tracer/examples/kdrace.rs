@@ -8,7 +8,9 @@
 //! fastest-tracing preset, often a slower build, so its ratios can be lower).
 //!
 //! Meshes: `city` (incoherent rays of the 800x450 view), `mirror` (the same view's
-//! mirror-reflection rays, coherent), `blob`, `cable`, `atrium`, `soup`.
+//! mirror-reflection rays, coherent), `blob`, `cable`, `atrium`, `soup`; and `refl`, which
+//! races `trace_tiles` (packets) against tiles of single rays on the city's two 800x450
+//! reflection buffers (times in ms as well as the ratio).
 //!
 //! cargo run --release -p kdtree_tracer --example kdrace -- [--rays N] [--threads T]
 //! [--rounds R] [--preset NAME] [MESH...]
@@ -18,7 +20,10 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 use gi_report::interleaved;
 use kdtree_tracer::test_util::{self, Camera};
-use kdtree_tracer::{BvhAccel, BvhKind, BvhPreset, KdTree, Mesh, Ray, RayQuery, Settings};
+use kdtree_tracer::{
+    BvhAccel, BvhKind, BvhPreset, DEFAULT_TILE, KdTree, Mesh, Ray, RayQuery, Settings, map_tiles,
+    trace_tiles,
+};
 use rayon::prelude::*;
 
 fn env_f32(name: &str, default: f32) -> f32 {
@@ -41,6 +46,44 @@ fn kd_rounds(kd: &KdTree, rays: &[Ray], rounds: usize) -> usize {
         hits += rays.iter().filter(|r| kd.intersect(r, f32::INFINITY).is_some()).count();
     }
     std::hint::black_box(hits)
+}
+
+/// `refl`: the city's 800x450 reflection buffers (mirror, then incoherent hemisphere) traced
+/// by `trace_tiles` (4x2 packets) against tiles of single rays, interleaved.
+fn reflections(pool: &rayon::ThreadPool, s: &Settings, rounds: usize) -> Result<()> {
+    let city = test_util::city_block(1, 20_000);
+    let kd = KdTree::build(&city, s)?;
+    let cam = Camera::over_city(&city);
+    let (w, h) = (800, 450);
+    let buffers = [
+        ("mirror", test_util::screen_mirror_rays(&kd, &city, &cam, w, h)),
+        ("hemisphere", test_util::screen_incoherent_rays(&kd, &city, &cam, w, h, 17)),
+    ];
+    for (label, rays) in &buffers {
+        let (a, b) = pool.install(|| {
+            interleaved(
+                rounds,
+                || {
+                    let hits = trace_tiles(&kd, w, h, rays, f32::INFINITY, DEFAULT_TILE);
+                    std::hint::black_box(hits.map(|v| v.len()).unwrap_or(0));
+                },
+                || {
+                    let hits = map_tiles(w, h, DEFAULT_TILE, |x, y| {
+                        rays[(y * w + x) as usize].and_then(|r| kd.intersect(&r, f32::INFINITY))
+                    });
+                    std::hint::black_box(hits.len());
+                },
+            )
+        });
+        println!(
+            "refl {label:10} {} rays  packets {:6.1} ms  single {:6.1} ms  single/packets {:.3}",
+            rays.iter().flatten().count(),
+            a,
+            b,
+            b / a
+        );
+    }
+    Ok(())
 }
 
 fn mesh(name: &str) -> Option<Mesh> {
@@ -101,6 +144,10 @@ fn main() -> Result<()> {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build()?;
     let mut log = 0.0;
     for name in &names {
+        if name == "refl" {
+            reflections(&pool, &s, rounds)?;
+            continue;
+        }
         let m = mesh(name).with_context(|| format!("unknown mesh {name}"))?;
         let t = Instant::now();
         let kd = KdTree::build(&m, &s)?;

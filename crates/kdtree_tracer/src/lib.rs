@@ -19,12 +19,18 @@
 //! - **Queries**: [`KdTree::intersect`] (closest hit) and [`KdTree::occluded`] (any hit)
 //!   through the [`RayQuery`] trait; fixed stack, no allocation per ray; robust to zero and
 //!   negative-zero direction components, rays in and on split planes, `t_min`/`t_max` edges.
+//! - **Packets**: [`KdTree::intersect_packet`] (and [`RayQuery::intersect_many`]) traces up
+//!   to [`PACKET`] rays together, after Wald's packet traversal (thesis above, 7.1) with
+//!   per-ray active masks and intervals, the decisions of eight rays in one AVX step; every
+//!   ray keeps its own order of leaves, so the answers are bit for bit the single rays'
+//!   (ties included), and a packet left with one ray finishes with the single-ray walk.
 //! - **Ray/triangle**: watertight (S. Woop, C. Benthin, I. Wald, "Watertight Ray/Triangle
 //!   Intersection", JCGT 2013): the sheared, permuted edge functions are evaluated identically
 //!   for triangles sharing an edge, so rays through edges and vertices cannot slip between
 //!   them (Moller-Trumbore can); exact zeros are recomputed in f64.
 //! - **Batches**: [`trace_tiles`] over image-shaped ray buffers in 40x40 tiles on rayon,
-//!   handed out along a Z-order curve (each thread's share is a compact block of the image).
+//!   handed out along a Z-order curve (each thread's share is a compact block of the image),
+//!   each tile traced in packets of 4x4 pixels.
 //! - **Mip selection**: [`texture_footprint`] intersects a pixel's ray differentials
 //!   (H. Igehy, "Tracing Ray Differentials", SIGGRAPH 1999) with the hit triangle's plane.
 //! - **Dynamic geometry** (the thesis's future work): [`BvhAccel`] answers the same queries
@@ -73,6 +79,24 @@
 //! 2 threads): tiles in Z-order instead of row-major order, 5% faster (row-major / Z-order
 //! time 1.01-1.08, median 1.05 over five interleaved runs of 15 rounds, load 2.5-2.7).
 //!
+//! The reflection buffer as the thesis traced it: the bench's `reflections_800x450_2t` now
+//! traces mirror reflections, each visible pixel's camera ray reflected about the hit
+//! triangle's normal (`test_util::screen_mirror_rays`; neighbouring pixels' rays are
+//! coherent), and the hemisphere buffer it traced before is `reflections_800x450_incoherent_2t`
+//! (nothing hidden). One ray at a time, the mirror buffer takes 0.41-0.53 of the hemisphere
+//! buffer's time. [`trace_tiles`] traces each tile in packets of 4x4 pixels: against the same
+//! rays one by one in the same order, in CPU time of one thread (`/proc/thread-self/schedstat`,
+//! median of 15-31 alternating rounds, three runs, load 3.1-3.4), the mirror buffer went
+//! 1.20-1.25x faster and the hemisphere buffer 1.22-1.28x, although packets run more
+//! instructions (callgrind, every sixth pair of rows: mirror 146 M against 133 M, hemisphere
+//! 185 M against 154 M): rays of neighbouring pixels start in the same leaf and share the
+//! descent to it, and sixteen rays' decisions are a few vector compares and mask tests that
+//! predict well, where each single ray mispredicts its own. The bench's quick sweep (two
+//! threads, wall time, load 3.6): mirror buffer 69 ms, packets / single rays 1.21;
+//! hemisphere buffer 171 ms, 1.07. Packets of 8 rays (4x2 pixels) gained less (mirror
+//! 0.97-1.16, hemisphere 1.13-1.21), of 32 rays (8x4) less again (1.08-1.19, 1.12-1.18), and
+//! 8-ray packets deciding four rays at a time with SSE lost (mirror 0.78-0.92, wall time).
+//!
 //! Standing after these steps (`kdrace --rays 100000`, medians of three runs of 15 rounds,
 //! load 3.9-5.0): city 1.14 / 1.10 (one / two threads), blob 1.03 / 0.99, cable 1.57 / 1.63,
 //! atrium 1.58 / 1.61. The bench's quick sweep in the same hour (medium build, 40k rays, load
@@ -115,10 +139,14 @@
 //! BVH makes; the test itself is cheap, so catching up needs trees whose rays cross fewer
 //! full leaves, which no SAH setting tried gives.
 //!
-//! Tried with the 8-lane leaf blocks and not kept (load 1.4-2.2): the SAH counting 8-lane
+//! Tried with the 8-lane leaf blocks and not kept (load 1.4-3.4): the SAH counting 8-lane
 //! chunks (`ceil(N/8)`) at intersection cost 0.4 / 0.5 / 0.6 / 0.8 (same rays, old tree
 //! against new in one process: at 0.4, city / blob / cable 1.05-1.10 faster but atrium 0.98
-//! and the mirror rays 0.92-0.93, two runs; the others within 3%).
+//! and the mirror rays 0.92-0.93, two runs; the others within 3%), the AVX leaf test as an
+//! always-inlined function without a target feature of its own (so that the packets inline
+//! it too: the intrinsics in its closures were no longer inlined, 2.2x the instructions),
+//! and sending packets whose rays point into different octants to single rays (8-ray
+//! packets: 171 M -> 180 M instructions on the mirror buffer).
 //!
 //! ```
 //! use glam::Vec3;
@@ -156,6 +184,7 @@ mod error;
 mod leaf;
 mod mesh;
 mod node;
+mod packet;
 mod ray;
 mod scene;
 mod settings;
@@ -172,6 +201,7 @@ pub use bvh::{BvhAccel, BvhKind, BvhPreset};
 pub use differentials::{Footprint, RayDifferential, texture_footprint};
 pub use error::Error;
 pub use mesh::Mesh;
+pub use packet::PACKET;
 pub use ray::{Hit, Ray, RayQuery};
 pub use scene::SceneAccel;
 pub use settings::{MAX_DEPTH_LIMIT, Settings};

@@ -16,6 +16,7 @@
 
 use crate::leaf::{self, ROWS};
 use crate::node::Node;
+use crate::packet::{self, PACKET};
 use crate::ray::{Hit, Ray, RayQuery, Rescaled};
 use crate::settings::MAX_DEPTH_LIMIT;
 use crate::tree::KdTree;
@@ -162,7 +163,7 @@ impl KdTree {
     /// `[t0, t1]`, updating the best hit `best_t`, `best` (pack, lane, u, v); with `ANY`, it
     /// returns at the first hit. Every node pushed here is popped here, so the leaves it
     /// tests, in order, are those the whole-tree traversal tests when it enters `root` with
-    /// the same interval and best hit.
+    /// the same interval and best hit (the packets rely on this).
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub(crate) fn walk<const ANY: bool, const KZ: usize, const AVX: bool>(
@@ -294,5 +295,12 @@ impl RayQuery for KdTree {
     }
     fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
         KdTree::occluded(self, ray, t_max)
+    }
+    fn intersect_many(&self, rays: &[Option<Ray>], t_max: f32, out: &mut [Option<Hit>]) {
+        assert_eq!(rays.len(), out.len(), "one output per ray");
+        let mut stack = Vec::with_capacity(packet::STACK);
+        for (r, o) in rays.chunks(PACKET).zip(out.chunks_mut(PACKET)) {
+            self.packet(r, t_max, o, &mut stack);
+        }
     }
 }
