@@ -26,7 +26,7 @@
 use crate::node::Node;
 use crate::ray::{Hit, Ray, Rescaled};
 use crate::settings::MAX_DEPTH_LIMIT;
-use crate::traverse::{Best, WIDEN, clip_box};
+use crate::traverse::{Best, WIDEN, clip_box, max, min};
 use crate::tree::KdTree;
 use crate::triangle::PreparedRay;
 
@@ -89,6 +89,48 @@ impl KdTree {
         };
         let mut t0 = [0.0f32; PACKET];
         let mut t1 = [0.0f32; PACKET];
+        let wide = crate::leaf::avx();
+        #[cfg(target_arch = "x86_64")]
+        let mask = if wide {
+            // SAFETY: `wide`: the CPU has AVX.
+            unsafe { self.setup_avx(rays, t_max, out, &mut l, &mut t0, &mut t1) }
+        } else {
+            self.setup(rays, t_max, out, &mut l, &mut t0, &mut t1)
+        };
+        #[cfg(not(target_arch = "x86_64"))]
+        let mask = self.setup(rays, t_max, out, &mut l, &mut t0, &mut t1);
+        let mut best_t = [t_max; PACKET];
+        let mut best: [Best; PACKET] = [None; PACKET];
+        if mask != 0 {
+            stack.clear();
+            #[cfg(target_arch = "x86_64")]
+            if wide {
+                // SAFETY: `wide` is true only where the CPU has AVX (`leaf::avx`).
+                unsafe { self.walk_packet_avx(&l, mask, t0, t1, &mut best_t, &mut best, stack) };
+            } else {
+                self.walk_packet::<false>(&l, mask, t0, t1, &mut best_t, &mut best, stack);
+            }
+            #[cfg(not(target_arch = "x86_64"))]
+            self.walk_packet::<false>(&l, mask, t0, t1, &mut best_t, &mut best, stack);
+        }
+        for i in 0..rays.len() {
+            if mask >> i & 1 == 1 {
+                out[i] = self.hit(best[i], best_t[i]);
+            }
+        }
+    }
+
+    /// Each ray's single-ray setup (validity, rescaling, [`PreparedRay`], the box): fills the
+    /// lanes of the rays to trace and returns their mask; the others' answers are written.
+    fn setup(
+        &self,
+        rays: &[Option<Ray>],
+        t_max: f32,
+        out: &mut [Option<Hit>],
+        l: &mut Lanes,
+        t0: &mut [f32; PACKET],
+        t1: &mut [f32; PACKET],
+    ) -> u32 {
         let mut mask = 0u32;
         for (i, (ray, o)) in rays.iter().zip(out.iter_mut()).enumerate() {
             *o = None;
@@ -115,25 +157,145 @@ impl KdTree {
             (t0[i], t1[i]) = (a, b);
             mask |= 1 << i;
         }
-        let mut best_t = [t_max; PACKET];
-        let mut best: [Best; PACKET] = [None; PACKET];
-        if mask != 0 {
-            stack.clear();
-            #[cfg(target_arch = "x86_64")]
-            if l.r[mask.trailing_zeros() as usize].wide {
-                // SAFETY: `wide` is true only where the CPU has AVX (`leaf::avx`).
-                unsafe { self.walk_packet_avx(&l, mask, t0, t1, &mut best_t, &mut best, stack) };
-            } else {
-                self.walk_packet::<false>(&l, mask, t0, t1, &mut best_t, &mut best, stack);
+        mask
+    }
+
+    /// [`Self::setup`] eight rays at a time with AVX: the same divisions, comparisons and
+    /// selects in the same order, so the same bits (tested against it).
+    ///
+    /// # Safety
+    /// The CPU must have AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn setup_avx(
+        &self,
+        rays: &[Option<Ray>],
+        t_max: f32,
+        out: &mut [Option<Hit>],
+        l: &mut Lanes,
+        t0: &mut [f32; PACKET],
+        t1: &mut [f32; PACKET],
+    ) -> u32 {
+        // The rays to trace, in structure-of-arrays form (others answered here).
+        let mut todo = 0u32;
+        for (i, (ray, o)) in rays.iter().zip(out.iter_mut()).enumerate() {
+            *o = None;
+            let Some(ray) = ray else { continue };
+            let t_min = ray.t_min.max(0.0);
+            if !ray.is_valid() || !(t_min <= t_max) || self.bounds.is_empty() {
+                continue;
             }
-            #[cfg(not(target_arch = "x86_64"))]
-            self.walk_packet::<false>(&l, mask, t0, t1, &mut best_t, &mut best, stack);
+            if Rescaled::of(ray, t_min, t_max).is_some() {
+                *o = self.intersect(ray, t_max);
+                continue;
+            }
+            for axis in 0..3 {
+                l.o[axis][i] = ray.origin[axis];
+                l.d[axis][i] = ray.dir[axis];
+            }
+            l.t_min[i] = t_min;
+            todo |= 1 << i;
         }
-        for i in 0..rays.len() {
-            if mask >> i & 1 == 1 {
-                out[i] = self.hit(best[i], best_t[i]);
+        let (mut kz, mut sx, mut sy, mut sz) =
+            ([0.0f32; PACKET], [0.0; PACKET], [0.0; PACKET], [0.0; PACKET]);
+        let mut alive = 0u32;
+        // SAFETY: AVX is available (the caller's contract); every load and store reads or
+        // writes eight f32 at offset k < PACKET, a multiple of 8, of an array of PACKET (only
+        // AVX intrinsics: no AVX2 integer operations).
+        unsafe {
+            use std::arch::x86_64::*;
+            let sel = |m: __m256, x: __m256, y: __m256| _mm256_blendv_ps(y, x, m);
+            let sign = _mm256_set1_ps(-0.0);
+            let abs = |a: __m256| _mm256_andnot_ps(sign, a);
+            let (one, inf, widen) =
+                (_mm256_set1_ps(1.0), _mm256_set1_ps(f32::INFINITY), _mm256_set1_ps(WIDEN));
+            for k in (0..PACKET).step_by(8) {
+                let ld = |a: &[f32; PACKET]| _mm256_loadu_ps(a.as_ptr().add(k));
+                let o = [ld(&l.o[0]), ld(&l.o[1]), ld(&l.o[2])];
+                let d = [ld(&l.d[0]), ld(&l.d[1]), ld(&l.d[2])];
+                let inv = d.map(|d| _mm256_div_ps(one, d));
+                // `Vec3::max_position` of |d|: the first largest.
+                let (ax, ay, az) = (abs(d[0]), abs(d[1]), abs(d[2]));
+                let y_first = _mm256_cmp_ps::<_CMP_GT_OQ>(ay, ax);
+                let z_first = _mm256_cmp_ps::<_CMP_GT_OQ>(az, sel(y_first, ay, ax));
+                let is1 = _mm256_andnot_ps(z_first, y_first);
+                let dkz = sel(z_first, d[2], sel(is1, d[1], d[0]));
+                let dkx = sel(z_first, d[0], sel(is1, d[2], d[1]));
+                let dky = sel(z_first, d[1], sel(is1, d[0], d[2]));
+                let st = |dst: &mut [f32; PACKET], v: __m256| {
+                    _mm256_storeu_ps(dst.as_mut_ptr().add(k), v)
+                };
+                st(&mut sx, _mm256_div_ps(dkx, dkz));
+                st(&mut sy, _mm256_div_ps(dky, dkz));
+                st(&mut sz, _mm256_div_ps(one, dkz));
+                let two = _mm256_set1_ps(2.0);
+                st(&mut kz, sel(z_first, two, _mm256_and_ps(is1, one)));
+                // `KdTree::ray_eps`: `Vec3::max_element` is `a > b ? a : b`, as `maxps`.
+                let max3 = |x: __m256, y: __m256, z: __m256| _mm256_max_ps(x, _mm256_max_ps(y, z));
+                let mo = max3(abs(o[0]), abs(o[1]), abs(o[2]));
+                let md = max3(ax, ay, az);
+                let scale = _mm256_set1_ps(self.scale);
+                let eps = _mm256_div_ps(
+                    _mm256_mul_ps(_mm256_set1_ps(2e-6), _mm256_add_ps(scale, mo)),
+                    md,
+                );
+                st(&mut l.eps, eps);
+                // `clip_box`.
+                let mut a = ld(&l.t_min);
+                let mut b = _mm256_set1_ps(t_max);
+                let mut inside = _mm256_cmp_ps::<_CMP_EQ_OQ>(one, one);
+                let bounds = &self.bounds;
+                for axis in 0..3 {
+                    let (lo, hi) =
+                        (_mm256_set1_ps(bounds.min[axis]), _mm256_set1_ps(bounds.max[axis]));
+                    let parallel = _mm256_cmp_ps::<_CMP_EQ_OQ>(abs(inv[axis]), inf);
+                    let out_slab = _mm256_or_ps(
+                        _mm256_cmp_ps::<_CMP_LT_OQ>(o[axis], lo),
+                        _mm256_cmp_ps::<_CMP_GT_OQ>(o[axis], hi),
+                    );
+                    inside = _mm256_andnot_ps(_mm256_and_ps(parallel, out_slab), inside);
+                    let n = _mm256_mul_ps(_mm256_sub_ps(lo, o[axis]), inv[axis]);
+                    let f = _mm256_mul_ps(_mm256_sub_ps(hi, o[axis]), inv[axis]);
+                    let swap = _mm256_cmp_ps::<_CMP_GT_OQ>(n, f);
+                    let (n, f) = (sel(swap, f, n), sel(swap, n, f));
+                    let na = _mm256_max_ps(
+                        a,
+                        _mm256_sub_ps(_mm256_sub_ps(n, _mm256_mul_ps(abs(n), widen)), eps),
+                    );
+                    let fb = _mm256_min_ps(
+                        b,
+                        _mm256_add_ps(_mm256_add_ps(f, _mm256_mul_ps(abs(f), widen)), eps),
+                    );
+                    a = sel(parallel, a, na);
+                    b = sel(parallel, b, fb);
+                }
+                st(t0, a);
+                st(t1, b);
+                for (axis, v) in inv.into_iter().enumerate() {
+                    st(&mut l.inv[axis], v);
+                }
+                let ok = _mm256_and_ps(inside, _mm256_cmp_ps::<_CMP_LE_OQ>(a, b));
+                alive |= (_mm256_movemask_ps(ok) as u32) << k;
             }
         }
+        let mask = todo & alive;
+        let mut m = mask;
+        while m != 0 {
+            let i = m.trailing_zeros() as usize;
+            m &= m - 1;
+            let v = |a: &[[f32; PACKET]; 4]| [a[0][i], a[1][i], a[2][i], 0.0];
+            l.r[i] = PreparedRay {
+                o: v(&l.o),
+                d: v(&l.d),
+                inv: v(&l.inv),
+                kz: kz[i] as usize,
+                sx: sx[i],
+                sy: sy[i],
+                sz: sz[i],
+                wide: true,
+            };
+        }
+        mask
     }
 
     /// One ray's single-ray walk of the subtree at `node`.
@@ -323,13 +485,13 @@ fn decide_scalar(
         } else if ts.is_infinite() {
             (true, false, b, a, b)
         } else if ts < 0.0 {
-            (true, ts >= -e && a <= e, b, a, b.min(e.max(a)))
+            (true, ts >= -e && a <= e, b, a, min(b, max(e, a)))
         } else if ts - e > b {
             (true, false, b, a, b)
         } else if ts + e < a {
             (false, true, b, a, b)
         } else {
-            let c = ts.max(a).min(b);
+            let c = min(max(ts, a), b);
             (true, true, c, c, b)
         };
         let bit = mask & (1 << i);
@@ -578,6 +740,76 @@ mod tests {
                 Just(1e-30),
             ],
         ]
+    }
+
+    fn component() -> impl Strategy<Value = f32> {
+        prop_oneof![
+            2 => -3.0f32..3.0,
+            1 => prop_oneof![Just(0.0f32), Just(-0.0), Just(1e-30), Just(-2.5), Just(2.5)],
+        ]
+    }
+
+    fn lanes() -> Lanes {
+        let dummy = PreparedRay::new(&Ray::new(glam::Vec3::ZERO, glam::Vec3::X));
+        Lanes {
+            o: [[0.0; PACKET]; 4],
+            d: [[0.0; PACKET]; 4],
+            inv: [[0.0; PACKET]; 4],
+            eps: [0.0; PACKET],
+            t_min: [0.0; PACKET],
+            r: [dummy; PACKET],
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 500, ..ProptestConfig::default() })]
+        /// The AVX setup of a packet gives the scalar setup's lanes bit for bit: rays with
+        /// zero, negative-zero and tiny direction components, origins on and off the box.
+        #[test]
+        fn vector_setup_matches_the_scalar_one(
+            rays in proptest::collection::vec(proptest::option::of((
+                (component(), component(), component()),
+                (component(), component(), component()),
+                prop_oneof![Just(0.0f32), 0.0f32..2.0],
+            )), 0..=PACKET),
+            t_max in prop_oneof![Just(f32::INFINITY), 0.0f32..5.0],
+        ) {
+            prop_assume!(crate::leaf::avx());
+            let mesh = crate::test_util::city_block(1, 200);
+            let tree = KdTree::build(&mesh, &crate::Settings::DEFAULT).unwrap();
+            let (lo, hi) = tree.bounds().unwrap();
+            let rays: Vec<Option<Ray>> = rays
+                .into_iter()
+                .map(|r| r.map(|((ox, oy, oz), (dx, dy, dz), t)| {
+                    let o = lo + (hi - lo) * glam::Vec3::new(ox, oy, oz) / 3.0;
+                    Ray::new(o, glam::Vec3::new(dx, dy, dz)).with_t_min(t)
+                }))
+                .collect();
+            let (mut la, mut lb) = (lanes(), lanes());
+            let (mut a0, mut a1, mut b0, mut b1) = ([0.0; PACKET], [0.0; PACKET], [0.0; PACKET], [0.0; PACKET]);
+            let (mut oa, mut ob) = (vec![None; rays.len()], vec![None; rays.len()]);
+            let ma = tree.setup(&rays, t_max, &mut oa, &mut la, &mut a0, &mut a1);
+            // SAFETY: the CPU has AVX (assumed above).
+            let mb = unsafe { tree.setup_avx(&rays, t_max, &mut ob, &mut lb, &mut b0, &mut b1) };
+            prop_assert_eq!(ma, mb);
+            prop_assert_eq!(oa, ob);
+            let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            for i in (0..PACKET).filter(|i| ma >> i & 1 == 1) {
+                let (ra, rb) = (&la.r[i], &lb.r[i]);
+                prop_assert_eq!(bits(&ra.o), bits(&rb.o));
+                prop_assert_eq!(bits(&ra.d), bits(&rb.d));
+                prop_assert_eq!(bits(&ra.inv), bits(&rb.inv));
+                prop_assert_eq!(ra.kz, rb.kz);
+                prop_assert_eq!(bits(&[ra.sx, ra.sy, ra.sz]), bits(&[rb.sx, rb.sy, rb.sz]));
+                prop_assert_eq!(bits(&[la.eps[i], la.t_min[i], a0[i], a1[i]]), bits(&[lb.eps[i], lb.t_min[i], b0[i], b1[i]]));
+                for axis in 0..3 {
+                    prop_assert_eq!(
+                        bits(&[la.o[axis][i], la.d[axis][i], la.inv[axis][i]]),
+                        bits(&[lb.o[axis][i], lb.d[axis][i], lb.inv[axis][i]])
+                    );
+                }
+            }
+        }
     }
 
     fn same(a: f32, b: f32) -> bool {

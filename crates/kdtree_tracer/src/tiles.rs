@@ -19,33 +19,41 @@ where
     T: Send,
     F: Fn(u32, u32) -> T + Sync,
 {
-    run_tiles(width, height, tile, |x0, y0, x1, y1, out| {
-        for y in y0..y1 {
-            for x in x0..x1 {
-                out.push(f(x, y));
+    run_tiles(
+        width,
+        height,
+        tile,
+        || (),
+        |_, x0, y0, x1, y1, out| {
+            for y in y0..y1 {
+                for x in x0..x1 {
+                    out.push(f(x, y));
+                }
             }
-        }
-    })
+        },
+    )
 }
 
-/// Runs `fill(x0, y0, x1, y1, out)` once per tile (it pushes the tile's pixels row by row
-/// into `out`), tiles handed to rayon along the Z-order curve, and stitches the tiles into
-/// one row-major image.
-fn run_tiles<T, F>(width: u32, height: u32, tile: u32, fill: F) -> Vec<T>
+/// Runs `fill(scratch, x0, y0, x1, y1, out)` once per tile (it pushes the tile's pixels row
+/// by row into `out`; `scratch` comes from `init`, once per rayon job rather than per tile),
+/// tiles handed to rayon along the Z-order curve, and stitches the tiles into one row-major
+/// image.
+fn run_tiles<S, T, I, F>(width: u32, height: u32, tile: u32, init: I, fill: F) -> Vec<T>
 where
     T: Send,
-    F: Fn(u32, u32, u32, u32, &mut Vec<T>) + Sync,
+    I: Fn() -> S + Sync + Send,
+    F: Fn(&mut S, u32, u32, u32, u32, &mut Vec<T>) + Sync + Send,
 {
     let tile = tile.max(1);
     let (tx, ty) = (width.div_ceil(tile), height.div_ceil(tile));
     let order = z_order(tx, ty);
     let done: Vec<Vec<T>> = order
         .par_iter()
-        .map(|&i| {
+        .map_init(init, |scratch, &i| {
             let (x0, y0) = ((i % tx) * tile, (i / tx) * tile);
             let (x1, y1) = ((x0 + tile).min(width), (y0 + tile).min(height));
             let mut out = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
-            fill(x0, y0, x1, y1, &mut out);
+            fill(scratch, x0, y0, x1, y1, &mut out);
             debug_assert_eq!(out.len(), ((x1 - x0) * (y1 - y0)) as usize);
             out
         })
@@ -105,29 +113,36 @@ pub fn trace_tiles<A: RayQuery + ?Sized>(
     if rays.len() != expected {
         return Err(Error::BufferSize { len: rays.len(), width, height, expected });
     }
-    const N: usize = (BLOCK.0 * BLOCK.1) as usize;
-    Ok(run_tiles(width, height, tile, |x0, y0, x1, y1, out| {
+    let init = || (Vec::new(), Vec::new());
+    Ok(run_tiles(width, height, tile, init, |(order, hits), x0, y0, x1, y1, out| {
         // The tile's rays block by block (partial blocks padded with `None`), then back.
-        let w = (x1 - x0) as usize;
-        let blocks = (x1 - x0).div_ceil(BLOCK.0) as usize * (y1 - y0).div_ceil(BLOCK.1) as usize;
-        let mut order = Vec::with_capacity(blocks * N);
-        let mut at = Vec::with_capacity(blocks * N);
+        order.clear();
         for by in (y0..y1).step_by(BLOCK.1 as usize) {
             for bx in (x0..x1).step_by(BLOCK.0 as usize) {
-                for k in 0..N as u32 {
-                    let (x, y) = (bx + k % BLOCK.0, by + k / BLOCK.0);
-                    let inside = x < x1 && y < y1;
-                    order.push(if inside { rays[(y * width + x) as usize] } else { None });
-                    at.push(inside.then(|| (y - y0) as usize * w + (x - x0) as usize));
+                for y in by..by + BLOCK.1 {
+                    for x in bx..bx + BLOCK.0 {
+                        let inside = x < x1 && y < y1;
+                        order.push(if inside { rays[(y * width + x) as usize] } else { None });
+                    }
                 }
             }
         }
-        let mut hits = vec![None; order.len()];
-        accel.intersect_many(&order, t_max, &mut hits);
+        hits.clear();
+        hits.resize(order.len(), None);
+        accel.intersect_many(order, t_max, hits);
+        let w = (x1 - x0) as usize;
         out.resize(w * (y1 - y0) as usize, None);
-        for (k, h) in at.into_iter().zip(hits) {
-            if let Some(k) = k {
-                out[k] = h;
+        let mut k = 0;
+        for by in (y0..y1).step_by(BLOCK.1 as usize) {
+            for bx in (x0..x1).step_by(BLOCK.0 as usize) {
+                for y in by..by + BLOCK.1 {
+                    for x in bx..bx + BLOCK.0 {
+                        if x < x1 && y < y1 {
+                            out[(y - y0) as usize * w + (x - x0) as usize] = hits[k];
+                        }
+                        k += 1;
+                    }
+                }
             }
         }
     }))

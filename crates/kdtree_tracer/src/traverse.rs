@@ -36,6 +36,19 @@ struct Entry {
     t1: f32,
 }
 
+/// The larger of two numbers that are not NaN (one `maxss`: `f32::max` also handles NaN;
+/// of `0.0` and `-0.0` either may come back, which no later comparison tells apart).
+#[inline(always)]
+pub(crate) fn max(a: f32, b: f32) -> f32 {
+    if a > b { a } else { b }
+}
+
+/// The smaller of two numbers that are not NaN (see [`max`]).
+#[inline(always)]
+pub(crate) fn min(a: f32, b: f32) -> f32 {
+    if a < b { a } else { b }
+}
+
 /// Clips `[t0, t1]` to the box (widened by `eps`); `None` when the ray misses it.
 #[inline(always)]
 pub(crate) fn clip_box(
@@ -60,8 +73,8 @@ pub(crate) fn clip_box(
         if n > f {
             std::mem::swap(&mut n, &mut f);
         }
-        t0 = t0.max(n - n.abs() * WIDEN - eps);
-        t1 = t1.min(f + f.abs() * WIDEN + eps);
+        t0 = max(t0, n - n.abs() * WIDEN - eps);
+        t1 = min(t1, f + f.abs() * WIDEN + eps);
     }
     (t0 <= t1).then_some((t0, t1))
 }
@@ -208,7 +221,7 @@ impl KdTree {
                         // Plane behind the origin: the ray stays on the near side. Within `e`
                         // of the plane, the first `e` of the ray also sees the far side.
                         if ts >= -e && t0 <= e {
-                            push = Some((t0, t1.min(e.max(t0))));
+                            push = Some((t0, min(t1, max(e, t0))));
                         }
                         node = nodes[near as usize];
                     } else if ts - e > t1 {
@@ -216,7 +229,7 @@ impl KdTree {
                     } else if ts + e < t0 {
                         node = nodes[far as usize];
                     } else {
-                        let c = ts.max(t0).min(t1);
+                        let c = min(max(ts, t0), t1);
                         push = Some((c, t1));
                         t1 = c;
                         node = nodes[near as usize];
