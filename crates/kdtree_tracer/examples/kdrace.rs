@@ -8,7 +8,8 @@
 //! fastest-tracing preset, often a slower build, so its ratios can be lower).
 //!
 //! Meshes: `city` (incoherent rays of the 800x450 view), `mirror` (the same view's
-//! mirror-reflection rays, coherent), `blob`, `cable`, `atrium`, `soup`; and `refl`, which
+//! mirror-reflection rays, coherent), `blob` (and `blob5`, `blob4`: the same shape at 20k and
+//! 5k triangles), `cable`, `atrium`, `soup`; and `refl`, which
 //! races `trace_tiles` (packets) against tiles of single rays on the city's two 800x450
 //! reflection buffers (times in ms as well as the ratio).
 //!
@@ -90,6 +91,8 @@ fn mesh(name: &str) -> Option<Mesh> {
     Some(match name {
         "city" | "mirror" => test_util::city_block(1, 20_000),
         "blob" => test_util::blob(6),
+        "blob5" => test_util::blob(5),
+        "blob4" => test_util::blob(4),
         "cable" => test_util::cable(2000, 12),
         "atrium" => test_util::atrium(),
         "soup" => test_util::random_soup(1, 100_000, 0.02),

@@ -26,7 +26,7 @@
 use crate::node::Node;
 use crate::ray::{Hit, Ray, Rescaled};
 use crate::settings::MAX_DEPTH_LIMIT;
-use crate::traverse::{Best, WIDEN, clip_box, max, min};
+use crate::traverse::{self, Best, WIDEN, clip_box, max, min};
 use crate::tree::KdTree;
 use crate::triangle::PreparedRay;
 
@@ -35,6 +35,22 @@ pub const PACKET: usize = 16;
 
 /// Each level pushes at most two entries (the order-conflict case): the stack's capacity.
 pub(crate) const STACK: usize = 2 * MAX_DEPTH_LIMIT as usize + 8;
+
+/// The stacks of packet traversals, made once for many packets: the packet's own and the one
+/// its single-ray walks use.
+pub(crate) struct Scratch {
+    packet: Vec<Entry>,
+    single: [traverse::Entry; traverse::STACK],
+}
+
+impl Scratch {
+    pub(crate) fn new() -> Self {
+        Self {
+            packet: Vec::with_capacity(STACK),
+            single: [traverse::Entry::default(); traverse::STACK],
+        }
+    }
+}
 
 /// A pending node with the rays that visit it and their intervals.
 #[derive(Clone, Copy)]
@@ -65,17 +81,17 @@ impl KdTree {
     /// # Panics
     /// When `rays.len() > PACKET` or `out.len() != rays.len()`.
     pub fn intersect_packet(&self, rays: &[Option<Ray>], t_max: f32, out: &mut [Option<Hit>]) {
-        self.packet(rays, t_max, out, &mut Vec::with_capacity(STACK));
+        self.packet(rays, t_max, out, &mut Scratch::new());
     }
 
-    /// [`Self::intersect_packet`] with a stack the caller keeps (allocated once for many
-    /// packets: zeroing a fixed stack per packet cost more than the traversal).
+    /// [`Self::intersect_packet`] with stacks the caller keeps (made once for many packets:
+    /// zeroing fixed stacks per packet cost more than the traversal).
     pub(crate) fn packet(
         &self,
         rays: &[Option<Ray>],
         t_max: f32,
         out: &mut [Option<Hit>],
-        stack: &mut Vec<Entry>,
+        scratch: &mut Scratch,
     ) {
         assert!(rays.len() <= PACKET && out.len() == rays.len(), "packet of {} rays", rays.len());
         let dummy = PreparedRay::new(&Ray::new(glam::Vec3::ZERO, glam::Vec3::X));
@@ -102,16 +118,16 @@ impl KdTree {
         let mut best_t = [t_max; PACKET];
         let mut best: [Best; PACKET] = [None; PACKET];
         if mask != 0 {
-            stack.clear();
+            scratch.packet.clear();
             #[cfg(target_arch = "x86_64")]
             if wide {
                 // SAFETY: `wide` is true only where the CPU has AVX (`leaf::avx`).
-                unsafe { self.walk_packet_avx(&l, mask, t0, t1, &mut best_t, &mut best, stack) };
+                unsafe { self.walk_packet_avx(&l, mask, t0, t1, &mut best_t, &mut best, scratch) };
             } else {
-                self.walk_packet::<false>(&l, mask, t0, t1, &mut best_t, &mut best, stack);
+                self.walk_packet::<false>(&l, mask, t0, t1, &mut best_t, &mut best, scratch);
             }
             #[cfg(not(target_arch = "x86_64"))]
-            self.walk_packet::<false>(&l, mask, t0, t1, &mut best_t, &mut best, stack);
+            self.walk_packet::<false>(&l, mask, t0, t1, &mut best_t, &mut best, scratch);
         }
         for i in 0..rays.len() {
             if mask >> i & 1 == 1 {
@@ -310,12 +326,14 @@ impl KdTree {
         t1: f32,
         bt: &mut f32,
         b: &mut Best,
+        stack: &mut [traverse::Entry; traverse::STACK],
     ) {
         let r = &l.r[i];
+        let (eps, t_min) = (l.eps[i], l.t_min[i]);
         match r.kz {
-            0 => self.walk::<false, 0, AVX>(r, l.eps[i], l.t_min[i], node, t0, t1, bt, b),
-            1 => self.walk::<false, 1, AVX>(r, l.eps[i], l.t_min[i], node, t0, t1, bt, b),
-            _ => self.walk::<false, 2, AVX>(r, l.eps[i], l.t_min[i], node, t0, t1, bt, b),
+            0 => self.walk::<false, 0, AVX>(r, eps, t_min, node, t0, t1, bt, b, stack),
+            1 => self.walk::<false, 1, AVX>(r, eps, t_min, node, t0, t1, bt, b, stack),
+            _ => self.walk::<false, 2, AVX>(r, eps, t_min, node, t0, t1, bt, b, stack),
         }
     }
 
@@ -334,9 +352,9 @@ impl KdTree {
         t1: [f32; PACKET],
         best_t: &mut [f32; PACKET],
         best: &mut [Best; PACKET],
-        stack: &mut Vec<Entry>,
+        scratch: &mut Scratch,
     ) {
-        self.walk_packet::<true>(l, mask, t0, t1, best_t, best, stack);
+        self.walk_packet::<true>(l, mask, t0, t1, best_t, best, scratch);
     }
 
     /// The packet traversal from the root (see the module doc).
@@ -350,8 +368,9 @@ impl KdTree {
         mut t1: [f32; PACKET],
         best_t: &mut [f32; PACKET],
         best: &mut [Best; PACKET],
-        stack: &mut Vec<Entry>,
+        scratch: &mut Scratch,
     ) {
+        let Scratch { packet: stack, single } = scratch;
         let nodes: &[Node] = &self.nodes;
         let mut index = 0u32;
         loop {
@@ -359,7 +378,16 @@ impl KdTree {
             if mask & (mask - 1) == 0 {
                 // One ray left: its own walk finishes this subtree.
                 let i = mask.trailing_zeros() as usize;
-                self.walk_one::<AVX>(l, i, index, t0[i], t1[i], &mut best_t[i], &mut best[i]);
+                self.walk_one::<AVX>(
+                    l,
+                    i,
+                    index,
+                    t0[i],
+                    t1[i],
+                    &mut best_t[i],
+                    &mut best[i],
+                    single,
+                );
             } else if node.is_leaf() {
                 let mut m = mask;
                 while m != 0 {

@@ -24,13 +24,14 @@ use crate::triangle::PreparedRay;
 
 /// Relative widening of plane distances (a few ulps of f32, with margin).
 pub(crate) const WIDEN: f32 = 1e-6;
-const STACK: usize = MAX_DEPTH_LIMIT as usize + 8;
+pub(crate) const STACK: usize = MAX_DEPTH_LIMIT as usize + 8;
 
 /// The best hit so far: where its ids are ([`leaf::id_place`]) and its barycentrics.
 pub(crate) type Best = Option<(u32, u32, f32, f32)>;
 
+/// A pending node of the single-ray walk.
 #[derive(Clone, Copy, Default)]
-struct Entry {
+pub(crate) struct Entry {
     node: u32,
     t0: f32,
     t1: f32,
@@ -162,7 +163,8 @@ impl KdTree {
         let (t0, t1) = clip_box(self, r, t_min, t_max, eps)?;
         let mut best_t = t_max;
         let mut best = None;
-        self.walk::<ANY, KZ, AVX>(r, eps, t_min, 0, t0, t1, &mut best_t, &mut best);
+        let mut stack = [Entry::default(); STACK];
+        self.walk::<ANY, KZ, AVX>(r, eps, t_min, 0, t0, t1, &mut best_t, &mut best, &mut stack);
         self.hit(best, best_t)
     }
 
@@ -189,9 +191,9 @@ impl KdTree {
         mut t1: f32,
         best_t: &mut f32,
         best: &mut Best,
+        stack: &mut [Entry; STACK],
     ) {
         let nodes: &[Node] = &self.nodes;
-        let mut stack = [Entry::default(); STACK];
         let mut sp = 0usize;
         let mut node = nodes[root as usize];
         loop {
@@ -311,9 +313,9 @@ impl RayQuery for KdTree {
     }
     fn intersect_many(&self, rays: &[Option<Ray>], t_max: f32, out: &mut [Option<Hit>]) {
         assert_eq!(rays.len(), out.len(), "one output per ray");
-        let mut stack = Vec::with_capacity(packet::STACK);
+        let mut scratch = packet::Scratch::new();
         for (r, o) in rays.chunks(PACKET).zip(out.chunks_mut(PACKET)) {
-            self.packet(r, t_max, o, &mut stack);
+            self.packet(r, t_max, o, &mut scratch);
         }
     }
 }
