@@ -1,7 +1,9 @@
 //! `cargo xtask bench --only kdtree_tracer`: the kd-tree against obvhs (interleaved, same
 //! triangles, same rays, same triangle test) on the city block and on three meshes of other
 //! character (a closed organic blob, a long thin cable, an architectural atrium), incoherent
-//! and primary rays; the thesis's reflection buffer (mirror reflections of an 800x450 view)
+//! and primary rays (the primary rays also as an image through `trace_tiles`, packets against
+//! single rays and against obvhs); the thesis's reflection buffer (mirror reflections of an
+//! 800x450 view)
 //! and the worst-case incoherent one, each also raced packets against single rays; the
 //! 1M-triangle build, and the SAH settings sweep.
 
@@ -188,6 +190,58 @@ fn main() -> std::io::Result<()> {
             )),
         );
     }
+    // The same primary rays as an image through `trace_tiles`: 4x4-pixel packets against the
+    // same tiles one ray at a time, and against obvhs (whose batches are single rays).
+    let (pw, ph) = (1600u32, 900u32);
+    let image: Vec<Option<Ray>> = primary.iter().copied().map(Some).collect();
+    let tiles = |a: &dyn RayQuery| {
+        std::hint::black_box(trace_tiles(a, pw, ph, &image, f32::INFINITY, DEFAULT_TILE)).ok();
+    };
+    sweep.stage("primary 1600x900 packets");
+    let (packets, single, packets2, theirs) = pool(2).install(|| {
+        let (packets, single) = interleaved(
+            prim_rounds,
+            || tiles(&kd),
+            || {
+                std::hint::black_box(map_tiles(pw, ph, DEFAULT_TILE, |x, y| {
+                    kd.intersect(&primary[(y * pw + x) as usize], f32::INFINITY)
+                }));
+            },
+        );
+        let (packets2, theirs) = interleaved(prim_rounds, || tiles(&kd), || tiles(&cw));
+        (packets, single, packets2, theirs)
+    });
+    let mrays = |ms: f64| primary.len() as f64 / ms / 1e3;
+    sweep.comparison(
+        Comparison::new(
+            "kdtree_tracer/primary_1600x900_packets_vs_single_2t",
+            mrays(packets),
+            mrays(single),
+            "Mrays/s",
+            true,
+        )
+        .note(format!(
+            "the 1600x900 primary rays as an image: trace_tiles (4x4-pixel packets, 40x40 \
+             tiles) against the same tiles one ray at a time (map_tiles + KdTree::intersect); \
+             the answers are bit for bit the same; interleaved, median of {prim_rounds}"
+        )),
+    );
+    sweep.comparison(
+        Comparison::new(
+            "kdtree_tracer/vs_obvhs_cwbvh_primary_tiles_1600x900_2t",
+            mrays(packets2),
+            mrays(theirs),
+            "Mrays/s",
+            true,
+        )
+        .note(format!(
+            "the 1600x900 primary rays through trace_tiles for both: the kd-tree's 4x4-pixel \
+             packets against obvhs {} one ray at a time (RayQuery::intersect_many's default); \
+             interleaved, median of {prim_rounds}",
+            cw_preset.name()
+        )),
+    );
+    drop(image);
     drop(primary);
 
     // The thesis's reflection buffer: the mirror reflections of every visible pixel of the

@@ -11,7 +11,7 @@
 //! mirror-reflection rays, coherent), `blob` (and `blob5`, `blob4`: the same shape at 20k and
 //! 5k triangles), `cable`, `atrium`, `soup`; and `refl`, which
 //! races `trace_tiles` (packets) against tiles of single rays on the city's two 800x450
-//! reflection buffers (times in ms as well as the ratio).
+//! reflection buffers and its 1600x900 primary rays (times in ms as well as the ratio).
 //!
 //! cargo run --release -p kdtree_tracer --example kdrace -- [--rays N] [--threads T]
 //! [--rounds R] [--preset NAME] [MESH...]
@@ -49,18 +49,22 @@ fn kd_rounds(kd: &KdTree, rays: &[Ray], rounds: usize) -> usize {
     std::hint::black_box(hits)
 }
 
-/// `refl`: the city's 800x450 reflection buffers (mirror, then incoherent hemisphere) traced
-/// by `trace_tiles` (4x2 packets) against tiles of single rays, interleaved.
+/// `refl`: the city's 800x450 reflection buffers (mirror, then incoherent hemisphere) and its
+/// 1600x900 primary rays traced by `trace_tiles` (4x4-pixel packets) against tiles of single
+/// rays, interleaved.
 fn reflections(pool: &rayon::ThreadPool, s: &Settings, rounds: usize) -> Result<()> {
     let city = test_util::city_block(1, 20_000);
     let kd = KdTree::build(&city, s)?;
     let cam = Camera::over_city(&city);
     let (w, h) = (800, 450);
+    let primary = test_util::camera_rays(&cam, 2 * w, 2 * h).into_iter().map(Some).collect();
     let buffers = [
-        ("mirror", test_util::screen_mirror_rays(&kd, &city, &cam, w, h)),
-        ("hemisphere", test_util::screen_incoherent_rays(&kd, &city, &cam, w, h, 17)),
+        ("mirror", w, h, test_util::screen_mirror_rays(&kd, &city, &cam, w, h)),
+        ("hemisphere", w, h, test_util::screen_incoherent_rays(&kd, &city, &cam, w, h, 17)),
+        ("primary", 2 * w, 2 * h, primary),
     ];
-    for (label, rays) in &buffers {
+    for (label, w, h, rays) in &buffers {
+        let (w, h) = (*w, *h);
         let (a, b) = pool.install(|| {
             interleaved(
                 rounds,

@@ -108,7 +108,21 @@
 //! zeroing their own: hemisphere buffer 143.7 -> 136.8 ms (20 buffers, load 4.2-4.4;
 //! callgrind 185 M -> 174 M), mirror buffer unchanged (69.5 / 69.4 ms).
 //!
-//! Standing after these steps (`kdrace --rays 100000`, medians of three runs of 15 rounds,
+//! Standing after the leaf blocks and packets (`kdrace --rays 100000`, three runs, load
+//! 3.6-4.9; one / two threads): city 1.23-1.27 / 1.23-1.28, blob 0.97-1.04 / 0.98-0.99,
+//! cable 1.39-1.48 / 1.39-1.45, atrium 1.62-1.67 / 1.60-1.62. The bench's quick sweep (load
+//! 2.2-2.6): city 1.21 / 1.18, blob 0.97 / 1.00, cable 1.41 / 1.40, atrium 1.59 / 1.57;
+//! primary rays 1.44 / 1.41 one at a time, and through `trace_tiles` (packets against obvhs
+//! one ray at a time) 1.71 on two threads; mirror buffer 42.6 ms, hemisphere buffer 77.7 ms
+//! (two threads, wall time on the shared machine); the 1M-triangle build 1.36 s. `kdrace
+//! refl` at load 2.0-2.3, packets / single rays, one and two threads: mirror 1.21 / 1.24,
+//! hemisphere 1.27 / 1.30, primary 1.29 / 1.28. The blob stays below the BVH, and the gap
+//! grows with its size: the same shape at 5k / 20k / 82k triangles (`kdrace blob4 blob5
+//! blob`, two runs, load 3.4) gives 1.09-1.19 / 1.08-1.11 / 1.00; a cache simulation
+//! (callgrind, 48 KB L1, 2 MB L2) counts 34 L2 misses per blob ray, 93% of them on leaf
+//! triangles (its leaf blocks are 6.3 MB; the city's 1 MB fit in L2).
+//!
+//! Before them (`kdrace --rays 100000`, medians of three runs of 15 rounds,
 //! load 3.9-5.0): city 1.14 / 1.10 (one / two threads), blob 1.03 / 0.99, cable 1.57 / 1.63,
 //! atrium 1.58 / 1.61. The bench's quick sweep in the same hour (medium build, 40k rays, load
 //! 4.3-4.4): city 1.08 / 1.07, blob 1.03 / 0.85, cable 1.44 / 1.41, atrium 1.54 / 1.59. The
@@ -150,14 +164,23 @@
 //! BVH makes; the test itself is cheap, so catching up needs trees whose rays cross fewer
 //! full leaves, which no SAH setting tried gives.
 //!
-//! Tried with the 8-lane leaf blocks and not kept (load 1.4-3.4): the SAH counting 8-lane
-//! chunks (`ceil(N/8)`) at intersection cost 0.4 / 0.5 / 0.6 / 0.8 (same rays, old tree
-//! against new in one process: at 0.4, city / blob / cable 1.05-1.10 faster but atrium 0.98
-//! and the mirror rays 0.92-0.93, two runs; the others within 3%), the AVX leaf test as an
-//! always-inlined function without a target feature of its own (so that the packets inline
-//! it too: the intrinsics in its closures were no longer inlined, 2.2x the instructions),
-//! and sending packets whose rays point into different octants to single rays (8-ray
-//! packets: 171 M -> 180 M instructions on the mirror buffer).
+//! Tried with the 8-lane leaf blocks and not kept (load 1.4-5): interleaving 2, 4 or 8
+//! independent single-ray walks one step each in one thread, so that one ray's cache misses
+//! overlap the others' work (CPU time 0.78-0.89 of one ray at a time on incoherent rays,
+//! 0.50-0.67 on mirror rays; probably because the rays' state no longer stays in registers),
+//! the last four lanes of a block with masked AVX loads instead of an SSE tail (more
+//! instructions: city 26.0 M -> 27.6 M), the single-ray stack kept per thread instead of
+//! zeroed per ray (`thread_local!`: 6-10% more instructions), one call per leaf for all of a
+//! packet's rays (no change: the 8-wide test was still not inlined into it), the SAH
+//! counting 8-lane chunks (`ceil(N/8)`) at intersection cost 0.4 / 0.5 / 0.6 / 0.8 (same
+//! rays, old tree against new in one process: at 0.4, city / blob / cable 1.05-1.10 faster
+//! but atrium 0.98 and the mirror rays 0.92-0.93, two runs; the others within 3%), the AVX
+//! leaf test as an always-inlined function without a target feature of its own (so that the
+//! packets inline it too: the intrinsics in its closures were no longer inlined, 2.2x the
+//! instructions), sending packets whose rays point into different octants to single rays
+//! (8-ray packets: 171 M -> 180 M instructions on the mirror buffer), and trees with smaller
+//! leaves for the packets (intersection cost 0.6 / 0.8 / 1.2: mirror buffer in packets
+//! within 7% of 0.4's, no trend, load 3.8).
 //!
 //! ```
 //! use glam::Vec3;
