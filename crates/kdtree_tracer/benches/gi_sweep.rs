@@ -3,9 +3,8 @@
 //! character (a closed organic blob, a long thin cable, an architectural atrium), incoherent
 //! and primary rays (the primary rays also as an image through `trace_tiles`, packets against
 //! single rays and against obvhs); the thesis's reflection buffer (mirror reflections of an
-//! 800x450 view)
-//! and the worst-case incoherent one, each also raced packets against single rays; the
-//! 1M-triangle build, and the SAH settings sweep.
+//! 800x450 view) and the worst-case incoherent one, each also raced packets against single
+//! rays; the 1M-triangle build, and the SAH settings sweep.
 
 use std::time::Instant;
 

@@ -343,6 +343,7 @@ impl PreparedRay {
 }
 
 /// The three edge functions in double precision (the paper's rule for exact zeros).
+#[cfg(target_arch = "x86_64")]
 #[inline(never)]
 fn exact_edges(ax: f32, ay: f32, bx: f32, by: f32, cx: f32, cy: f32) -> (f32, f32, f32) {
     let m = |p: f32, q: f32, r: f32, s: f32| (p as f64 * q as f64 - r as f64 * s as f64) as f32;

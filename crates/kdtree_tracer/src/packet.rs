@@ -105,6 +105,7 @@ impl KdTree {
         };
         let mut t0 = [0.0f32; PACKET];
         let mut t1 = [0.0f32; PACKET];
+        #[cfg(target_arch = "x86_64")]
         let wide = crate::leaf::avx();
         #[cfg(target_arch = "x86_64")]
         let mask = if wide {

@@ -61,7 +61,9 @@ pub(crate) struct PreparedRay {
     pub sx: f32,
     pub sy: f32,
     pub sz: f32,
-    /// The leaf test's 8-wide path is available ([`crate::leaf::avx`]).
+    /// The leaf test's 8-wide path is available ([`crate::leaf::avx`]; always false off
+    /// x86-64).
+    #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
     pub wide: bool,
 }
 
