@@ -93,7 +93,22 @@ impl KdTree {
         out: &mut [Option<Hit>],
         scratch: &mut Scratch,
     ) {
+        self.packet_with(rays, t_max, out, scratch, crate::leaf::avx());
+    }
+
+    /// [`Self::packet`] with the AVX paths (`wide`, only where the CPU has AVX) or the SSE
+    /// and scalar ones.
+    fn packet_with(
+        &self,
+        rays: &[Option<Ray>],
+        t_max: f32,
+        out: &mut [Option<Hit>],
+        scratch: &mut Scratch,
+        wide: bool,
+    ) {
         assert!(rays.len() <= PACKET && out.len() == rays.len(), "packet of {} rays", rays.len());
+        #[cfg(not(target_arch = "x86_64"))]
+        let _ = wide;
         let dummy = PreparedRay::new(&Ray::new(glam::Vec3::ZERO, glam::Vec3::X));
         let mut l = Lanes {
             o: [[0.0; PACKET]; 4],
@@ -105,8 +120,6 @@ impl KdTree {
         };
         let mut t0 = [0.0f32; PACKET];
         let mut t1 = [0.0f32; PACKET];
-        #[cfg(target_arch = "x86_64")]
-        let wide = crate::leaf::avx();
         #[cfg(target_arch = "x86_64")]
         let mask = if wide {
             // SAFETY: `wide`: the CPU has AVX.
@@ -839,6 +852,43 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The SSE packet path (every AVX step has an SSE twin) against single rays, bit for bit:
+    /// the packet proptest exercises only the path of the CPU it runs on.
+    #[test]
+    fn sse_packets_agree_with_single_rays() {
+        let mesh = crate::test_util::city_block(4, 1500);
+        let tree = KdTree::build(&mesh, &crate::Settings::DEFAULT).unwrap();
+        let cam = crate::test_util::Camera::over_city(&mesh);
+        let mirror = crate::test_util::screen_mirror_rays(&tree, &mesh, &cam, 64, 48);
+        let hemi = crate::test_util::screen_incoherent_rays(&tree, &mesh, &cam, 64, 48, 9);
+        let mut scratch = Scratch::new();
+        let bits = |h: Option<Hit>| {
+            h.map(|h| (h.t.to_bits(), h.triangle, h.barycentrics.to_array().map(f32::to_bits)))
+        };
+        let mut checked = 0;
+        for rays in [&mirror, &hemi] {
+            for chunk in rays.chunks(PACKET) {
+                let mut out = [None; PACKET];
+                tree.packet_with(
+                    chunk,
+                    f32::INFINITY,
+                    &mut out[..chunk.len()],
+                    &mut scratch,
+                    false,
+                );
+                for (r, h) in chunk.iter().zip(out) {
+                    assert_eq!(
+                        bits(h),
+                        bits(r.and_then(|r| tree.intersect(&r, f32::INFINITY))),
+                        "{r:?}"
+                    );
+                    checked += usize::from(h.is_some());
+                }
+            }
+        }
+        assert!(checked > 2000, "{checked} hits");
     }
 
     fn same(a: f32, b: f32) -> bool {
