@@ -35,7 +35,7 @@
 //!   (H. Igehy, "Tracing Ray Differentials", SIGGRAPH 1999) with the hit triangle's plane.
 //! - **Dynamic geometry** (the thesis's future work): [`BvhAccel`] answers the same queries
 //!   with an obvhs CWBVH rebuilt per frame, and [`SceneAccel`] combines a static kd-tree with
-//!   it, keeping the closer hit.
+//!   it, keeping the closer hit (in [`trace_tiles`], the static part in packets).
 //! - [`BruteForce`] is the reference every structure is tested against; [`test_util`] has
 //!   the seeded scenes (city block, spheres, random soup, Cornell box) and ray generators,
 //!   among them a view's mirror-reflection buffer (the thesis's reflection rays) and its

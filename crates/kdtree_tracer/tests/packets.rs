@@ -184,3 +184,31 @@ fn short_and_degenerate_packets() {
     tree.intersect_many(&rays[..3], f32::INFINITY, &mut out);
     assert_eq!(out[2].map(|h| h.mesh), Some(2), "the back wall");
 }
+
+#[test]
+fn scene_accel_traces_tiles_as_single_rays() {
+    let static_mesh = test_util::city_block(6, 1500);
+    let dynamic_mesh = test_util::icosphere(Vec3::new(30.0, 8.0, 30.0), 6.0, 3);
+    let scene = kdtree_tracer::SceneAccel::new(
+        &static_mesh,
+        &Settings::DEFAULT,
+        &dynamic_mesh,
+        kdtree_tracer::BvhPreset::FastBuild,
+    )
+    .unwrap();
+    let cam = Camera::over_city(&static_mesh);
+    let (w, h) = (61, 43);
+    for rays in [
+        test_util::screen_mirror_rays(&scene.static_tree, &static_mesh, &cam, w, h),
+        test_util::camera_rays(&cam, w, h).into_iter().map(Some).collect(),
+    ] {
+        let tiled = trace_tiles(&scene, w, h, &rays, f32::INFINITY, 16).unwrap();
+        let mut dynamic = 0;
+        for (r, got) in rays.iter().zip(tiled) {
+            let want = r.and_then(|r| scene.intersect(&r, f32::INFINITY));
+            assert_eq!(bits(got), bits(want), "{r:?}");
+            dynamic += usize::from(got.is_some_and(|g| scene.is_dynamic(&g)));
+        }
+        assert!(dynamic > 0, "no ray hit the dynamic sphere");
+    }
+}
