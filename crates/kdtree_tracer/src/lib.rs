@@ -83,8 +83,8 @@
 //! traces mirror reflections, each visible pixel's camera ray reflected about the hit
 //! triangle's normal (`test_util::screen_mirror_rays`; neighbouring pixels' rays are
 //! coherent), and the hemisphere buffer it traced before is `reflections_800x450_incoherent_2t`
-//! (nothing hidden). One ray at a time, the mirror buffer takes 0.41-0.53 of the hemisphere
-//! buffer's time. [`trace_tiles`] traces each tile in packets of 4x4 pixels: against the same
+//! (nothing hidden). One ray at a time, the mirror buffer takes 0.46-0.53 of the hemisphere
+//! buffer's time (one thread, three runs). [`trace_tiles`] traces each tile in packets of 4x4 pixels: against the same
 //! rays one by one in the same order, in CPU time of one thread (`/proc/thread-self/schedstat`,
 //! median of 15-31 alternating rounds, three runs, load 3.1-3.4), the mirror buffer went
 //! 1.20-1.25x faster and the hemisphere buffer 1.22-1.28x, although packets run more
@@ -120,7 +120,9 @@
 //! grows with its size: the same shape at 5k / 20k / 82k triangles (`kdrace blob4 blob5
 //! blob`, two runs, load 3.4) gives 1.09-1.19 / 1.08-1.11 / 1.00; a cache simulation
 //! (callgrind, 48 KB L1, 2 MB L2) counts 34 L2 misses per blob ray, 93% of them on leaf
-//! triangles (its leaf blocks are 6.3 MB; the city's 1 MB fit in L2).
+//! triangles (its leaf blocks are 6.3 MB; the city's 1 MB fit in L2). The cable's lower
+//! ratio than before is not a loss: the code before these steps gave 1.39-1.44 on it in this
+//! session's alternating runs (the table's last row).
 //!
 //! Before them (`kdrace --rays 100000`, medians of three runs of 15 rounds,
 //! load 3.9-5.0): city 1.14 / 1.10 (one / two threads), blob 1.03 / 0.99, cable 1.57 / 1.63,
