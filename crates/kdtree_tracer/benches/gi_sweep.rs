@@ -1,15 +1,18 @@
 //! `cargo xtask bench --only kdtree_tracer`: the kd-tree against obvhs (interleaved, same
 //! triangles, same rays, same triangle test) on the city block and on three meshes of other
 //! character (a closed organic blob, a long thin cable, an architectural atrium), incoherent
-//! and primary rays; the thesis's worst-case reflection buffer, the 1M-triangle build, and the
-//! SAH settings sweep.
+//! and primary rays (the primary rays also as an image through `trace_tiles`, packets against
+//! single rays and against obvhs); the thesis's reflection buffer (mirror reflections of an
+//! 800x450 view) and the worst-case incoherent one, each also raced packets against single
+//! rays; the 1M-triangle build, and the SAH settings sweep.
 
 use std::time::Instant;
 
 use gi_report::{Comparison, Entry, Sweep, interleaved, time_ms};
 use kdtree_tracer::test_util::{self, Camera};
 use kdtree_tracer::{
-    BvhAccel, BvhKind, BvhPreset, DEFAULT_TILE, KdTree, Mesh, Ray, RayQuery, Settings, trace_tiles,
+    BvhAccel, BvhKind, BvhPreset, DEFAULT_TILE, KdTree, Mesh, PACKET, Ray, RayQuery, Settings,
+    map_tiles, trace_tiles,
 };
 use rayon::prelude::*;
 
@@ -186,24 +189,132 @@ fn main() -> std::io::Result<()> {
             )),
         );
     }
+    // The same primary rays as an image through `trace_tiles`: 4x4-pixel packets against the
+    // same tiles one ray at a time, and against obvhs (whose batches are single rays).
+    let (pw, ph) = (1600u32, 900u32);
+    let image: Vec<Option<Ray>> = primary.iter().copied().map(Some).collect();
+    let tiles = |a: &dyn RayQuery| {
+        std::hint::black_box(trace_tiles(a, pw, ph, &image, f32::INFINITY, DEFAULT_TILE)).ok();
+    };
+    sweep.stage("primary 1600x900 packets");
+    let (packets, single, packets2, theirs) = pool(2).install(|| {
+        let (packets, single) = interleaved(
+            prim_rounds,
+            || tiles(&kd),
+            || {
+                std::hint::black_box(map_tiles(pw, ph, DEFAULT_TILE, |x, y| {
+                    kd.intersect(&primary[(y * pw + x) as usize], f32::INFINITY)
+                }));
+            },
+        );
+        let (packets2, theirs) = interleaved(prim_rounds, || tiles(&kd), || tiles(&cw));
+        (packets, single, packets2, theirs)
+    });
+    let mrays = |ms: f64| primary.len() as f64 / ms / 1e3;
+    sweep.comparison(
+        Comparison::new(
+            "kdtree_tracer/primary_1600x900_packets_vs_single_2t",
+            mrays(packets),
+            mrays(single),
+            "Mrays/s",
+            true,
+        )
+        .note(format!(
+            "the 1600x900 primary rays as an image: trace_tiles (4x4-pixel packets, 40x40 \
+             tiles) against the same tiles one ray at a time (map_tiles + KdTree::intersect); \
+             the answers are bit for bit the same; interleaved, median of {prim_rounds}"
+        )),
+    );
+    sweep.comparison(
+        Comparison::new(
+            "kdtree_tracer/vs_obvhs_cwbvh_primary_tiles_1600x900_2t",
+            mrays(packets2),
+            mrays(theirs),
+            "Mrays/s",
+            true,
+        )
+        .note(format!(
+            "the 1600x900 primary rays through trace_tiles for both: the kd-tree's 4x4-pixel \
+             packets against obvhs {} one ray at a time (RayQuery::intersect_many's default); \
+             interleaved, median of {prim_rounds}",
+            cw_preset.name()
+        )),
+    );
+    drop(image);
     drop(primary);
 
-    sweep.stage("reflections 800x450");
-    let filled = screen.iter().filter(|r| r.is_some()).count();
+    // The thesis's reflection buffer: the mirror reflections of every visible pixel of the
+    // 800x450 view (its 78 ms on 4 cores were measured "when reflections fill the screen", on
+    // such rays), then today's worst case, random hemisphere rays from the same pixels.
+    let mirror = test_util::screen_mirror_rays(&kd, &city, &cam, w, h);
+    let buffers = [
+        (
+            "kdtree_tracer/reflections_800x450_2t",
+            &mirror,
+            "whole buffer of mirror-reflection rays (each visible pixel's camera ray reflected \
+             about the hit triangle's normal: the thesis's case, 78 ms on 4 cores when \
+             reflections fill the screen; spatially coherent), trace_tiles with 4x4-pixel \
+             packets",
+        ),
+        (
+            "kdtree_tracer/reflections_800x450_incoherent_2t",
+            &screen,
+            "whole buffer of incoherent rays (a random hemisphere direction from every visible \
+             pixel: a worst case, the entry reflections_800x450_2t measured before it traced \
+             mirror reflections), trace_tiles with 4x4-pixel packets",
+        ),
+    ];
     let reps = sweep.reps(10);
-    let cpu0 = cpu_seconds();
-    let (ms, _) = pool(2)
-        .install(|| time_ms(reps, || trace_tiles(&kd, w, h, &screen, f32::INFINITY, DEFAULT_TILE)));
-    let cpu_ms = cpu_seconds().zip(cpu0).map_or(-1.0, |(b, a)| (b - a) * 1e3 / (reps + 1) as f64);
-    sweep.entry(
-        Entry::new("kdtree_tracer/reflections_800x450_2t", "kdtree_tiles_40", ms)
-            .setting("rays", filled)
-            .setting("tile", DEFAULT_TILE)
-            .setting("cpu_ms_per_buffer", cpu_ms)
-            .setting("triangles", city.triangle_count())
-            .threads(2)
-            .note("whole buffer, incoherent hemisphere rays from every visible pixel (thesis worst case: 78 ms on 4 cores)"),
-    );
+    for (name, rays, what) in buffers {
+        sweep.stage(name);
+        let filled = rays.iter().filter(|r| r.is_some()).count();
+        let cpu0 = cpu_seconds();
+        let (ms, _) = pool(2).install(|| {
+            time_ms(reps, || trace_tiles(&kd, w, h, rays, f32::INFINITY, DEFAULT_TILE))
+        });
+        let cpu_ms =
+            cpu_seconds().zip(cpu0).map_or(-1.0, |(b, a)| (b - a) * 1e3 / (reps + 1) as f64);
+        sweep.entry(
+            Entry::new(name, "kdtree_tiles_40", ms)
+                .setting("rays", filled)
+                .setting("tile", DEFAULT_TILE)
+                .setting("packet", PACKET)
+                .setting("cpu_ms_per_buffer", cpu_ms)
+                .setting("triangles", city.triangle_count())
+                .threads(2)
+                .note(what),
+        );
+        // The same buffer in the same tiles traced one ray at a time, raced interleaved.
+        let (packets, single) = pool(2).install(|| {
+            interleaved(
+                reps,
+                || {
+                    std::hint::black_box(trace_tiles(&kd, w, h, rays, f32::INFINITY, DEFAULT_TILE))
+                        .ok();
+                },
+                || {
+                    std::hint::black_box(map_tiles(w, h, DEFAULT_TILE, |x, y| {
+                        rays[(y * w + x) as usize].and_then(|r| kd.intersect(&r, f32::INFINITY))
+                    }));
+                },
+            )
+        });
+        sweep.comparison(
+            Comparison::new(
+                format!("{name}_packets_vs_single"),
+                filled as f64 / packets / 1e3,
+                filled as f64 / single / 1e3,
+                "Mrays/s",
+                true,
+            )
+            .note(format!(
+                "the same buffer and tiles: 4x4-pixel packets (trace_tiles) against one ray at \
+                 a time (map_tiles + KdTree::intersect); the answers are bit for bit the same; \
+                 interleaved, median of {reps}"
+            )),
+        );
+    }
+    drop(mirror);
 
     sweep.stage("1M-triangle build");
     let sphere = test_util::uv_sphere(500, 1000);

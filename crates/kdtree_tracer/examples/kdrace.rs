@@ -2,18 +2,29 @@
 //! on several generated meshes; prints kd-tree / CWBVH throughput ratios (load cancels out).
 //! A development tool for tuning: settings come from the environment (`KD_KI`, `KD_KT`,
 //! `KD_BONUS`, `KD_LEAF`, `KD_PERFECT=1`), rays per mesh from `--rays N`, threads `--threads T`,
+//! rounds `--rounds R` (default 15), `--kd-only` to trace with the kd-tree alone (see
+//! `kd_rounds`),
 //! the obvhs build from `--preset NAME` (default `medium_build`; the full bench sweep races the
 //! fastest-tracing preset, often a slower build, so its ratios can be lower).
 //!
+//! Meshes: `city` (incoherent rays of the 800x450 view), `mirror` (the same view's
+//! mirror-reflection rays, coherent), `blob` (and `blob5`, `blob4`: the same shape at 20k and
+//! 5k triangles), `cable`, `atrium`, `soup`; and `refl`, which
+//! races `trace_tiles` (packets) against tiles of single rays on the city's two 800x450
+//! reflection buffers and its 1600x900 primary rays (times in ms as well as the ratio).
+//!
 //! cargo run --release -p kdtree_tracer --example kdrace -- [--rays N] [--threads T]
-//! [--preset NAME] [MESH...]
+//! [--rounds R] [--preset NAME] [MESH...]
 
 use std::time::Instant;
 
 use anyhow::{Context, Result};
 use gi_report::interleaved;
 use kdtree_tracer::test_util::{self, Camera};
-use kdtree_tracer::{BvhAccel, BvhKind, BvhPreset, KdTree, Mesh, Ray, RayQuery, Settings};
+use kdtree_tracer::{
+    BvhAccel, BvhKind, BvhPreset, DEFAULT_TILE, KdTree, Mesh, Ray, RayQuery, Settings, map_tiles,
+    trace_tiles,
+};
 use rayon::prelude::*;
 
 fn env_f32(name: &str, default: f32) -> f32 {
@@ -26,10 +37,66 @@ fn trace_all(accel: &(impl RayQuery + ?Sized), rays: &[Ray]) -> usize {
         .sum()
 }
 
+/// The kd-tree alone over `rays`, `rounds` times on this thread (`--kd-only`: a fixed workload
+/// for `valgrind --tool=callgrind --toggle-collect='*kd_rounds*'`, whose instruction counts
+/// do not depend on the machine's load).
+#[inline(never)]
+fn kd_rounds(kd: &KdTree, rays: &[Ray], rounds: usize) -> usize {
+    let mut hits = 0;
+    for _ in 0..rounds {
+        hits += rays.iter().filter(|r| kd.intersect(r, f32::INFINITY).is_some()).count();
+    }
+    std::hint::black_box(hits)
+}
+
+/// `refl`: the city's 800x450 reflection buffers (mirror, then incoherent hemisphere) and its
+/// 1600x900 primary rays traced by `trace_tiles` (4x4-pixel packets) against tiles of single
+/// rays, interleaved.
+fn reflections(pool: &rayon::ThreadPool, s: &Settings, rounds: usize) -> Result<()> {
+    let city = test_util::city_block(1, 20_000);
+    let kd = KdTree::build(&city, s)?;
+    let cam = Camera::over_city(&city);
+    let (w, h) = (800, 450);
+    let primary = test_util::camera_rays(&cam, 2 * w, 2 * h).into_iter().map(Some).collect();
+    let buffers = [
+        ("mirror", w, h, test_util::screen_mirror_rays(&kd, &city, &cam, w, h)),
+        ("hemisphere", w, h, test_util::screen_incoherent_rays(&kd, &city, &cam, w, h, 17)),
+        ("primary", 2 * w, 2 * h, primary),
+    ];
+    for (label, w, h, rays) in &buffers {
+        let (w, h) = (*w, *h);
+        let (a, b) = pool.install(|| {
+            interleaved(
+                rounds,
+                || {
+                    let hits = trace_tiles(&kd, w, h, rays, f32::INFINITY, DEFAULT_TILE);
+                    std::hint::black_box(hits.map(|v| v.len()).unwrap_or(0));
+                },
+                || {
+                    let hits = map_tiles(w, h, DEFAULT_TILE, |x, y| {
+                        rays[(y * w + x) as usize].and_then(|r| kd.intersect(&r, f32::INFINITY))
+                    });
+                    std::hint::black_box(hits.len());
+                },
+            )
+        });
+        println!(
+            "refl {label:10} {} rays  packets {:6.1} ms  single {:6.1} ms  single/packets {:.3}",
+            rays.iter().flatten().count(),
+            a,
+            b,
+            b / a
+        );
+    }
+    Ok(())
+}
+
 fn mesh(name: &str) -> Option<Mesh> {
     Some(match name {
-        "city" => test_util::city_block(1, 20_000),
+        "city" | "mirror" => test_util::city_block(1, 20_000),
         "blob" => test_util::blob(6),
+        "blob5" => test_util::blob(5),
+        "blob4" => test_util::blob(4),
         "cable" => test_util::cable(2000, 12),
         "atrium" => test_util::atrium(),
         "soup" => test_util::random_soup(1, 100_000, 0.02),
@@ -39,8 +106,9 @@ fn mesh(name: &str) -> Option<Mesh> {
 
 fn main() -> Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let (mut n, mut threads, mut names) = (100_000usize, 1usize, Vec::new());
+    let (mut n, mut threads, mut rounds, mut names) = (100_000usize, 1usize, 15usize, Vec::new());
     let mut preset = BvhPreset::MediumBuild;
+    let mut kd_only = false;
     let mut i = 0;
     while i < args.len() {
         match args[i].as_str() {
@@ -48,6 +116,11 @@ fn main() -> Result<()> {
                 i += 1;
                 n = args.get(i).context("--rays N")?.parse()?;
             }
+            "--rounds" => {
+                i += 1;
+                rounds = args.get(i).context("--rounds R")?.parse()?;
+            }
+            "--kd-only" => kd_only = true,
             "--threads" => {
                 i += 1;
                 threads = args.get(i).context("--threads T")?.parse()?;
@@ -78,21 +151,34 @@ fn main() -> Result<()> {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build()?;
     let mut log = 0.0;
     for name in &names {
+        if name == "refl" {
+            reflections(&pool, &s, rounds)?;
+            continue;
+        }
         let m = mesh(name).with_context(|| format!("unknown mesh {name}"))?;
         let t = Instant::now();
         let kd = KdTree::build(&m, &s)?;
         let build = t.elapsed().as_secs_f64() * 1e3;
-        let cw = BvhAccel::build(&m, BvhKind::Cwbvh, preset)?;
         let rays = if name == "city" {
             let cam = Camera::over_city(&m);
             let all = test_util::screen_incoherent_rays(&kd, &m, &cam, 800, 450, 17);
             all.into_iter().flatten().take(n).collect()
+        } else if name == "mirror" {
+            let cam = Camera::over_city(&m);
+            let all = test_util::screen_mirror_rays(&kd, &m, &cam, 800, 450);
+            all.into_iter().flatten().take(n).collect()
         } else {
             test_util::surface_rays(&m, n, 7)
         };
+        if kd_only {
+            let hits = kd_rounds(&kd, &rays, rounds);
+            println!("{name:8} {} rays x {rounds} rounds, {hits} hits", rays.len());
+            continue;
+        }
+        let cw = BvhAccel::build(&m, BvhKind::Cwbvh, preset)?;
         let (a, b) = pool.install(|| {
             interleaved(
-                15,
+                rounds,
                 || {
                     std::hint::black_box(trace_all(&kd, &rays));
                 },

@@ -107,4 +107,16 @@ pub trait RayQuery: Sync {
     fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit>;
     /// True when any hit with `t` in `[ray.t_min, t_max]` exists (early out).
     fn occluded(&self, ray: &Ray, t_max: f32) -> bool;
+    /// Closest hits of several rays, `out[i]` for `rays[i]` (`None` rays get `None`): the same
+    /// answers as [`RayQuery::intersect`] on each ray. [`crate::trace_tiles`] hands it blocks
+    /// of neighbouring pixels; [`crate::KdTree`] traces them in packets, the default one by one.
+    ///
+    /// # Panics
+    /// When `out.len() != rays.len()`.
+    fn intersect_many(&self, rays: &[Option<Ray>], t_max: f32, out: &mut [Option<Hit>]) {
+        assert_eq!(rays.len(), out.len(), "one output per ray");
+        for (o, r) in out.iter_mut().zip(rays) {
+            *o = r.as_ref().and_then(|r| self.intersect(r, t_max));
+        }
+    }
 }

@@ -48,9 +48,10 @@ impl SceneAccel {
     }
 }
 
-impl RayQuery for SceneAccel {
-    fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        let s = self.static_tree.intersect(ray, t_max);
+impl SceneAccel {
+    /// The closer of the static hit `s` and the dynamic part's hit before it.
+    #[inline]
+    fn closer(&self, ray: &Ray, t_max: f32, s: Option<Hit>) -> Option<Hit> {
         let limit = s.map_or(t_max, |h| h.t);
         match self.dynamic.intersect(ray, limit) {
             Some(d) if s.is_none_or(|s| d.t < s.t) => Some(Hit {
@@ -59,6 +60,23 @@ impl RayQuery for SceneAccel {
                 ..d
             }),
             _ => s,
+        }
+    }
+}
+
+impl RayQuery for SceneAccel {
+    fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        self.closer(ray, t_max, self.static_tree.intersect(ray, t_max))
+    }
+
+    /// The static kd-tree's packets (the same static hits as one ray at a time), then each
+    /// ray's dynamic query: the same answers as [`RayQuery::intersect`].
+    fn intersect_many(&self, rays: &[Option<Ray>], t_max: f32, out: &mut [Option<Hit>]) {
+        self.static_tree.intersect_many(rays, t_max, out);
+        for (r, o) in rays.iter().zip(out.iter_mut()) {
+            if let Some(r) = r {
+                *o = self.closer(r, t_max, *o);
+            }
         }
     }
 

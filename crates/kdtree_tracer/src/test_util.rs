@@ -1,6 +1,6 @@
 //! Seeded scene and ray generators for tests, benchmarks and examples: a city-like block of
-//! boxes, subdivided spheres, a random triangle soup, a Cornell box, camera rays and
-//! incoherent (random hemisphere) rays from surface points.
+//! boxes, subdivided spheres, a random triangle soup, a Cornell box, camera rays, incoherent
+//! (random hemisphere) rays from surface points and mirror-reflection rays of a view.
 
 use glam::{Vec2, Vec3};
 
@@ -310,13 +310,49 @@ pub fn screen_incoherent_rays(
     out
 }
 
-fn secondary(rng: &mut Rng, mesh: &Mesh, primary: &Ray, h: &Hit) -> Ray {
-    let mut n = triangle_normal(mesh, h.triangle);
-    if n.dot(primary.dir) > 0.0 {
-        n = -n;
+/// Mirror-reflection rays for a `width x height` screen (the thesis's reflection buffer as it
+/// traces it: every visible pixel reflects its camera ray about the hit triangle's normal).
+/// Unlike [`screen_incoherent_rays`] these are spatially coherent: neighbouring pixels on one
+/// surface get nearby origins and nearby (on a flat surface, identical up to the camera's
+/// spread) directions. Pixels that miss get `None`.
+pub fn screen_mirror_rays(
+    accel: &impl RayQuery,
+    mesh: &Mesh,
+    camera: &Camera,
+    width: u32,
+    height: u32,
+) -> Vec<Option<Ray>> {
+    let mut out = Vec::with_capacity((width * height) as usize);
+    for y in 0..height {
+        for x in 0..width {
+            let primary = camera.ray(x as f32, y as f32, width, height);
+            out.push(accel.intersect(&primary, f32::INFINITY).map(|h| mirror(mesh, &primary, &h)));
+        }
     }
+    out
+}
+
+fn mirror(mesh: &Mesh, primary: &Ray, h: &Hit) -> Ray {
+    let n = facing_normal(mesh, primary, h);
+    let d = primary.dir;
+    Ray::new(offset_point(primary, h, n), d - n * (2.0 * d.dot(n)))
+}
+
+/// The hit triangle's normal on the side the ray came from.
+fn facing_normal(mesh: &Mesh, primary: &Ray, h: &Hit) -> Vec3 {
+    let n = triangle_normal(mesh, h.triangle);
+    if n.dot(primary.dir) > 0.0 { -n } else { n }
+}
+
+/// The hit point moved off the surface along `n` (scaled to the coordinates' magnitude).
+fn offset_point(primary: &Ray, h: &Hit, n: Vec3) -> Vec3 {
     let p = primary.at(h.t);
-    Ray::new(p + n * 1e-4 * (1.0 + p.abs().max_element()), rng.hemisphere(n)).with_t_min(0.0)
+    p + n * 1e-4 * (1.0 + p.abs().max_element())
+}
+
+fn secondary(rng: &mut Rng, mesh: &Mesh, primary: &Ray, h: &Hit) -> Ray {
+    let n = facing_normal(mesh, primary, h);
+    Ray::new(offset_point(primary, h, n), rng.hemisphere(n)).with_t_min(0.0)
 }
 
 /// `n` incoherent rays: from random points on random triangles, in random directions of the

@@ -19,20 +19,42 @@ where
     T: Send,
     F: Fn(u32, u32) -> T + Sync,
 {
-    let tile = tile.max(1);
-    let (tx, ty) = (width.div_ceil(tile), height.div_ceil(tile));
-    let order = z_order(tx, ty);
-    let done: Vec<Vec<T>> = order
-        .par_iter()
-        .map(|&i| {
-            let (x0, y0) = ((i % tx) * tile, (i / tx) * tile);
-            let (x1, y1) = ((x0 + tile).min(width), (y0 + tile).min(height));
-            let mut out = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
+    run_tiles(
+        width,
+        height,
+        tile,
+        || (),
+        |_, x0, y0, x1, y1, out| {
             for y in y0..y1 {
                 for x in x0..x1 {
                     out.push(f(x, y));
                 }
             }
+        },
+    )
+}
+
+/// Runs `fill(scratch, x0, y0, x1, y1, out)` once per tile (it pushes the tile's pixels row
+/// by row into `out`; `scratch` comes from `init`, once per rayon job rather than per tile),
+/// tiles handed to rayon along the Z-order curve, and stitches the tiles into one row-major
+/// image.
+fn run_tiles<S, T, I, F>(width: u32, height: u32, tile: u32, init: I, fill: F) -> Vec<T>
+where
+    T: Send,
+    I: Fn() -> S + Sync + Send,
+    F: Fn(&mut S, u32, u32, u32, u32, &mut Vec<T>) + Sync + Send,
+{
+    let tile = tile.max(1);
+    let (tx, ty) = (width.div_ceil(tile), height.div_ceil(tile));
+    let order = z_order(tx, ty);
+    let done: Vec<Vec<T>> = order
+        .par_iter()
+        .map_init(init, |scratch, &i| {
+            let (x0, y0) = ((i % tx) * tile, (i / tx) * tile);
+            let (x1, y1) = ((x0 + tile).min(width), (y0 + tile).min(height));
+            let mut out = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
+            fill(scratch, x0, y0, x1, y1, &mut out);
+            debug_assert_eq!(out.len(), ((x1 - x0) * (y1 - y0)) as usize);
             out
         })
         .collect();
@@ -70,9 +92,15 @@ fn spread(v: u32) -> u64 {
     (x | (x << 1)) & 0x5555_5555_5555_5555
 }
 
+/// Pixel blocks traced together by [`trace_tiles`]: 4 x 4 pixels (a kd-tree packet).
+const BLOCK: (u32, u32) = (4, 4);
+
 /// Traces an image-shaped buffer of rays (`None` = no ray for that pixel, the thesis's
 /// reflection flag) in tiles of `tile` pixels (use [`DEFAULT_TILE`]) and returns the closest
-/// hit per pixel, row by row. Errors when `rays.len() != width * height`.
+/// hit per pixel, row by row. Each tile goes to [`RayQuery::intersect_many`] in blocks of
+/// 4 x 4 neighbouring pixels (the kd-tree traces each block as a packet; every answer is the
+/// one [`RayQuery::intersect`] gives for that ray alone). Errors when
+/// `rays.len() != width * height`.
 pub fn trace_tiles<A: RayQuery + ?Sized>(
     accel: &A,
     width: u32,
@@ -85,8 +113,38 @@ pub fn trace_tiles<A: RayQuery + ?Sized>(
     if rays.len() != expected {
         return Err(Error::BufferSize { len: rays.len(), width, height, expected });
     }
-    Ok(map_tiles(width, height, tile, |x, y| {
-        rays[(y * width + x) as usize].as_ref().and_then(|r| accel.intersect(r, t_max))
+    let init = || (Vec::new(), Vec::new());
+    Ok(run_tiles(width, height, tile, init, |(order, hits), x0, y0, x1, y1, out| {
+        // The tile's rays block by block (partial blocks padded with `None`), then back.
+        order.clear();
+        for by in (y0..y1).step_by(BLOCK.1 as usize) {
+            for bx in (x0..x1).step_by(BLOCK.0 as usize) {
+                for y in by..by + BLOCK.1 {
+                    for x in bx..bx + BLOCK.0 {
+                        let inside = x < x1 && y < y1;
+                        order.push(if inside { rays[(y * width + x) as usize] } else { None });
+                    }
+                }
+            }
+        }
+        hits.clear();
+        hits.resize(order.len(), None);
+        accel.intersect_many(order, t_max, hits);
+        let w = (x1 - x0) as usize;
+        out.resize(w * (y1 - y0) as usize, None);
+        let mut k = 0;
+        for by in (y0..y1).step_by(BLOCK.1 as usize) {
+            for bx in (x0..x1).step_by(BLOCK.0 as usize) {
+                for y in by..by + BLOCK.1 {
+                    for x in bx..bx + BLOCK.0 {
+                        if x < x1 && y < y1 {
+                            out[(y - y0) as usize * w + (x - x0) as usize] = hits[k];
+                        }
+                        k += 1;
+                    }
+                }
+            }
+        }
     }))
 }
 

@@ -14,27 +14,45 @@
 //!   rest of the interval), and a zero or negative-zero direction component is handled by the
 //!   IEEE infinities of `1/d` (`+-inf` never lies inside the interval).
 
-use crate::leaf4::Tri4;
+use crate::leaf::{self, ROWS};
 use crate::node::Node;
+use crate::packet::{self, PACKET};
 use crate::ray::{Hit, Ray, RayQuery, Rescaled};
 use crate::settings::MAX_DEPTH_LIMIT;
 use crate::tree::KdTree;
 use crate::triangle::PreparedRay;
 
 /// Relative widening of plane distances (a few ulps of f32, with margin).
-const WIDEN: f32 = 1e-6;
-const STACK: usize = MAX_DEPTH_LIMIT as usize + 8;
+pub(crate) const WIDEN: f32 = 1e-6;
+pub(crate) const STACK: usize = MAX_DEPTH_LIMIT as usize + 8;
 
+/// The best hit so far: where its ids are ([`leaf::id_place`]) and its barycentrics.
+pub(crate) type Best = Option<(u32, u32, f32, f32)>;
+
+/// A pending node of the single-ray walk.
 #[derive(Clone, Copy, Default)]
-struct Entry {
+pub(crate) struct Entry {
     node: u32,
     t0: f32,
     t1: f32,
 }
 
+/// The larger of two numbers that are not NaN (one `maxss`: `f32::max` also handles NaN;
+/// of `0.0` and `-0.0` either may come back, which no later comparison tells apart).
+#[inline(always)]
+pub(crate) fn max(a: f32, b: f32) -> f32 {
+    if a > b { a } else { b }
+}
+
+/// The smaller of two numbers that are not NaN (see [`max`]).
+#[inline(always)]
+pub(crate) fn min(a: f32, b: f32) -> f32 {
+    if a < b { a } else { b }
+}
+
 /// Clips `[t0, t1]` to the box (widened by `eps`); `None` when the ray misses it.
 #[inline(always)]
-fn clip_box(
+pub(crate) fn clip_box(
     tree: &KdTree,
     r: &PreparedRay,
     mut t0: f32,
@@ -56,8 +74,8 @@ fn clip_box(
         if n > f {
             std::mem::swap(&mut n, &mut f);
         }
-        t0 = t0.max(n - n.abs() * WIDEN - eps);
-        t1 = t1.min(f + f.abs() * WIDEN + eps);
+        t0 = max(t0, n - n.abs() * WIDEN - eps);
+        t1 = min(t1, f + f.abs() * WIDEN + eps);
     }
     (t0 <= t1).then_some((t0, t1))
 }
@@ -99,32 +117,85 @@ impl KdTree {
     #[inline(always)]
     fn traverse_prepared<const ANY: bool>(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
         let r = PreparedRay::new(ray);
+        #[cfg(target_arch = "x86_64")]
+        if r.wide {
+            // SAFETY: `wide` is true only where the CPU has AVX (`leaf::avx`).
+            return unsafe { self.traverse_avx::<ANY>(ray, &r, t_min, t_max) };
+        }
         match r.kz {
-            0 => self.traverse_k::<ANY, 0>(ray, &r, t_min, t_max),
-            1 => self.traverse_k::<ANY, 1>(ray, &r, t_min, t_max),
-            _ => self.traverse_k::<ANY, 2>(ray, &r, t_min, t_max),
+            0 => self.traverse_k::<ANY, 0, false>(ray, &r, t_min, t_max),
+            1 => self.traverse_k::<ANY, 1, false>(ray, &r, t_min, t_max),
+            _ => self.traverse_k::<ANY, 2, false>(ray, &r, t_min, t_max),
         }
     }
 
-    /// The traversal for rays whose major axis is `KZ`.
-    #[inline(always)]
-    fn traverse_k<const ANY: bool, const KZ: usize>(
+    /// The whole traversal compiled with AVX, so that the 8-wide leaf test is inlined into it.
+    ///
+    /// # Safety
+    /// The CPU must have AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn traverse_avx<const ANY: bool>(
         &self,
         ray: &Ray,
         r: &PreparedRay,
         t_min: f32,
         t_max: f32,
     ) -> Option<Hit> {
-        let eps =
-            2e-6 * (self.scale + ray.origin.abs().max_element()) / ray.dir.abs().max_element();
-        let (mut t0, mut t1) = clip_box(self, r, t_min, t_max, eps)?;
-        let nodes: &[Node] = &self.nodes;
-        let packs = &self.packs;
-        let mut stack = [Entry::default(); STACK];
-        let mut sp = 0usize;
-        let mut node = nodes[0];
+        match r.kz {
+            0 => self.traverse_k::<ANY, 0, true>(ray, r, t_min, t_max),
+            1 => self.traverse_k::<ANY, 1, true>(ray, r, t_min, t_max),
+            _ => self.traverse_k::<ANY, 2, true>(ray, r, t_min, t_max),
+        }
+    }
+
+    /// The traversal for rays whose major axis is `KZ` (`AVX`: with the 8-wide leaf test,
+    /// only inside [`Self::traverse_avx`] or another function compiled with AVX).
+    #[inline(always)]
+    fn traverse_k<const ANY: bool, const KZ: usize, const AVX: bool>(
+        &self,
+        ray: &Ray,
+        r: &PreparedRay,
+        t_min: f32,
+        t_max: f32,
+    ) -> Option<Hit> {
+        let eps = self.ray_eps(ray);
+        let (t0, t1) = clip_box(self, r, t_min, t_max, eps)?;
         let mut best_t = t_max;
-        let mut best: Option<(u32, usize, f32, f32)> = None;
+        let mut best = None;
+        let mut stack = [Entry::default(); STACK];
+        self.walk::<ANY, KZ, AVX>(r, eps, t_min, 0, t0, t1, &mut best_t, &mut best, &mut stack);
+        self.hit(best, best_t)
+    }
+
+    /// The widening of every plane decision for `ray` (see the module doc).
+    #[inline(always)]
+    pub(crate) fn ray_eps(&self, ray: &Ray) -> f32 {
+        2e-6 * (self.scale + ray.origin.abs().max_element()) / ray.dir.abs().max_element()
+    }
+
+    /// Front-to-back traversal of the subtree at node `root`, entered with the interval
+    /// `[t0, t1]`, updating the best hit `best_t`, `best` (pack, lane, u, v); with `ANY`, it
+    /// returns at the first hit. Every node pushed here is popped here, so the leaves it
+    /// tests, in order, are those the whole-tree traversal tests when it enters `root` with
+    /// the same interval and best hit (the packets rely on this).
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub(crate) fn walk<const ANY: bool, const KZ: usize, const AVX: bool>(
+        &self,
+        r: &PreparedRay,
+        eps: f32,
+        t_min: f32,
+        root: u32,
+        mut t0: f32,
+        mut t1: f32,
+        best_t: &mut f32,
+        best: &mut Best,
+        stack: &mut [Entry; STACK],
+    ) {
+        let nodes: &[Node] = &self.nodes;
+        let mut sp = 0usize;
+        let mut node = nodes[root as usize];
         loop {
             if !node.is_leaf() {
                 let axis = node.axis() & 3;
@@ -152,7 +223,7 @@ impl KdTree {
                         // Plane behind the origin: the ray stays on the near side. Within `e`
                         // of the plane, the first `e` of the ray also sees the far side.
                         if ts >= -e && t0 <= e {
-                            push = Some((t0, t1.min(e.max(t0))));
+                            push = Some((t0, min(t1, max(e, t0))));
                         }
                         node = nodes[near as usize];
                     } else if ts - e > t1 {
@@ -160,7 +231,7 @@ impl KdTree {
                     } else if ts + e < t0 {
                         node = nodes[far as usize];
                     } else {
-                        let c = ts.max(t0).min(t1);
+                        let c = min(max(ts, t0), t1);
                         push = Some((c, t1));
                         t1 = c;
                         node = nodes[near as usize];
@@ -174,16 +245,8 @@ impl KdTree {
                 }
                 continue;
             }
-            let start = node.offset() as usize;
-            let end = start + node.count().div_ceil(4) as usize;
-            for (k, pack) in packs[start..end].iter().enumerate() {
-                if let Some((t, u, v, lane)) = r.intersect4::<KZ>(pack, t_min, best_t) {
-                    if ANY {
-                        return Some(hit(pack, lane, t, u, v));
-                    }
-                    best_t = t;
-                    best = Some(((start + k) as u32, lane, u, v));
-                }
+            if self.leaf::<KZ, AVX>(r, node, t_min, best_t, best) && ANY {
+                return;
             }
             // Pop the next node whose interval still starts before the best hit. (No separate
             // early exit: after a ray-in-plane split both children share an interval, so only
@@ -191,11 +254,11 @@ impl KdTree {
             // as soon as the best hit precedes every pending node.)
             loop {
                 if sp == 0 {
-                    return best.map(|(i, lane, u, v)| hit(&packs[i as usize], lane, best_t, u, v));
+                    return;
                 }
                 sp -= 1;
                 let e = stack[sp];
-                if e.t0 - eps - e.t0.abs() * WIDEN <= best_t {
+                if e.t0 - eps - e.t0.abs() * WIDEN <= *best_t {
                     node = nodes[e.node as usize];
                     t0 = e.t0;
                     t1 = e.t1;
@@ -204,11 +267,41 @@ impl KdTree {
             }
         }
     }
-}
 
-#[inline]
-fn hit(pack: &Tri4, lane: usize, t: f32, u: f32, v: f32) -> Hit {
-    Hit { t, triangle: pack.tri[lane], mesh: pack.mesh[lane], barycentrics: glam::Vec2::new(u, v) }
+    /// Tests the triangles of leaf `node` against `[t_min, best_t]`, updating the best hit
+    /// (`best`: where the hit lane's ids are, [`leaf::id_place`], and its barycentrics); true
+    /// when one was found here.
+    #[inline(always)]
+    pub(crate) fn leaf<const KZ: usize, const AVX: bool>(
+        &self,
+        r: &PreparedRay,
+        node: Node,
+        t_min: f32,
+        best_t: &mut f32,
+        best: &mut Best,
+    ) -> bool {
+        let start = node.offset() as usize;
+        let m = leaf::lanes(node.count() as usize);
+        let block = &self.packs[start..start + ROWS * m / 4];
+        match r.intersect_leaf::<KZ, AVX>(block, m, t_min, *best_t) {
+            Some((t, u, v, lane)) => {
+                let (q, l) = leaf::id_place(start, m, lane);
+                *best_t = t;
+                *best = Some((q, l, u, v));
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// The hit recorded in `best` at distance `t`.
+    #[inline]
+    pub(crate) fn hit(&self, best: Best, t: f32) -> Option<Hit> {
+        best.map(|(q, l, u, v)| {
+            let (triangle, mesh) = leaf::ids_at(&self.packs, (q, l));
+            Hit { t, triangle, mesh, barycentrics: glam::Vec2::new(u, v) }
+        })
+    }
 }
 
 impl RayQuery for KdTree {
@@ -217,5 +310,12 @@ impl RayQuery for KdTree {
     }
     fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
         KdTree::occluded(self, ray, t_max)
+    }
+    fn intersect_many(&self, rays: &[Option<Ray>], t_max: f32, out: &mut [Option<Hit>]) {
+        assert_eq!(rays.len(), out.len(), "one output per ray");
+        let mut scratch = packet::Scratch::new();
+        for (r, o) in rays.chunks(PACKET).zip(out.chunks_mut(PACKET)) {
+            self.packet(r, t_max, o, &mut scratch);
+        }
     }
 }

@@ -6,7 +6,7 @@ use rayon::prelude::*;
 use crate::aabb::Aabb;
 use crate::build;
 use crate::error::Error;
-use crate::leaf4::Tri4;
+use crate::leaf::{self, Quad, ROWS};
 use crate::mesh::Mesh;
 use crate::node::{MAX_FIELD, Node};
 use crate::settings::{MAX_DEPTH_LIMIT, Settings};
@@ -18,14 +18,15 @@ pub const MAX_TRIANGLES: usize = MAX_FIELD as usize;
 /// A static SAH kd-tree over a [`Mesh`].
 ///
 /// Nodes are 8 bytes ([`TreeStats::bytes`] reports the total); each leaf's triangles are
-/// stored contiguously in packs of four (176 bytes: corners in structure-of-arrays form and
-/// ids, tested together), so a leaf is one linear read. Queries are [`KdTree::intersect`] (closest hit) and [`KdTree::occluded`] (any hit).
+/// stored contiguously in one structure-of-arrays block (corners and ids in rows of a multiple
+/// of four lanes, 44 bytes a lane, tested eight or four lanes at a time), so a leaf is one
+/// linear read. Queries are [`KdTree::intersect`] (closest hit) and [`KdTree::occluded`] (any hit).
 #[derive(Clone, Debug, PartialEq)]
 pub struct KdTree {
     pub(crate) nodes: Vec<Node>,
-    /// Each leaf's triangles packed four at a time, with their ids; a leaf node's offset is
-    /// its first pack here.
-    pub(crate) packs: Vec<Tri4>,
+    /// Each leaf's block of triangles with their ids (`crate::leaf`); a leaf node's offset is
+    /// its first quad here.
+    pub(crate) packs: Vec<Quad>,
     pub(crate) bounds: Aabb,
     /// Largest absolute coordinate of `bounds` (scales the traversal's epsilon).
     pub(crate) scale: f32,
@@ -136,7 +137,7 @@ impl KdTree {
             }
         }
         let bytes = self.nodes.len() * std::mem::size_of::<Node>()
-            + self.packs.len() * std::mem::size_of::<Tri4>();
+            + self.packs.len() * std::mem::size_of::<Quad>();
         TreeStats {
             triangles: self.triangle_count,
             indexed_triangles: self.indexed_count,
@@ -171,14 +172,18 @@ impl KdTree {
         if self.nodes.is_empty() {
             return bad("no root node".into());
         }
-        for (i, pack) in self.packs.iter().enumerate() {
-            for lane in 0..4 {
-                let t = pack.tri[lane];
+        for (i, n) in self.nodes.iter().enumerate().filter(|(_, n)| n.is_leaf() && n.count() > 0) {
+            let (o, m) = (n.offset() as usize, leaf::lanes(n.count() as usize));
+            let Some(block) = self.packs.get(o..o + ROWS * m / 4) else {
+                return bad(format!("leaf {i} block {o}+{m} lanes out of range"));
+            };
+            for lane in 0..m {
+                let (t, id_mesh) = leaf::ids(block, m, lane);
                 if t as usize >= self.triangle_count {
-                    return bad(format!("pack {i} lane {lane} names triangle {t}"));
+                    return bad(format!("leaf {i} lane {lane} names triangle {t}"));
                 }
-                if pack.corners(lane) != mesh.triangle(t) || pack.mesh[lane] != mesh.mesh_of(t) {
-                    return bad(format!("pack {i} lane {lane} does not match triangle {t}"));
+                if leaf::corners(block, m, lane) != mesh.triangle(t) || id_mesh != mesh.mesh_of(t) {
+                    return bad(format!("leaf {i} lane {lane} does not match triangle {t}"));
                 }
                 if mesh.is_degenerate(t) {
                     return bad(format!("degenerate triangle {t} is in a leaf"));
@@ -229,10 +234,11 @@ impl KdTree {
         let n = self.nodes[i as usize];
         if n.is_leaf() {
             let (o, c) = (n.offset() as usize, n.count() as usize);
-            let Some(packs) = self.packs.get(o..o + c.div_ceil(4)) else {
-                return bad(format!("leaf {i} packs {o}+{c} out of range"));
+            let m = leaf::lanes(c);
+            let Some(block) = self.packs.get(o..o + ROWS * m / 4) else {
+                return bad(format!("leaf {i} block {o}+{m} lanes out of range"));
             };
-            let mut ids: Vec<u32> = (0..c).map(|k| packs[k / 4].tri[k % 4]).collect();
+            let mut ids: Vec<u32> = (0..c).map(|k| leaf::ids(block, m, k).0).collect();
             ids.sort_unstable();
             for &t in &ids {
                 present[t as usize] = true;
@@ -267,21 +273,22 @@ impl KdTree {
     }
 }
 
-/// Packs each leaf's triangles (`offset`, `count` into `refs`, global ids made into records by
-/// `record`) four at a time, and points the leaf at its first pack instead.
-fn pack_leaves(nodes: &mut [Node], refs: &[u32], record: impl Fn(u32) -> LeafTri) -> Vec<Tri4> {
-    let mut packs = Vec::with_capacity(refs.len() / 2 + 1);
+/// Stores each leaf's triangles (`offset`, `count` into `refs`, global ids made into records by
+/// `record`) as one block (`crate::leaf`), and points the leaf at its first quad instead.
+fn pack_leaves(nodes: &mut [Node], refs: &[u32], record: impl Fn(u32) -> LeafTri) -> Vec<Quad> {
+    let mut quads = Vec::with_capacity(refs.len() * ROWS / 3 + 1);
+    let mut recs = Vec::new();
     for n in nodes.iter_mut().filter(|n| n.is_leaf()) {
         let (o, c) = (n.offset() as usize, n.count() as usize);
-        let first = packs.len() as u32;
-        for k in (0..c).step_by(4) {
-            let m = (c - k).min(4);
-            let recs: [LeafTri; 4] = std::array::from_fn(|j| record(refs[o + k + j.min(m - 1)]));
-            packs.push(Tri4::new(&recs[..m]));
+        let first = quads.len() as u32;
+        if c > 0 {
+            recs.clear();
+            recs.extend(refs[o..o + c].iter().map(|&g| record(g)));
+            leaf::push_leaf(&mut quads, &recs);
         }
         *n = Node::leaf(c as u32, first);
     }
-    packs
+    quads
 }
 
 /// True when the triangle reaches into the box's interior (the box shrunk by a relative 1e-6

@@ -61,6 +61,10 @@ pub(crate) struct PreparedRay {
     pub sx: f32,
     pub sy: f32,
     pub sz: f32,
+    /// The leaf test's 8-wide path is available ([`crate::leaf::avx`]; always false off
+    /// x86-64).
+    #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
+    pub wide: bool,
 }
 
 impl PreparedRay {
@@ -78,6 +82,7 @@ impl PreparedRay {
             sx: d[kx] / d[kz],
             sy: d[ky] / d[kz],
             sz: 1.0 / d[kz],
+            wide: crate::leaf::avx(),
         }
     }
 
