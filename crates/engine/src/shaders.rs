@@ -70,3 +70,40 @@ pub fn u32_constant(source: &str, name: &str) -> Option<u32> {
     let line = source.lines().map(str::trim_start).find(|l| l.starts_with(&prefix))?;
     line[prefix.len()..].trim().trim_end_matches(';').trim_end_matches('u').parse().ok()
 }
+
+#[cfg(test)]
+mod tests {
+    //! The structs Rust writes for the shaders have the sizes WGSL lays their twins out with
+    //! (a field added on one side only fails here, not in a wrong image).
+
+    /// Size in bytes of struct `name` as WGSL lays it out in `source`.
+    fn wgsl_size(source: &str, name: &str) -> usize {
+        let module = naga::front::wgsl::parse_str(source).expect("parses");
+        let mut layouter = naga::proc::Layouter::default();
+        layouter.update(module.to_ctx()).expect("lays out");
+        let (handle, _) = module
+            .types
+            .iter()
+            .find(|(_, t)| t.name.as_deref() == Some(name))
+            .unwrap_or_else(|| panic!("struct {name} not in the shader"));
+        layouter[handle].size as usize
+    }
+
+    #[test]
+    fn rust_structs_match_their_wgsl_twins() {
+        use std::mem::size_of;
+        let (lighting, traced, raycast) = (super::lighting(), super::traced(), super::raycast());
+        let pairs = [
+            (&lighting, "Frame", size_of::<crate::frame::FrameUniform>()),
+            (&lighting, "Material", size_of::<crate::gpu::scene::GpuMaterial>()),
+            (&lighting, "PointLight", size_of::<crate::passes::point_shadows::GpuPointLight>()),
+            (&lighting, "CsmCascade", size_of::<shadows::CsmCascade>()),
+            (&lighting, "SkyQuery", size_of::<sky_volume::gpu::Query>()),
+            (&raycast, "RayCast", size_of::<crate::passes::raycast::RayCast>()),
+            (&traced, "TracedHit", size_of::<crate::trace::TracedHit>()),
+        ];
+        for (source, name, rust) in pairs {
+            assert_eq!(wgsl_size(source, name), rust, "{name}");
+        }
+    }
+}

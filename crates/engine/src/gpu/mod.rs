@@ -2,7 +2,7 @@
 //! targets, and small helpers every pass uses.
 
 mod context;
-mod scene;
+pub(crate) mod scene;
 mod targets;
 mod timer;
 mod transfers;
