@@ -32,7 +32,7 @@
 //!   the reference's light of more than one bounce (`app::beyond`): error = its rel RMS
 //!   against the full reference, the floor of an engine that computes one bounce; settings:
 //!   its luminance share, and the share of the preset's full-frame squared error it is.
-//! - `engine/traced_shading_{city,cornell_window}_320x180_{cpu,gpu}_{default,high}`: the
+//! - `engine/traced_shading_city_320x180_{cpu,gpu}_{default,high}`: the
 //!   traced rays' surfaces shaded on the CPU with shadow rays against the thesis's traced
 //!   G-buffer lit on the GPU with overlapped shadow maps (`engine::TracedShading`): error =
 //!   the reflections component against the reference's, time = the passes that make it.
@@ -828,7 +828,8 @@ fn main() {
                     indirect_race(&mut sweep, which, (w, h), &refs[k]);
                 }
                 let reflections = COMPONENTS.iter().position(|&c| c == Component::Reflections);
-                if let (Some(k), true) = (reflections, which != Generated::TwoRooms) {
+                // Only the city has mirrors and glass in view.
+                if let (Some(k), true) = (reflections, which == Generated::City) {
                     traced_shading_race(&mut sweep, which, (w, h), &refs[k]);
                 }
             }

@@ -198,7 +198,7 @@ impl TraceScene {
             }
             let cos = dir.dot(h.normal).abs();
             through *= m.transparency * (1.0 - fresnel_schlick(m.ior, cos));
-            t_min = h.t + (h.t * 1e-6).max(1e-7);
+            t_min = Surfaces::step_past(h.t);
         }
         0.0
     }

@@ -59,12 +59,14 @@ pub struct Surfaces {
     epsilon: f32,
 }
 
-/// Relative step past a hole (and its floor), so the next query cannot find it again.
-fn past(t: f32) -> f32 {
-    t + (t * 1e-6).max(1e-7)
-}
-
 impl Surfaces {
+    /// Where a walk along a ray goes on after a surface met at `t` (a hole, a pane of glass
+    /// a shadow ray passes): a relative step of `1e-6 t`, at least `1e-7`, so the next query
+    /// cannot find that surface again.
+    pub fn step_past(t: f32) -> f32 {
+        t + (t * 1e-6).max(1e-7)
+    }
+
     /// Builds the tree over `mesh` (with `settings`), one material index per triangle.
     /// Errors: a material count that does not match the triangles, or the tree's own.
     pub fn build(mesh: Mesh, materials: Vec<u32>, settings: &Settings) -> Result<Self, Error> {
@@ -233,7 +235,7 @@ impl Surfaces {
             if !self.is_hole(&h, opaque) {
                 return Some(h);
             }
-            let next = past(h.t);
+            let next = Self::step_past(h.t);
             if !(next > t_min) || next > t_max {
                 return None;
             }
