@@ -169,9 +169,12 @@ impl ResidentSkyMap {
         sky: &Sky,
         settings: &SkyMapSettings,
     ) -> Result<Self, AtmosphereError> {
-        use wgpu::util::DeviceExt;
         let inputs = SkyMapGpuInputs::new(sky, settings, Vec3::Y)?;
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        gpu_harness::validated(device, || Self::create(device, &inputs, settings)).map_err(gpu_err)
+    }
+
+    fn create(device: &wgpu::Device, inputs: &SkyMapGpuInputs, settings: &SkyMapSettings) -> Self {
+        use gpu_harness::init_buffer;
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("atmosphere skymap"),
             source: wgpu::ShaderSource::Wgsl(std::borrow::Cow::Borrowed(SKYMAP_WGSL)),
@@ -184,50 +187,45 @@ impl ResidentSkyMap {
             compilation_options: Default::default(),
             cache: None,
         });
-        let init = |label: &str, contents: &[u8], usage| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents,
-                usage,
-            })
-        };
-        let params_buffer = init(
+        let storage = wgpu::BufferUsages::STORAGE;
+        let params_buffer = init_buffer(
+            device,
             "skymap params",
             bytemuck::bytes_of(&inputs.params),
             wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         );
         let tables = [
-            init(
+            init_buffer(
+                device,
                 "skymap transmittance",
                 bytemuck::cast_slice(&inputs.transmittance),
-                wgpu::BufferUsages::STORAGE,
+                storage,
             ),
-            init(
+            init_buffer(
+                device,
                 "skymap multiple scattering",
                 bytemuck::cast_slice(&inputs.multiple_scattering),
-                wgpu::BufferUsages::STORAGE,
+                storage,
             ),
         ];
         let output = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("skymap output"),
             size: inputs.output_bytes.max(4),
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            usage: storage | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("atmosphere skymap"),
-            layout: &pipeline.get_bind_group_layout(0),
-            entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: params_buffer.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: tables[0].as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 2, resource: tables[1].as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 3, resource: output.as_entire_binding() },
+        let bind_group = gpu_harness::bind_entries(
+            device,
+            "atmosphere skymap",
+            &pipeline.get_bind_group_layout(0),
+            &[
+                (0, params_buffer.as_entire_binding()),
+                (1, tables[0].as_entire_binding()),
+                (2, tables[1].as_entire_binding()),
+                (3, output.as_entire_binding()),
             ],
-        });
-        if let Some(err) = pollster::block_on(scope.pop()) {
-            return Err(gpu_err(err));
-        }
-        Ok(Self {
+        );
+        Self {
             pipeline,
             bind_group,
             params_buffer,
@@ -236,7 +234,7 @@ impl ResidentSkyMap {
             settings: *settings,
             workgroups: inputs.workgroups,
             _tables: tables,
-        })
+        }
     }
 
     /// Writes the sun (towards `sun`, normalised here) into the uniform through `queue` and

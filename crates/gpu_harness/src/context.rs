@@ -112,8 +112,12 @@ impl GpuContext {
             .map(|(i, b)| {
                 let label = format!("binding {i}");
                 match *b {
-                    Binding::Read(data) => (init_buffer(device, &label, data, usage_rw), false),
-                    Binding::ReadWrite(data) => (init_buffer(device, &label, data, usage_rw), true),
+                    Binding::Read(data) => {
+                        (crate::init_buffer(device, &label, data, usage_rw), false)
+                    }
+                    Binding::ReadWrite(data) => {
+                        (crate::init_buffer(device, &label, data, usage_rw), true)
+                    }
                     Binding::Output(size) => (
                         device.create_buffer(&wgpu::BufferDescriptor {
                             label: Some(&label),
@@ -223,20 +227,4 @@ pub fn device_descriptor(adapter: &wgpu::Adapter) -> wgpu::DeviceDescriptor<'sta
         required_features: adapter.features() & wgpu::Features::TIMESTAMP_QUERY,
         ..Default::default()
     }
-}
-
-fn init_buffer(
-    device: &wgpu::Device,
-    label: &str,
-    data: &[u8],
-    usage: wgpu::BufferUsages,
-) -> wgpu::Buffer {
-    use wgpu::util::DeviceExt;
-    let mut padded = data.to_vec();
-    padded.resize(data.len().max(4).next_multiple_of(4), 0);
-    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some(label),
-        contents: &padded,
-        usage,
-    })
 }

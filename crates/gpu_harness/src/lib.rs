@@ -31,11 +31,13 @@
 
 mod context;
 mod error;
+mod plumbing;
 mod readback;
 mod support;
 
 pub use context::{Binding, GpuContext, device_descriptor};
 pub use error::GpuError;
+pub use plumbing::{bind_entries, init_buffer, storage_entry, validated};
 pub use readback::{map_read, read_buffer, read_buffer_after, read_texture};
 pub use support::{
     LiveObjects, SKIP_ENV, cast_vec, gpu_test_context, live_objects, skip_requested,

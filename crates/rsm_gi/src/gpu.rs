@@ -22,6 +22,7 @@ use crate::pattern::subset;
 use crate::pipeline::RsmGi;
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec3};
+use gpu_harness::storage_entry;
 use wgpu::util::DeviceExt;
 
 macro_rules! shader {
@@ -167,23 +168,9 @@ impl GpuGBuffer {
 }
 
 /// Runs `create` inside a validation error scope: the device's complaint becomes an error.
+/// `create` under wgpu's validation scope, its error as [`RsmGiError::Gpu`].
 fn gpu_call<T>(device: &wgpu::Device, create: impl FnOnce() -> T) -> Result<T, RsmGiError> {
-    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-    let value = create();
-    pollster::block_on(scope.pop()).map_or(Ok(value), |e| Err(RsmGiError::Gpu(e.to_string())))
-}
-
-fn storage(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
+    gpu_harness::validated(device, create).map_err(|e| RsmGiError::Gpu(e.to_string()))
 }
 
 fn tex(binding: u32) -> wgpu::BindGroupLayoutEntry {
@@ -316,8 +303,8 @@ fn gather_layout(extra: &[wgpu::BindGroupLayoutEntry]) -> Vec<wgpu::BindGroupLay
         tex(3),
         tex(4),
         tex(5),
-        storage(6, true),
-        storage(7, true),
+        storage_entry(6, true),
+        storage_entry(7, true),
     ];
     e.extend_from_slice(extra);
     e
@@ -341,7 +328,7 @@ impl GpuGather {
                 "rsm_gi gather",
                 GATHER_WGSL,
                 "gather",
-                &gather_layout(&[storage(8, false)]),
+                &gather_layout(&[storage_entry(8, false)]),
             );
             let upsample = (s.low_res > 1).then(|| {
                 pipeline(
@@ -349,7 +336,7 @@ impl GpuGather {
                     "rsm_gi upsample",
                     UPSAMPLE_WGSL,
                     "upsample",
-                    &gather_layout(&[storage(8, false), storage(9, true)]),
+                    &gather_layout(&[storage_entry(8, false), storage_entry(9, true)]),
                 )
             });
             let (flat, ranges) = pattern_sets(gi, s.r_max * rsm_width as f32);
@@ -389,7 +376,8 @@ impl GpuGather {
             });
         }
         gpu_call(device, || {
-            let layout = [uniform(0), tex(1), tex(2), storage(3, true), storage(4, false)];
+            let layout =
+                [uniform(0), tex(1), tex(2), storage_entry(3, true), storage_entry(4, false)];
             let first = pipeline(device, "rsm_gi splat", SPLAT_WGSL, "splat", &layout);
             let vpls = device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("rsm_gi splat vpls"),
@@ -417,7 +405,7 @@ impl GpuGather {
             "rsm_gi blur",
             BLUR_WGSL,
             "blur",
-            &[uniform(0), tex(1), tex(2), storage(3, true), storage(4, false)],
+            &[uniform(0), tex(1), tex(2), storage_entry(3, true), storage_entry(4, false)],
         );
         let uni = |label| {
             device.create_buffer(&wgpu::BufferDescriptor {

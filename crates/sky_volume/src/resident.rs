@@ -8,6 +8,7 @@ use std::ops::Range;
 use crate::gpu::{FillParams, fill_shader, lookup_shader};
 use crate::sky::sanitize;
 use crate::{SkyRadiance, SkyVolume, SkyVolumeError};
+use gpu_harness::{bind_entries, init_buffer, storage_entry};
 
 /// Stride of the fill's per-layer uniform slots (the largest offset alignment wgpu allows).
 const SLOT: u64 = 256;
@@ -39,33 +40,6 @@ pub struct LookupBinding {
     count: u32,
 }
 
-fn buffer(
-    device: &wgpu::Device,
-    label: &str,
-    bytes: &[u8],
-    usage: wgpu::BufferUsages,
-) -> wgpu::Buffer {
-    use wgpu::util::DeviceExt;
-    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some(label),
-        contents: bytes,
-        usage,
-    })
-}
-
-fn storage_entry(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
-}
-
 fn pipeline(
     device: &wgpu::Device,
     source: &str,
@@ -91,7 +65,10 @@ impl ResidentSkyVolume {
     /// uploaded: the GPU fills its own). A pipeline the device refuses is
     /// [`SkyVolumeError::Gpu`].
     pub fn new(device: &wgpu::Device, volume: &SkyVolume) -> Result<Self, SkyVolumeError> {
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        gpu_harness::validated(device, || Self::create(device, volume)).map_err(gpu_err)
+    }
+
+    fn create(device: &wgpu::Device, volume: &SkyVolume) -> Self {
         let inputs = volume.gpu_fill_inputs(&crate::ConstantSky(glam::Vec3::ZERO));
         let g = volume.grid();
         let (layers, points_per_layer) = (g.dims.y, g.dims.x * g.dims.z);
@@ -109,11 +86,16 @@ impl ResidentSkyVolume {
         let mut quads = bytemuck::cast_slice(&inputs.quads).to_vec();
         quads.resize(quads.len().max(std::mem::size_of::<crate::gpu::GpuQuad>()), 0);
         let fill_inputs = [
-            buffer(device, "sky volume fill params", &slots, wgpu::BufferUsages::UNIFORM),
-            buffer(device, "sky volume samples", bytemuck::cast_slice(&inputs.samples), storage),
-            buffer(device, "sky volume quads", &quads, storage),
+            init_buffer(device, "sky volume fill params", &slots, wgpu::BufferUsages::UNIFORM),
+            init_buffer(
+                device,
+                "sky volume samples",
+                bytemuck::cast_slice(&inputs.samples),
+                storage,
+            ),
+            init_buffer(device, "sky volume quads", &quads, storage),
         ];
-        let sky = buffer(
+        let sky = init_buffer(
             device,
             "sky volume sky",
             bytemuck::cast_slice(&inputs.sky),
@@ -157,31 +139,26 @@ impl ResidentSkyVolume {
             offset: 0,
             size: wgpu::BufferSize::new(std::mem::size_of::<FillParams>() as u64),
         };
-        let fill_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("sky volume fill"),
-            layout: &layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: wgpu::BindingResource::Buffer(params),
-                },
-                wgpu::BindGroupEntry { binding: 1, resource: fill_inputs[1].as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 2, resource: sky.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 3, resource: fill_inputs[2].as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 4, resource: probes.as_entire_binding() },
+        let fill_group = bind_entries(
+            device,
+            "sky volume fill",
+            &layout,
+            &[
+                (0, wgpu::BindingResource::Buffer(params)),
+                (1, fill_inputs[1].as_entire_binding()),
+                (2, sky.as_entire_binding()),
+                (3, fill_inputs[2].as_entire_binding()),
+                (4, probes.as_entire_binding()),
             ],
-        });
+        );
         let lookup = pipeline(device, &lookup_shader(), "lookup", None);
-        let lookup_params = buffer(
+        let lookup_params = init_buffer(
             device,
             "sky volume lookup params",
             bytemuck::bytes_of(&volume.gpu_lookup_params()),
             wgpu::BufferUsages::UNIFORM,
         );
-        if let Some(e) = pollster::block_on(scope.pop()) {
-            return Err(gpu_err(e));
-        }
-        Ok(Self {
+        Self {
             fill,
             fill_group,
             lookup,
@@ -192,7 +169,7 @@ impl ResidentSkyVolume {
             layers,
             points_per_layer,
             _fill_inputs: fill_inputs,
-        })
+        }
     }
 
     /// Samples `sky` in every fill direction (a few hundred evaluations on the CPU) and
@@ -246,19 +223,17 @@ impl ResidentSkyVolume {
         out: &wgpu::Buffer,
         count: u32,
     ) -> LookupBinding {
-        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("sky volume lookup"),
-            layout: &self.lookup.get_bind_group_layout(0),
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: self.lookup_params.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry { binding: 1, resource: self.probes.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 2, resource: queries.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 3, resource: out.as_entire_binding() },
+        let group = bind_entries(
+            device,
+            "sky volume lookup",
+            &self.lookup.get_bind_group_layout(0),
+            &[
+                (0, self.lookup_params.as_entire_binding()),
+                (1, self.probes.as_entire_binding()),
+                (2, queries.as_entire_binding()),
+                (3, out.as_entire_binding()),
             ],
-        });
+        );
         LookupBinding { group, count }
     }
 

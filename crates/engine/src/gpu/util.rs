@@ -149,18 +149,7 @@ pub(crate) fn numbered_bind_group(
     pipeline: &wgpu::ComputePipeline,
     entries: &[(u32, wgpu::BindingResource<'_>)],
 ) -> wgpu::BindGroup {
-    let entries: Vec<wgpu::BindGroupEntry<'_>> = entries
-        .iter()
-        .map(|(binding, resource)| wgpu::BindGroupEntry {
-            binding: *binding,
-            resource: resource.clone(),
-        })
-        .collect();
-    device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: None,
-        layout: &pipeline.get_bind_group_layout(0),
-        entries: &entries,
-    })
+    gpu_harness::bind_entries(device, "engine", &pipeline.get_bind_group_layout(0), entries)
 }
 
 /// One dispatch of `pipeline` with `bind` as group 0.
