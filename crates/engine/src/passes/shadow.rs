@@ -6,7 +6,7 @@ use crate::gpu::{Gpu, SceneBuffers};
 use crate::{EngineError, Settings};
 use glam::Vec3;
 use shadows::gpu::{CascadeMaps, CascadeShadows};
-use shadows::{CascadedShadowMap, CsmCascade, CsmSettings, Pcss, PcssSettings};
+use shadows::{CascadedShadowMap, CsmCascade, CsmSettings, Pcss, PcssSettings, ShadowView};
 
 /// Cascades beyond this view distance are not shadowed (metres).
 pub const SHADOW_DISTANCE: f32 = 300.0;
@@ -70,25 +70,40 @@ impl ShadowPass {
             ..CsmSettings::DEFAULT
         };
         let csm = CascadedShadowMap::fit(&cam, -sun_dir, &csm_settings).map_err(tech)?;
-        let pcss_settings = PcssSettings {
-            blocker_taps: settings.pcss_blocker_taps.max(1),
-            pcf_taps: settings.pcss_pcf_taps.max(1),
-            ..PcssSettings::DEFAULT
-        };
-        let hard = settings.pcss_pcf_taps == 0;
-        let mut taps = Vec::new();
-        let mut blocks = Vec::with_capacity(csm.cascades.len());
-        for c in &csm.cascades {
-            let radius = if hard { 0.0 } else { angular_radius };
-            let pcss = Pcss::directional(&c.view, radius, &pcss_settings).map_err(tech)?;
-            taps = pcss.taps().to_vec();
-            blocks.push(CsmCascade::new(c, &pcss));
-        }
-        let mut enc = gpu.device.create_command_encoder(&Default::default());
-        let geometry = scene.shadow_geometry(false);
-        let maps =
-            self.maps.record(&gpu.queue, &mut enc, &geometry, &blocks, &taps).map_err(tech)?;
-        gpu.queue.submit([enc.finish()]);
-        Ok(ShadowMaps { count: maps.count })
+        let views = csm.cascades.iter().map(|c| (&c.view, c.split_far as f32));
+        let count = render_sun_maps(&self.maps, gpu, scene, views, angular_radius, settings)?;
+        Ok(ShadowMaps { count })
     }
+}
+
+/// Renders sun shadow maps of `views` (each with the view depth its cascade ends at) into
+/// `maps`, their lookup blocks filtered by PCSS for a sun disk of `angular_radius` (hard
+/// shadows when the preset has no PCF taps); returns how many were rendered. The view's
+/// cascades and the traced G-buffer's overlapped maps both render through it.
+pub fn render_sun_maps<'a>(
+    maps: &CascadeShadows,
+    gpu: &Gpu,
+    scene: &SceneBuffers,
+    views: impl Iterator<Item = (&'a ShadowView, f32)>,
+    angular_radius: f32,
+    settings: &Settings,
+) -> Result<u32, EngineError> {
+    let pcss_settings = PcssSettings {
+        blocker_taps: settings.pcss_blocker_taps.max(1),
+        pcf_taps: settings.pcss_pcf_taps.max(1),
+        ..PcssSettings::DEFAULT
+    };
+    let radius = if settings.pcss_pcf_taps == 0 { 0.0 } else { angular_radius };
+    let mut taps = Vec::new();
+    let mut blocks = Vec::new();
+    for (view, split_far) in views {
+        let pcss = Pcss::directional(view, radius, &pcss_settings).map_err(tech)?;
+        taps = pcss.taps().to_vec();
+        blocks.push(CsmCascade::of_view(view, split_far, &pcss));
+    }
+    let mut enc = gpu.device.create_command_encoder(&Default::default());
+    let geometry = scene.shadow_geometry(false);
+    let rendered = maps.record(&gpu.queue, &mut enc, &geometry, &blocks, &taps).map_err(tech)?;
+    gpu.queue.submit([enc.finish()]);
+    Ok(rendered.count)
 }

@@ -7,6 +7,7 @@
 
 use super::lpv::LpvState;
 use super::raycast::RayBatch;
+use super::shadow::render_sun_maps;
 use super::sky::SkyLight;
 use crate::gpu::{
     Gpu, SceneBuffers, compute_pipeline, dispatch, numbered_bind_group, storage_empty, uniform,
@@ -15,8 +16,8 @@ use crate::state::SunLight;
 use crate::trace::TracedHit;
 use crate::{EngineError, Settings};
 use glam::Vec3;
+use shadows::OverlappedShadowMaps;
 use shadows::gpu::{CascadeMaps, CascadeShadows};
-use shadows::{CsmCascade, OsmSettings, OverlappedShadowMaps, Pcss, PcssSettings};
 
 fn tech(e: shadows::ShadowError) -> EngineError {
     EngineError::technique("shadows", e)
@@ -31,8 +32,7 @@ pub struct OsmMaps {
 /// The sun's overlapped shadow maps around the camera, and what their last render left.
 pub struct OsmPass {
     maps: CascadeShadows,
-    settings: OsmSettings,
-    pcss: PcssSettings,
+    settings: Settings,
     pub rendered: OsmMaps,
 }
 
@@ -42,12 +42,7 @@ impl OsmPass {
         let maps =
             CascadeShadows::new(device, SceneBuffers::SHADOW_LAYOUT, osm.resolution, osm.maps)
                 .map_err(tech)?;
-        let pcss = PcssSettings {
-            blocker_taps: settings.pcss_blocker_taps.max(1),
-            pcf_taps: settings.pcss_pcf_taps.max(1),
-            ..PcssSettings::DEFAULT
-        };
-        Ok(Self { maps, settings: osm, pcss, rendered: OsmMaps::default() })
+        Ok(Self { maps, settings: settings.clone(), rendered: OsmMaps::default() })
     }
 
     /// Fits the maps around `eye` for the sun and renders them.
@@ -58,21 +53,12 @@ impl OsmPass {
         eye: Vec3,
         sun: &SunLight,
     ) -> Result<(), EngineError> {
-        let osm =
-            OverlappedShadowMaps::fit(eye.as_dvec3(), -sun.dir, &self.settings).map_err(tech)?;
-        let mut taps = Vec::new();
-        let mut blocks = Vec::with_capacity(osm.maps.len());
-        for view in &osm.maps {
-            let pcss = Pcss::directional(view, sun.angular_radius, &self.pcss).map_err(tech)?;
-            taps = pcss.taps().to_vec();
-            blocks.push(CsmCascade::of_view(view, f32::INFINITY, &pcss));
-        }
-        let mut enc = gpu.device.create_command_encoder(&Default::default());
-        let geometry = scene.shadow_geometry(false);
-        let maps =
-            self.maps.record(&gpu.queue, &mut enc, &geometry, &blocks, &taps).map_err(tech)?;
-        gpu.queue.submit([enc.finish()]);
-        self.rendered = OsmMaps { count: maps.count };
+        let osm = OverlappedShadowMaps::fit(eye.as_dvec3(), -sun.dir, &self.settings.osm)
+            .map_err(tech)?;
+        let views = osm.maps.iter().map(|v| (v, f32::INFINITY));
+        let (radius, set) = (sun.angular_radius, &self.settings);
+        let count = render_sun_maps(&self.maps, gpu, scene, views, radius, set)?;
+        self.rendered = OsmMaps { count };
         Ok(())
     }
 
