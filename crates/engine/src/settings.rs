@@ -274,10 +274,20 @@ pub const ENGINE_LPV_LOOKUP_OFFSET: f32 = 1.5;
 impl Settings {
     /// The settings of a preset at `width x height`.
     pub fn preset(preset: Preset, width: u32, height: u32) -> Self {
-        let base = Self {
+        let base = Self::default_preset(width, height);
+        match preset {
+            Preset::Low => base.low(),
+            Preset::Default => base,
+            Preset::High => base.high(),
+        }
+    }
+
+    /// The default preset's settings.
+    fn default_preset(width: u32, height: u32) -> Self {
+        Self {
             width,
             height,
-            preset,
+            preset: Preset::Default,
             csm_cascades: 4,
             csm_resolution: 1024,
             pcss_blocker_taps: 16,
@@ -315,67 +325,74 @@ impl Settings {
             sun_glints: false,
             key: 0.18,
             adaptation_per_s: 1.5,
-        };
-        match preset {
-            Preset::Low => Self {
-                csm_cascades: 3,
-                csm_resolution: 512,
-                pcss_blocker_taps: 8,
-                pcss_pcf_taps: 8,
-                point_shadow_resolution: 128,
-                sky_samples: 64,
-                sky_layers_per_frame: 16,
-                sky_map_size: 128,
-                lpv: lpv::LpvSettings::low(),
-                osm: shadows::OsmSettings::low(),
-                rsm_resolution: 128,
-                rsm_gi: rsm_gi::Settings::LOW,
-                // Not the crate's low preset: its 1 m caches and 32 moment rays let the sunlit
-                // room's bounce through `two_rooms`' 5 cm wall (the closed room's mean bounce
-                // 1.4e-3 against 7e-6 with the default's 0.5 m and 64 rays). The default's
-                // lattice with the low preset's lighting costs.
-                radiance_cache: radiance_cache::Settings {
-                    cascades: 2,
-                    bands: 2,
-                    vpl_samples: 16,
-                    budget: 256,
-                    ..radiance_cache::Settings::DEFAULT
-                },
-                cache_frames: 4,
-                ssao_samples: 0,
-                ..base
+        }
+    }
+
+    /// The low preset: `self` (the default's) with cheaper knobs.
+    fn low(self) -> Self {
+        Self {
+            preset: Preset::Low,
+            csm_cascades: 3,
+            csm_resolution: 512,
+            pcss_blocker_taps: 8,
+            pcss_pcf_taps: 8,
+            point_shadow_resolution: 128,
+            sky_samples: 64,
+            sky_layers_per_frame: 16,
+            sky_map_size: 128,
+            lpv: lpv::LpvSettings::low(),
+            osm: shadows::OsmSettings::low(),
+            rsm_resolution: 128,
+            rsm_gi: rsm_gi::Settings::LOW,
+            // Not the crate's low preset: its 1 m caches and 32 moment rays let the sunlit
+            // room's bounce through `two_rooms`' 5 cm wall (the closed room's mean bounce
+            // 1.4e-3 against 7e-6 with the default's 0.5 m and 64 rays). The default's
+            // lattice with the low preset's lighting costs.
+            radiance_cache: radiance_cache::Settings {
+                cascades: 2,
+                bands: 2,
+                vpl_samples: 16,
+                budget: 256,
+                ..radiance_cache::Settings::DEFAULT
             },
-            Preset::Default => base,
-            Preset::High => Self {
-                csm_resolution: 2048,
-                pcss_blocker_taps: 32,
-                pcss_pcf_taps: 32,
-                point_shadow_resolution: 512,
-                sky_samples: 256,
-                lpv: lpv::LpvSettings {
-                    lookup_offset_cells: ENGINE_LPV_LOOKUP_OFFSET,
-                    ..lpv::LpvSettings::high()
-                },
-                rsm_resolution: 512,
-                // Full resolution. Not the crate's HIGH (1024 VPLs, 2x2): on cornell_window
-                // the bounce comes out 12.9x too bright (rel RMS 6.3 against 1.39 here). Not a
-                // bug but what the gather converges to there: its one pattern at every pixel
-                // undersamples the near field with 512 uniform (Poisson) samples and finds
-                // it with 1024; the paper's polar pattern, which samples the near field
-                // densely, converges at any count (a floor lighting a wall: 0.45-0.50 of the
-                // floor's radiosity from 32 to 4096 samples, Poisson 0.25-0.74) and gives
-                // 10.7 / 12.8 / 16.6x at low / default / high on cornell_window, where the
-                // sunlit ground outside lights the room through its walls (no occlusion: the
-                // radiance cache's 1.8x). The city, with its open streets, prefers polar
-                // (0.57 against 0.69) but the presets keep Poisson's luckier total.
-                rsm_gi: rsm_gi::Settings::DEFAULT,
-                radiance_cache: radiance_cache::Settings::HIGH,
-                cache_frames: 16,
-                ssao_samples: 16,
-                trace_depth: 2,
-                osm: shadows::OsmSettings::high(),
-                ..base
+            cache_frames: 4,
+            ssao_samples: 0,
+            ..self
+        }
+    }
+
+    /// The high preset: `self` (the default's) with dearer knobs.
+    fn high(self) -> Self {
+        Self {
+            preset: Preset::High,
+            csm_resolution: 2048,
+            pcss_blocker_taps: 32,
+            pcss_pcf_taps: 32,
+            point_shadow_resolution: 512,
+            sky_samples: 256,
+            lpv: lpv::LpvSettings {
+                lookup_offset_cells: ENGINE_LPV_LOOKUP_OFFSET,
+                ..lpv::LpvSettings::high()
             },
+            rsm_resolution: 512,
+            // Full resolution. Not the crate's HIGH (1024 VPLs, 2x2): on cornell_window
+            // the bounce comes out 12.9x too bright (rel RMS 6.3 against 1.39 here). Not a
+            // bug but what the gather converges to there: its one pattern at every pixel
+            // undersamples the near field with 512 uniform (Poisson) samples and finds
+            // it with 1024; the paper's polar pattern, which samples the near field
+            // densely, converges at any count (a floor lighting a wall: 0.45-0.50 of the
+            // floor's radiosity from 32 to 4096 samples, Poisson 0.25-0.74) and gives
+            // 10.7 / 12.8 / 16.6x at low / default / high on cornell_window, where the
+            // sunlit ground outside lights the room through its walls (no occlusion: the
+            // radiance cache's 1.8x). The city, with its open streets, prefers polar
+            // (0.57 against 0.69) but the presets keep Poisson's luckier total.
+            rsm_gi: rsm_gi::Settings::DEFAULT,
+            radiance_cache: radiance_cache::Settings::HIGH,
+            cache_frames: 16,
+            ssao_samples: 16,
+            trace_depth: 2,
+            osm: shadows::OsmSettings::high(),
+            ..self
         }
     }
 
