@@ -17,6 +17,10 @@
 //!   (`mean_pass_ms`: GPU ms for GPU passes, CPU ms for CPU and sync passes, whose CPU time
 //!   includes waiting for the GPU work before them) and what every pass did in the slowest
 //!   frame (`worst_frame_passes`).
+//! - `engine/supersampled_{city,cornell_window}_320x180_default_{2,4}x`: the default preset
+//!   rendered at 2 or 4 times the size on each side and box-filtered down, against the same
+//!   reference (what one sample per pixel costs against the reference's pixel-area
+//!   integral); time = mean ms of the nudged frames at the larger size.
 //! - `engine/flythrough_city_320x180_300`: the default preset along a fixed loop around the
 //!   city's central crossing at eye height, 300 frames after the warm-up; time = mean frame
 //!   ms; settings: standard deviation, min, max, the worst frame's index, the share of frames
@@ -334,6 +338,42 @@ fn preset_entry(sweep: &mut Sweep, view: &View, preset: Preset, timed: usize) {
             .threads(rayon::current_num_threads())
             .note(timing_note(software, "one whole frame (steady state, sky volume complete)")),
     );
+}
+
+/// `engine/supersampled_<view>_default_<k>x` (k = 2, 4): the default preset rendered at k
+/// times the size on each side and box-filtered down (`engine::HdrFrame::box_downsample`),
+/// against the same reference: what the engine's one sample per pixel costs against the
+/// reference's integral over each pixel's area (aliasing of sub-pixel mullions, highlights
+/// and lamp heads). Time = mean ms of `timed` frames at the larger size, camera nudged.
+fn supersampled_entries(sweep: &mut Sweep, view: &View, timed: usize) {
+    let (w, h) = (view.width, view.height);
+    for k in [2, 4] {
+        let tag = format!("{}_{w}x{h}_default_{k}x", view.name);
+        sweep.stage(&format!("supersampled {tag}"));
+        let mut r = renderer(&view.scene, Settings::preset(Preset::Default, w * k, h * k));
+        r.set_camera(view.camera).expect("camera");
+        let (frame, _) = warm_up(&mut r);
+        let e = view.errors(&app::image_of(&frame.hdr.box_downsample(k)));
+        let mut t = Timed::default();
+        for step in 1..=timed {
+            r.set_camera(nudged(&view.camera, step)).expect("camera");
+            t.add(&render(&mut r));
+        }
+        let software = r.is_software();
+        sweep.entry(
+            Entry::new(format!("engine/supersampled_{tag}"), "engine", t.mean())
+                .setting("scene", view.name)
+                .setting("preset", Preset::Default)
+                .setting("supersample", k)
+                .setting("rendered_size", format!("{}x{}", w * k, h * k))
+                .setting("luminance_ratio", e.luminance_ratio)
+                .setting("rel_rms_clamped", e.rel_rms_clamped)
+                .setting("software_adapter", software)
+                .error("rel_rms", e.rel_rms, &view.reference_name)
+                .threads(rayon::current_num_threads())
+                .note(timing_note(software, "one whole frame at the supersampled size")),
+        );
+    }
 }
 
 /// What the LPV's two optional inputs buy at the default preset, each against the LPV
@@ -815,6 +855,9 @@ fn main() {
                 preset_entry(&mut sweep, &view, preset, size.timed_frames);
             }
             lpv_option_entries(&mut sweep, &view);
+            if w == 320 {
+                supersampled_entries(&mut sweep, &view, size.timed_frames);
+            }
             if which == Generated::City {
                 flythrough(&mut sweep, &view.scene, w, h, size.flythrough_frames);
             }

@@ -35,6 +35,10 @@ pub struct RenderJob {
     /// With a reference: also the component ledger (`crate::ledger`), its images and
     /// contact sheet.
     pub components: bool,
+    /// Pixels per side the engine renders for each image pixel (1: none): the frame is
+    /// rendered at `supersample` times the size and box-filtered down before it is compared
+    /// with the reference, which integrates every pixel's area (the ledger's aliasing share).
+    pub supersample: u32,
     pub seed: u64,
     pub progress: bool,
 }
@@ -58,6 +62,7 @@ impl Default for RenderJob {
             out: PathBuf::from("target/render"),
             reference_spp: None,
             components: false,
+            supersample: 1,
             seed: 1,
             progress: true,
         }
@@ -112,6 +117,9 @@ pub struct EngineArgs {
     #[arg(long, default_value = "rsm")]
     pub indirect: Indirect,
 }
+
+/// Most pixels per side [`RenderJob::supersample`] renders per image pixel.
+pub const MAX_SUPERSAMPLE: u32 = 4;
 
 /// `WxH` to `(W, H)`.
 pub fn parse_size(s: &str) -> Result<(u32, u32), EngineError> {
@@ -190,13 +198,14 @@ pub fn load_scene(job: &RenderJob) -> Result<scene::Scene, EngineError> {
 pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
     let scene = load_scene(job)?;
     let name = scene.name.clone();
+    let ss = job.supersample.clamp(1, MAX_SUPERSAMPLE);
     let settings = Settings {
         indirect: job.indirect,
         sun_glints: job.sun_glints,
         sky_bounce: job.sky_bounce,
         lpv_glossy: job.lpv_glossy,
         traced_shading: job.traced_shading,
-        ..Settings::preset(job.preset, job.width, job.height)
+        ..Settings::preset(job.preset, job.width * ss, job.height * ss)
     };
     let mut renderer = Renderer::new(scene, settings)?;
     std::fs::create_dir_all(&job.out).map_err(|e| crate::io_err(&job.out, e))?;
@@ -224,7 +233,9 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
     frame.write_png(job.out.join("frame.png"))?;
     let errors = match job.reference_spp {
         Some(spp) => {
-            Some(crate::compare::against_reference(&renderer, &frame, spp, &job.out, job.progress)?)
+            let hdr = frame.hdr.box_downsample(ss);
+            let (r, out, progress) = (&renderer, &job.out, job.progress);
+            Some(crate::compare::against_reference(r, &hdr, spp, out, progress)?)
         }
         None => None,
     };
@@ -233,6 +244,7 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
             &mut renderer,
             &frame.report,
             spp,
+            ss,
             Some(&job.out),
             job.progress,
         )?),
@@ -248,6 +260,16 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
         .collect();
     notes.push(format!("sky volume complete: {}", renderer.sky_volume_complete()));
     notes.push(format!("one-bounce technique: {}", job.indirect));
+    if ss > 1 {
+        notes.push(format!(
+            "supersampled {ss}x{ss}: the engine rendered {}x{} (the frame images and the \
+             timings are of that size), box-filtered to {}x{} for the reference comparison",
+            job.width * ss,
+            job.height * ss,
+            job.width,
+            job.height
+        ));
+    }
     if job.traced_shading == engine::TracedShading::Gpu {
         notes.push(
             "traced surfaces lit on the GPU (traced G-buffer, overlapped shadow maps)".into(),

@@ -1,7 +1,7 @@
 //! The engine's image against the `reference` path tracer's image of the same view.
 
 use crate::io_err;
-use engine::{EngineError, Frame, Renderer};
+use engine::{EngineError, HdrFrame, Renderer};
 use reference::{Component, Image, Refinement, RenderSettings, SceneLighting};
 use std::path::Path;
 
@@ -132,12 +132,13 @@ pub fn errors(
     })
 }
 
-/// Renders the reference of the renderer's current view, writes `reference.exr`,
-/// `reference.png` and `difference.png` (absolute difference, same exposure) into `out`,
-/// and returns the errors of `frame`.
+/// Renders the reference of the renderer's current view at the size of `frame` (the
+/// renderer's frame, or that frame box-filtered down: [`engine::HdrFrame::box_downsample`]),
+/// writes `reference.exr`, `reference.png` and `difference.png` (absolute difference, same
+/// exposure) into `out`, and returns the errors of `frame`.
 pub fn against_reference(
     renderer: &Renderer,
-    frame: &Frame,
+    frame: &HdrFrame,
     spp: u32,
     out: &Path,
     progress: bool,
@@ -150,7 +151,7 @@ pub fn against_reference(
         spp,
         progress,
     )?;
-    let approx = crate::image_of(&frame.hdr);
+    let approx = crate::image_of(frame);
     let tech = |e| EngineError::technique("reference", e);
     let exposure = reference.auto_exposure();
     let p = out.join("reference.exr");

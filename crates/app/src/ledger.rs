@@ -190,17 +190,21 @@ pub fn region_rows(
 }
 
 /// Renders every component of the renderer's current view on both sides and measures them;
-/// `report` is the frame whose pass times the ledger quotes. With `out`, writes per
+/// `report` is the frame whose pass times the ledger quotes. With `supersample` above 1 the
+/// renderer's images are that many times the ledger's size on each side and are
+/// box-filtered down first ([`engine::HdrFrame::box_downsample`]). With `out`, writes per
 /// component `engine_<c>.exr`, `reference_<c>.exr`, `difference_<c>.exr` (engine minus
 /// reference, signed) and `components.png` (the contact sheet).
 pub fn run_ledger(
     renderer: &mut Renderer,
     report: &FrameReport,
     spp: u32,
+    supersample: u32,
     out: Option<&Path>,
     progress: bool,
 ) -> Result<Ledger, EngineError> {
-    let (w, h) = (renderer.settings().width, renderer.settings().height);
+    let ss = supersample.max(1);
+    let (w, h) = (renderer.settings().width / ss, renderer.settings().height / ss);
     let (scene, camera) = (renderer.scene().clone(), *renderer.camera());
     let regions = region_map(&scene, &camera, w, h)?;
     let images = render_components(renderer)?;
@@ -209,7 +213,7 @@ pub fn run_ledger(
     let mut refs = Vec::with_capacity(images.len() + 1);
     let mut engine_full = None;
     for ComponentImage { component: c, image } in &images {
-        let image = crate::image_of(image);
+        let image = crate::image_of(&image.box_downsample(ss));
         let rc = crate::to_reference(*c);
         let r = reference_component(&scene, &camera, (w, h), spp, rc, progress)?;
         let row = component_ledger(*c, &image, &r, &regions, report);

@@ -62,6 +62,36 @@ fn run_writes_the_image_the_report_and_the_timeline() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// `--supersample 2` with a reference: the engine renders at twice the size, the reference
+/// and the comparison are at the asked size (the frame box-filtered down), the ledger too.
+#[test]
+fn supersampled_runs_compare_at_the_asked_size() {
+    if common::skip_requested() {
+        eprintln!("{}=1: skipping a GPU test", common::SKIP_ENV);
+        return;
+    }
+    let dir = common::scratch_dir("cli-supersample");
+    let out = dir.join("render");
+    let job = app::cli::RenderJob {
+        reference_spp: Some(2),
+        components: true,
+        supersample: 2,
+        ..common::job("plane_box", &out)
+    };
+    let info = run(&job).unwrap_or_else(|e| panic!("cli::run failed: {e}"));
+    assert_eq!((info.width, info.height), (96, 54));
+    let png_size = |name: &str| image::image_dimensions(out.join(name)).expect(name);
+    assert_eq!(png_size("frame.png"), (192, 108), "the engine's own frame");
+    assert_eq!(png_size("reference.png"), (96, 54));
+    assert_eq!(png_size("difference.png"), (96, 54));
+    let rel_rms = info.errors.as_ref().and_then(|e| e["rel_rms"].as_f64());
+    assert!(rel_rms.is_some_and(f64::is_finite), "{:?}", info.errors);
+    let ledger = info.ledger.expect("a ledger");
+    assert_eq!((ledger.width, ledger.height), (96, 54));
+    assert!(info.notes.iter().any(|n| n.contains("supersampled 2x2")), "{:?}", info.notes);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// `serein-render --help` lists every switch as a `--` option with its own description (a
 /// field whose doc comment and attribute got separated became a positional argument once).
 #[test]
@@ -78,6 +108,7 @@ fn render_help_lists_the_switches_as_options() {
         ("--sky-bounce", "Sky-bounce VPLs"),
         ("--lpv-glossy", "glossy lookup"),
         ("--components", "ledger"),
+        ("--supersample", "box-filter"),
     ] {
         let line = help.lines().position(|l| l.trim_start().starts_with(flag));
         let Some(at) = line else { panic!("{flag} missing from\n{help}") };

@@ -40,7 +40,7 @@ fn ledger(g: Generated, spp: u32, out: Option<&std::path::Path>) -> Option<Ledge
     cam.position += cam.forward * 0.01;
     r.set_camera(cam).unwrap();
     let f = r.render_frame().unwrap();
-    Some(run_ledger(&mut r, &f.report, spp, out, false).unwrap())
+    Some(run_ledger(&mut r, &f.report, spp, 1, out, false).unwrap())
 }
 
 fn ratio(l: &Ledger, component: &str, region: &str) -> f64 {

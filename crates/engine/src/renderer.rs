@@ -38,6 +38,25 @@ impl HdrFrame {
     pub fn rgb(&self) -> impl Iterator<Item = Vec3> + '_ {
         self.pixels.iter().map(|p| Vec3::new(p[0], p[1], p[2]))
     }
+
+    /// The image `factor` times smaller on each side, each pixel the mean of its
+    /// `factor x factor` block: a frame rendered at `factor` times the size, supersampled
+    /// (what a pixel's area integrates, as the reference does, instead of its centre). A
+    /// partial block at the right or bottom edge is left out; `factor` 0 reads as 1.
+    pub fn box_downsample(&self, factor: u32) -> HdrFrame {
+        let f = factor.max(1);
+        let (width, height) = (self.width / f, self.height / f);
+        let block = |x: u32, y: u32| {
+            let mut sum = [0.0f32; 4];
+            for (dx, dy) in (0..f).flat_map(|dy| (0..f).map(move |dx| (dx, dy))) {
+                let p = self.pixels[((y * f + dy) * self.width + x * f + dx) as usize];
+                sum.iter_mut().zip(p).for_each(|(s, v)| *s += v);
+            }
+            sum.map(|s| s / (f * f) as f32)
+        };
+        let pixels = (0..height).flat_map(|y| (0..width).map(move |x| block(x, y))).collect();
+        HdrFrame { width, height, pixels }
+    }
 }
 
 /// What rendering a frame did, without its image ([`Renderer::advance_frame`]).
@@ -352,5 +371,25 @@ impl Renderer {
         let ldr = s.gpu.read_texture(&s.display.ldr_texture, 4)?;
         s.gpu.take_error()?;
         Ok((HdrFrame { width: t.width, height: t.height, pixels }, ldr))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::HdrFrame;
+
+    #[test]
+    fn box_downsample_averages_blocks_and_drops_partial_edges() {
+        // 5x3: the last column and row do not fill a 2x2 block.
+        let pixels = (0..15).map(|i| [i as f32, 2.0 * i as f32, 1.0, 1.0]).collect();
+        let frame = HdrFrame { width: 5, height: 3, pixels };
+        let half = frame.box_downsample(2);
+        assert_eq!((half.width, half.height), (2, 1));
+        // Blocks {0, 1, 5, 6} and {2, 3, 7, 8}.
+        assert_eq!(half.pixels, vec![[3.0, 6.0, 1.0, 1.0], [5.0, 10.0, 1.0, 1.0]]);
+        for f in [0, 1] {
+            let same = frame.box_downsample(f);
+            assert_eq!((same.width, same.height, &same.pixels), (5, 3, &frame.pixels));
+        }
     }
 }

@@ -51,6 +51,11 @@ struct Args {
     /// `engine::TracedShading`).
     #[arg(long, default_value = "cpu")]
     traced_shading: engine::TracedShading,
+    /// Render the engine's frame at N times the size on each side (1..=4) and box-filter it
+    /// down before the comparison with the reference (which integrates every pixel's area):
+    /// with --reference, what anti-aliasing would buy (the timings are of the larger frame).
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=app::cli::MAX_SUPERSAMPLE as i64))]
+    supersample: u32,
     /// No progress bars.
     #[arg(long)]
     quiet: bool,
@@ -72,6 +77,7 @@ fn main() -> anyhow::Result<()> {
         out: a.out.clone(),
         reference_spp: a.reference,
         components: a.components,
+        supersample: a.supersample,
         progress: !a.quiet,
         ..a.scene.job()
     };
