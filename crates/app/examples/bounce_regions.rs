@@ -25,7 +25,11 @@
 //! too bright (facade east 1.45). 30 m has the best whole-image figure of these; the far
 //! facade's missing bounce is its price.
 
-use engine::{Component, Preset, Renderer, Settings};
+use app::compare;
+use app::ledger::ratio_and_rms;
+use engine::{Component, Preset, Settings};
+
+const BOUNCE: Component = Component::SunIndirectDiffuse;
 
 const REGIONS: [&str; 5] = [
     "all",
@@ -41,8 +45,8 @@ fn main() -> anyhow::Result<()> {
     let mut camera = city.camera;
     camera.aspect = w as f32 / h as f32;
     let regions = app::regions::region_map(&city, &camera, w, h)?;
-    let truth = app::to_reference(Component::SunIndirectDiffuse);
-    let reference = app::compare::reference_component(&city, &camera, (w, h), 16, truth, false)?;
+    let truth = app::to_reference(BOUNCE);
+    let reference = compare::reference_component(&city, &camera, (w, h), 16, truth, false)?;
     println!("radius, RSM | {}", REGIONS.join(" | "));
     for (radius, resolution) in
         [(30.0, 256), (30.0, 512), (45.0, 256), (60.0, 256), (60.0, 512), (90.0, 256)]
@@ -50,19 +54,9 @@ fn main() -> anyhow::Result<()> {
         let mut settings = Settings::preset(Preset::Default, w, h);
         settings.rsm_gather_radius = radius;
         settings.rsm_resolution = resolution;
-        let mut r = Renderer::new(city.clone(), settings)?;
-        r.set_camera(camera)?;
-        r.set_component(Some(Component::SunIndirectDiffuse));
-        let frame = r.render_frame()?;
-        let rows = app::ledger::region_rows(&app::image_of(&frame.hdr), &reference, &regions);
-        let cells: Vec<String> = REGIONS
-            .iter()
-            .map(|name| {
-                rows.iter().find(|row| row.region == *name).map_or("-".into(), |row| {
-                    format!("{:.3} ({:.3})", row.luminance_ratio, row.rel_rms)
-                })
-            })
-            .collect();
+        let image = compare::engine_component(&city, &settings, &camera, Some(BOUNCE), 1)?;
+        let cells =
+            app::ledger::region_cells(&image, &reference, &regions, &REGIONS, ratio_and_rms);
         println!("{radius} m, {resolution}² | {}", cells.join(" | "));
     }
     Ok(())

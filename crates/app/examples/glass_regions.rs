@@ -40,7 +40,11 @@
 //! sees the panes, not the floors behind them, so no one-bounce technique of the engine has it.
 //! That is the technique's limit, not a defect.
 
-use engine::{Component, Indirect, Preset, Renderer, Settings};
+use app::compare;
+use app::ledger::{Figures, ratio_and_rms, region_cells};
+use engine::{Component, Indirect, Preset, Settings};
+
+const REFLECTIONS: Component = Component::Reflections;
 
 type Variant = (&'static str, fn(&mut scene::Scene, &mut Settings));
 
@@ -101,64 +105,37 @@ fn main() -> anyhow::Result<()> {
     let mut camera = city.camera;
     camera.aspect = w as f32 / h as f32;
     let regions = app::regions::region_map(&city, &camera, w, h)?;
-    let truth = app::to_reference(Component::Reflections);
+    let truth = app::to_reference(REFLECTIONS);
     println!("variant | {}", REGIONS.join(" | "));
     let mut reference = None;
     for (name, change) in VARIANTS {
         let (mut scene, mut settings) = (city.clone(), Settings::preset(Preset::Default, w, h));
         change(&mut scene, &mut settings);
-        // The whole sky volume in the first frames (the traced hits' ambient light).
-        settings.sky_layers_per_frame = 64;
         let changed_scene = scene.materials != city.materials;
         if changed_scene || reference.is_none() {
-            let r = app::compare::reference_component(&scene, &camera, (w, h), 16, truth, false)?;
+            let r = compare::reference_component(&scene, &camera, (w, h), 16, truth, false)?;
             reference = Some(r);
         }
-        let mut r = Renderer::new(scene, settings)?;
-        r.set_camera(camera)?;
-        r.set_component(Some(Component::Reflections));
-        let mut frame = r.render_frame()?;
-        while !r.sky_volume_complete() {
-            frame = r.render_frame()?;
-        }
+        let image = compare::engine_component(&scene, &settings, &camera, Some(REFLECTIONS), 1)?;
         let truth_image = reference.as_ref().expect("rendered above");
-        let rows = app::ledger::region_rows(&app::image_of(&frame.hdr), truth_image, &regions);
-        let cell = |region: &str| {
-            rows.iter().find(|row| row.region == region).map_or("-".to_string(), |row| {
-                format!("{:.3} ({:.3})", row.luminance_ratio, row.rel_rms)
-            })
-        };
-        let cells: Vec<String> = REGIONS.iter().map(|r| cell(r)).collect();
+        let cells = region_cells(&image, truth_image, &regions, &REGIONS, ratio_and_rms);
         println!("{name} | {}", cells.join(" | "));
         if changed_scene {
             reference = None;
         }
     }
     // The truth with its paths cut short, against the presets' engine image.
-    let (scene, settings) = (city.clone(), Settings::preset(Preset::Default, w, h));
-    let mut r = Renderer::new(scene, Settings { sky_layers_per_frame: 64, ..settings })?;
-    r.set_camera(camera)?;
-    r.set_component(Some(Component::Reflections));
-    let mut frame = r.render_frame()?;
-    while !r.sky_volume_complete() {
-        frame = r.render_frame()?;
-    }
-    let engine_image = app::image_of(&frame.hdr);
+    let settings = Settings::preset(Preset::Default, w, h);
+    let engine_image = compare::engine_component(&city, &settings, &camera, Some(REFLECTIONS), 1)?;
     println!("\nthe presets' engine image against the truth with at most N scattering events");
     println!("reference | {}", REGIONS.join(" | "));
+    let ratio_and_truth =
+        |f: &Figures| format!("{:.3} ({:.4})", f.luminance_ratio, f.reference_luminance);
     for (bounces, caustics) in
         [(1, true), (2, true), (3, true), (4, true), (6, true), (64, false), (64, true)]
     {
         let truth = capped_reference(&city, &camera, (w, h), bounces, caustics)?;
-        let rows = app::ledger::region_rows(&engine_image, &truth, &regions);
-        let cells: Vec<String> = REGIONS
-            .iter()
-            .map(|name| {
-                rows.iter().find(|row| row.region == *name).map_or("-".to_string(), |row| {
-                    format!("{:.3} ({:.4})", row.luminance_ratio, row.reference_luminance)
-                })
-            })
-            .collect();
+        let cells = region_cells(&engine_image, &truth, &regions, &REGIONS, ratio_and_truth);
         println!("{bounces} events, caustics {caustics} | {}", cells.join(" | "));
     }
     Ok(())
@@ -171,7 +148,7 @@ fn capped_reference(
     (width, height): (u32, u32),
     bounces: u32,
     caustics: bool,
-) -> anyhow::Result<app::compare::ReferenceRender> {
+) -> anyhow::Result<compare::ReferenceRender> {
     use reference::{PathSettings, RenderSettings, SceneLighting};
     let world = reference::world_from_scene(scene, &SceneLighting::DEFAULT)?;
     let mut cam_scene = scene.clone();
@@ -187,7 +164,7 @@ fn capped_reference(
             .with_component(reference::Component::Reflections)
     };
     let r = reference::render(&world, cam, settings, false)?;
-    Ok(app::compare::ReferenceRender {
+    Ok(compare::ReferenceRender {
         mean: r.mean(),
         std_error: r.std_error(),
         rel_std_error: r.mean_rel_std_error(),

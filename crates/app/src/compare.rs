@@ -89,6 +89,35 @@ pub fn reference_component(
     })
 }
 
+/// The engine's image of one component (`None`: the full frame) of `scene` from `camera`,
+/// once the sky volume is complete (filled 64 layers a frame, whatever
+/// `settings.sky_layers_per_frame` says), rendered at `supersample` times the settings' size
+/// on each side and box-filtered down to it (1: as is): what the ledger's examples put
+/// beside a reference.
+pub fn engine_component(
+    scene: &scene::Scene,
+    settings: &engine::Settings,
+    camera: &scene::Camera,
+    component: Option<engine::Component>,
+    supersample: u32,
+) -> Result<Image, EngineError> {
+    let k = supersample.max(1);
+    let settings = engine::Settings {
+        sky_layers_per_frame: 64,
+        width: settings.width * k,
+        height: settings.height * k,
+        ..settings.clone()
+    };
+    let mut r = Renderer::new(scene.clone(), settings)?;
+    r.set_camera(*camera)?;
+    r.set_component(component);
+    let mut frame = r.render_frame()?;
+    while !r.sky_volume_complete() {
+        frame = r.render_frame()?;
+    }
+    Ok(crate::image_of(&frame.hdr.box_downsample(k)))
+}
+
 fn luminance(p: glam::Vec3) -> f32 {
     0.2126 * p.x + 0.7152 * p.y + 0.0722 * p.z
 }

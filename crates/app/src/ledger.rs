@@ -189,6 +189,25 @@ pub fn region_rows(
     rows
 }
 
+/// `cell` of each of the named regions' figures (`-` for a region not in view): a row of the
+/// tables the ledger's examples print.
+pub fn region_cells(
+    engine: &Image,
+    reference: &ReferenceRender,
+    regions: &RegionMap,
+    names: &[&str],
+    cell: impl Fn(&Figures) -> String,
+) -> Vec<String> {
+    let rows = region_rows(engine, reference, regions);
+    let named = |name: &&str| rows.iter().find(|row| row.region == *name).map(&cell);
+    names.iter().map(|name| named(name).unwrap_or_else(|| "-".into())).collect()
+}
+
+/// `ratio (rel RMS)`: the usual cell of [`region_cells`].
+pub fn ratio_and_rms(f: &Figures) -> String {
+    format!("{:.3} ({:.3})", f.luminance_ratio, f.rel_rms)
+}
+
 /// Renders every component of the renderer's current view on both sides and measures them;
 /// `report` is the frame whose pass times the ledger quotes. With `supersample` above 1 the
 /// renderer's images are that many times the ledger's size on each side and are
