@@ -39,13 +39,14 @@
 //! | 4096, not interleaved, r_max 0.5 | 0.820 (0.578) | 0.875 (0.648) | 0.713 (0.433) | 0.847 (0.449) |
 //!
 //! The presets' low bounce (0.58) is their sample count's price, not a defect: each pixel
-//! gathers 32 of the 512 samples (4x4 interleaving), and the near field, where a VPL's 1/d²
-//! makes rare samples carry most of the light, is found in a few pixels of a block and lost in
-//! the others; the block filter averages what it keeps. With every sample at every pixel the
-//! pedestal's bounce comes up to 0.8-1.1 and the whole image's error falls to 0.54-0.62 (polar,
-//! whose near field is dense, is best), at 128-512 times the presets' samples per pixel. What
-//! stays below 1 with any count is the gather's disc (r_max: 0.73 -> 0.82 at half the RSM's
-//! width instead of 0.3) and its region.
+//! gathers 32 of the 512 samples (4x4 interleaving), a fixed disc pattern whose points lie
+//! about 5 m apart on the RSM's 18 m disc, so the near field, where a VPL's 1/d² puts most of
+//! the light (the street at the pedestal's foot), falls between them; the block filter averages
+//! 16 such underestimates. With every sample at every pixel the pedestal's bounce comes up to
+//! 0.8-1.1 and the whole image's error falls to 0.54-0.62 (polar, whose near field is dense, is
+//! best), at 128-512 times the presets' samples per pixel. What stays below 1 with any count is
+//! the gather's disc (r_max: 0.73 -> 0.82 at half the RSM's width instead of 0.3) and its
+//! region.
 
 use app::compare;
 use app::ledger::ratio_and_rms;
