@@ -12,7 +12,7 @@ struct Frame {
     sun_dir: vec4<f32>,
     // rgb sun irradiance at the ground, w sun angular radius (radians)
     sun_irradiance: vec4<f32>,
-    // width, height, point-light count, flags (bit 0 sky, bit 1 Blinn-Phong, bit 2 one-bounce (LPV or RSM gather), bit 3 sky volume, bit 4 shadows, bit 5 reflection rays, bit 6 refraction rays, bit 7 sun glints, bit 8 the LPV's glossy lookup)
+    // width, height, point-light count, flags (bit 0 sky, bit 1 Blinn-Phong, bit 2 one-bounce (LPV or RSM gather), bit 3 sky volume, bit 4 shadows, bit 5 reflection rays, bit 6 refraction rays, bit 7 sun glints, bit 8 the LPV's glossy lookup, bit 9 the mirrored sun)
     size: vec4<u32>,
     // SSAO radius (m), SSAO samples, sky-map size, frame index
     params: vec4<f32>,
@@ -57,6 +57,7 @@ const FLAG_REFLECTIONS: u32 = 32u;
 const FLAG_REFRACTIONS: u32 = 64u;
 const FLAG_SUN_GLINTS: u32 = 128u;
 const FLAG_LPV_GLOSSY: u32 = 256u;
+const FLAG_MIRRORED_SUN: u32 = 512u;
 const PI: f32 = 3.14159265;
 // The lighting component a frame shows (engine::components::code): the full frame, or one
 // term alone, in the units of the reference path tracer's matching component.

@@ -5,6 +5,7 @@
 // include: ssao/ssao.inc.wgsl
 // include: atmosphere/skymap_sample.inc.wgsl
 // include: engine/shading.inc.wgsl
+// include: engine/mirrored_sun.inc.wgsl
 // Deferred lighting of the main view (thesis 3.3, 4.2, 5.3.6-5.3.8): the sun with Phong (or
 // Blinn-Phong) and stabilised-CSM PCSS shadows, point lights, sky light from the sky volume
 // and one diffuse bounce of sunlight (the LPV's lookup or the RSM gather, per pixel by the
@@ -30,6 +31,8 @@
 @group(0) @binding(14) var cube_cmp: sampler_comparison;
 // The LPV's glossy lookup: radiance arriving from the pixel's mirror direction.
 @group(0) @binding(15) var<storage, read> glossy: array<vec4<f32>>;
+// The scene's planar reflectors (engine::mirrored_sun).
+@group(0) @binding(16) var<uniform> reflectors: Reflectors;
 
 fn csm_count() -> i32 {
     return i32(frame.csm.x);
@@ -117,6 +120,29 @@ fn sun_glint(r: vec3<f32>, l: vec3<f32>, alpha: f32, pixel: f32, power: f32, wid
     return q / (2.0 * PI) * exp(-q * one_minus_cos);
 }
 
+// The sun mirrored by the scene's planar reflectors onto the base part at `p`: the base BRDF
+// times the mirrored irradiance, each reflector's light scaled by its reflectance and the
+// sun's visibility where the light leaves it.
+fn mirrored_sunlight(a: vec3<f32>, g: f32, power: f32, n: vec3<f32>, v: vec3<f32>, p: vec3<f32>) -> vec3<f32> {
+    var sum = vec3<f32>(0.0);
+    let l = frame.sun_dir.xyz;
+    for (var k = 0u; k < min(reflectors.count.x, MAX_REFLECTORS); k++) {
+        let r = reflectors.items[k];
+        var q = vec3<f32>(0.0);
+        let ms = mirrored_sun(r, p, l, &q);
+        if ms.w <= 0.0 {
+            continue;
+        }
+        let f = base_brdf_cos(a, g, power, n, ms.xyz, v);
+        if any(f > vec3<f32>(0.0)) {
+            let q_depth = dot(q - frame.camera_pos.xyz, frame.camera_fwd.xyz);
+            let nr = r.normal.xyz * sign(dot(l, r.normal.xyz));
+            sum += f * ms.w * sun_visibility(q, nr, q_depth);
+        }
+    }
+    return sum * frame.sun_irradiance.rgb;
+}
+
 @fragment
 fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     let px = vec2<i32>(frag.xy);
@@ -162,6 +188,10 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
         }
     }
     let points = point_lights(a.rgb, g, power, n, v, p, gn);
+    var mirrored = vec3<f32>(0.0);
+    if (frame.size.w & FLAG_MIRRORED_SUN) != 0u && frame.sun_dir.w > 0.0 && component == COMPONENT_FULL {
+        mirrored = mirrored_sunlight(a.rgb, g, power, n, v, p);
+    }
     let i = u32(px.y) * frame.size.x + u32(px.x);
     // The sky volume's lookup is albedo E / pi with albedo 1 (queries.wgsl): E / pi.
     var sky_e_over_pi = vec3<f32>(0.0);
@@ -191,7 +221,7 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
         // The sun seen in the mirror and glass parts; the combine pass adds the traced rays.
         case COMPONENT_REFLECTIONS: { c = glint; }
         default: {
-            c = base * (sun + points) + (diffuse * (sky_e_over_pi + bounce_e / PI) + glossy_l) * ao + m.emission.rgb + glint;
+            c = base * (sun + points + mirrored) + (diffuse * (sky_e_over_pi + bounce_e / PI) + glossy_l) * ao + m.emission.rgb + glint;
         }
     }
     return vec4<f32>(max(c, vec3<f32>(0.0)), 1.0);

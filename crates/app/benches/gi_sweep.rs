@@ -376,15 +376,19 @@ fn supersampled_entries(sweep: &mut Sweep, view: &View, timed: usize) {
     }
 }
 
-/// What the LPV's two optional inputs buy at the default preset, each against the LPV
-/// without it, the whole frame against the reference's (which carries every bounce):
-/// - `engine/sky_bounce_<view>_<columns>`: the sky-bounce VPLs (thesis 5.3.7; 0 is off);
-/// - `engine/lpv_glossy_<view>_<steps>`: the glossy lookup (thesis 5.2.7; 0 is off).
+/// What the engine's optional inputs buy at the default preset, each against the same
+/// settings without it, the whole frame against the reference's (which carries every
+/// bounce):
+/// - `engine/sky_bounce_<view>_<columns>`: the LPV's sky-bounce VPLs (thesis 5.3.7; 0 is
+///   off);
+/// - `engine/lpv_glossy_<view>_<steps>`: the LPV's glossy lookup (thesis 5.2.7; 0 is off);
+/// - `engine/mirrored_sun_<view>_{0,1}`: the sun mirrored by planar reflectors
+///   (`engine::mirrored_sun`; the presets' RSM gather, 0 is off).
 ///
 /// Time = the LPV pass (with the VPLs' queries and read-back) for sky bounce, the lighting
-/// pass (where the lookups run) for the glossy lookup, in frames whose camera steps 1.01 m
-/// sideways and back, so that the LPV reruns (its key is the camera's 1 m cell).
-fn lpv_option_entries(sweep: &mut Sweep, view: &View) {
+/// pass (where the lookups and the mirrored sun run) for the others, in frames whose camera
+/// steps 1.01 m sideways and back, so that the LPV reruns (its key is the camera's 1 m cell).
+fn option_entries(sweep: &mut Sweep, view: &View) {
     use engine::Indirect;
     let (w, h) = (view.width, view.height);
     let base = Settings { indirect: Indirect::Lpv, ..Settings::preset(Preset::Default, w, h) };
@@ -405,7 +409,12 @@ fn lpv_option_entries(sweep: &mut Sweep, view: &View) {
             Settings { lpv_glossy: steps, ..base },
         ));
     }
+    for on in [false, true] {
+        let settings = Settings { mirrored_sun: on, ..Settings::preset(Preset::Default, w, h) };
+        runs.push(("mirrored_sun", u32::from(on), engine::pass::LIGHTING, settings));
+    }
     for (what, knob, timed_pass, settings) in runs {
+        let indirect = settings.indirect.to_string();
         let tag = format!("{}_{w}x{h}_{knob}", view.name);
         sweep.stage(&format!("{what} {tag}"));
         let mut r = renderer(&view.scene, settings);
@@ -425,7 +434,7 @@ fn lpv_option_entries(sweep: &mut Sweep, view: &View) {
         sweep.entry(
             Entry::new(format!("engine/{what}_{tag}"), format!("{what} {}", view.name), mean(&ms))
                 .setting("scene", view.name)
-                .setting("indirect", "lpv")
+                .setting("indirect", indirect)
                 .setting("preset", Preset::Default)
                 .setting(what, knob)
                 .setting("timed_pass", timed_pass)
@@ -854,7 +863,7 @@ fn main() {
             for preset in Preset::ALL {
                 preset_entry(&mut sweep, &view, preset, size.timed_frames);
             }
-            lpv_option_entries(&mut sweep, &view);
+            option_entries(&mut sweep, &view);
             if w == 320 {
                 supersampled_entries(&mut sweep, &view, size.timed_frames);
             }

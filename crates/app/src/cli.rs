@@ -22,6 +22,8 @@ pub struct RenderJob {
     pub indirect: Indirect,
     /// The sun's glint in mirror and glass parts (`engine::Settings::sun_glints`).
     pub sun_glints: bool,
+    /// The sun mirrored by planar reflectors (`engine::Settings::mirrored_sun`).
+    pub mirrored_sun: bool,
     /// Sky-bounce VPLs across the view for the LPV (`engine::Settings::sky_bounce`; 0 off).
     pub sky_bounce: u32,
     /// The LPV's glossy lookup, cells marched (`engine::Settings::lpv_glossy`; 0 off).
@@ -55,6 +57,7 @@ impl Default for RenderJob {
             preset: Preset::Default,
             indirect: Indirect::Rsm,
             sun_glints: false,
+            mirrored_sun: false,
             sky_bounce: 0,
             lpv_glossy: 0,
             traced_shading: engine::TracedShading::Cpu,
@@ -202,6 +205,7 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
     let settings = Settings {
         indirect: job.indirect,
         sun_glints: job.sun_glints,
+        mirrored_sun: job.mirrored_sun,
         sky_bounce: job.sky_bounce,
         lpv_glossy: job.lpv_glossy,
         traced_shading: job.traced_shading,

@@ -16,6 +16,8 @@ pub(crate) const FLAG_REFRACTIONS: u32 = 64;
 pub(crate) const FLAG_SUN_GLINTS: u32 = 128;
 /// The LPV's glossy lookup lights glossy surfaces (`Settings::lpv_glossy`).
 pub(crate) const FLAG_LPV_GLOSSY: u32 = 256;
+/// The lighting adds the sun mirrored by planar reflectors (`Settings::mirrored_sun`).
+pub(crate) const FLAG_MIRRORED_SUN: u32 = 512;
 
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
@@ -67,6 +69,7 @@ mod tests {
             ("FLAG_REFRACTIONS", FLAG_REFRACTIONS),
             ("FLAG_SUN_GLINTS", FLAG_SUN_GLINTS),
             ("FLAG_LPV_GLOSSY", FLAG_LPV_GLOSSY),
+            ("FLAG_MIRRORED_SUN", FLAG_MIRRORED_SUN),
         ] {
             assert_eq!(crate::shaders::u32_constant(&src, name), Some(value), "{name}");
         }

@@ -83,6 +83,7 @@ pub mod error;
 mod frame;
 mod gpu;
 pub mod graph;
+pub mod mirrored_sun;
 pub mod passes;
 mod renderer;
 pub mod settings;

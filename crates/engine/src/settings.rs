@@ -262,6 +262,9 @@ pub struct Settings {
     /// reference's, and at one pixel where the reference has none, so the per-pixel error of
     /// the misplaced energy outweighs the energy found. Off until the placement matches.
     pub sun_glints: bool,
+    /// The sun mirrored by the scene's large planar reflectors (glass walls, mirrors) onto
+    /// the surfaces in front of them ([`crate::mirrored_sun`]), in the full frame.
+    pub mirrored_sun: bool,
     /// Reinhard key (middle grey) and eye adaptation rate per second (thesis 3.7).
     pub key: f32,
     pub adaptation_per_s: f32,
@@ -323,6 +326,9 @@ impl Settings {
             traced_shading: TracedShading::Cpu,
             osm: shadows::OsmSettings::DEFAULT,
             sun_glints: false,
+            // The city's ledger (320x180, 16 spp): the east facade across from the glass
+            // tower 0.14 -> 1.01 of the reference, the whole frame 0.449 -> 0.429.
+            mirrored_sun: true,
             key: 0.18,
             adaptation_per_s: 1.5,
         }

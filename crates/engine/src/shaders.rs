@@ -10,6 +10,7 @@ const SKY_VPLS: &str = include_str!("../../../shaders/engine/sky_vpls.wgsl");
 const SHADING: &str = include_str!("../../../shaders/engine/shading.inc.wgsl");
 const TRACED: &str = include_str!("../../../shaders/engine/traced.wgsl");
 const TONEMAP: &str = include_str!("../../../shaders/engine/tonemap.wgsl");
+const MIRRORED_SUN: &str = include_str!("../../../shaders/engine/mirrored_sun.inc.wgsl");
 
 /// Every complete shader as `(name, source)`, for the pipelines and the naga test.
 pub fn all() -> Vec<(&'static str, String)> {
@@ -33,7 +34,7 @@ pub fn lighting() -> String {
     use shadows::gpu::{CSM_INC_WGSL, CUBE_INC_WGSL, PCSS_INC_WGSL};
     let (ssao, sky) = (ssao::SSAO_INC_WGSL, atmosphere::gpu::SKYMAP_SAMPLE_INC_WGSL);
     format!(
-        "{COMMON}\n{PCSS_INC_WGSL}\n{CSM_INC_WGSL}\n{CUBE_INC_WGSL}\n{ssao}\n{sky}\n{SHADING}\n{LIGHTING}"
+        "{COMMON}\n{PCSS_INC_WGSL}\n{CSM_INC_WGSL}\n{CUBE_INC_WGSL}\n{ssao}\n{sky}\n{SHADING}\n{MIRRORED_SUN}\n{LIGHTING}"
     )
 }
 
@@ -98,6 +99,8 @@ mod tests {
             (&lighting, "Material", size_of::<crate::gpu::scene::GpuMaterial>()),
             (&lighting, "PointLight", size_of::<crate::passes::point_shadows::GpuPointLight>()),
             (&lighting, "CsmCascade", size_of::<shadows::CsmCascade>()),
+            (&lighting, "Reflector", size_of::<crate::mirrored_sun::Reflector>()),
+            (&lighting, "Reflectors", size_of::<crate::mirrored_sun::ReflectorSet>()),
             (&lighting, "SkyQuery", size_of::<sky_volume::gpu::Query>()),
             (&raycast, "RayCast", size_of::<crate::passes::raycast::RayCast>()),
             (&traced, "TracedHit", size_of::<crate::trace::TracedHit>()),

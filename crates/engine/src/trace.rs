@@ -65,7 +65,7 @@ pub struct TraceScene {
 const MAX_TRANSMISSIONS: u32 = 16;
 
 /// Fresnel-Schlick reflectance of a dielectric of index `ior` at incidence cosine `cos`.
-fn fresnel_schlick(ior: f32, cos: f32) -> f32 {
+pub(crate) fn fresnel_schlick(ior: f32, cos: f32) -> f32 {
     let r0 = ((ior - 1.0) / (ior + 1.0)).powi(2);
     r0 + (1.0 - r0) * (1.0 - cos.clamp(0.0, 1.0)).powi(5)
 }

@@ -77,6 +77,8 @@ pub struct SceneBuffers {
     pub material_ranges: Vec<shadows::gpu::DrawRange>,
     /// Per material draw, the alpha mask of an alpha-tested one.
     pub shadow_masks: Vec<Option<shadows::gpu::AlphaMask>>,
+    /// The scene's planar reflectors ([`crate::mirrored_sun::ReflectorSet`], a uniform).
+    pub reflectors: wgpu::Buffer,
 }
 
 /// The scene in world space ([`scene::Scene::triangles`]), triangles sorted by material:
@@ -259,6 +261,8 @@ impl SceneBuffers {
         } else {
             bytemuck::cast_slice(&material_table)
         };
+        let reflectors = crate::mirrored_sun::planar_reflectors(scene);
+        let reflectors = crate::mirrored_sun::ReflectorSet::new(&reflectors);
         Self {
             vertices: bytes(
                 bytemuck::cast_slice(&vertices),
@@ -276,6 +280,11 @@ impl SceneBuffers {
             all_triangles: vec![range(0, indices.len() as u32)],
             material_ranges,
             shadow_masks,
+            reflectors: bytes(
+                bytemuck::bytes_of(&reflectors),
+                "reflectors",
+                wgpu::BufferUsages::UNIFORM,
+            ),
         }
     }
 

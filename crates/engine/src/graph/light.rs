@@ -229,6 +229,7 @@ pub(super) fn lighting_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
                 sky_volume: c.needs.sky_lighting.needed && sky.is_some(),
                 indirect: indirect_source(io, r),
                 materials: &s.scene.materials,
+                reflectors: &s.scene.reflectors,
                 lights: &s.lights,
                 cubes: s.point_shadow.bindings(),
             };

@@ -6,8 +6,8 @@
 use crate::EngineError;
 use crate::effects::Effect;
 use crate::frame::{
-    FLAG_BLINN, FLAG_INDIRECT, FLAG_LPV_GLOSSY, FLAG_REFLECTIONS, FLAG_REFRACTIONS, FLAG_SHADOWS,
-    FLAG_SKY, FLAG_SKY_VOLUME, FLAG_SUN_GLINTS, FrameUniform,
+    FLAG_BLINN, FLAG_INDIRECT, FLAG_LPV_GLOSSY, FLAG_MIRRORED_SUN, FLAG_REFLECTIONS,
+    FLAG_REFRACTIONS, FLAG_SHADOWS, FLAG_SKY, FLAG_SKY_VOLUME, FLAG_SUN_GLINTS, FrameUniform,
 };
 use crate::passes::display::{Exposure, Shown};
 use crate::passes::lighting::{IndirectSource, LightingInputs};
@@ -132,6 +132,9 @@ fn write_frame_uniform(c: &FrameCtx, bound: Bound) {
     }
     if set.lpv_glossy > 0 && c.needs.indirect_lpv.needed && c.indirect == Indirect::Lpv {
         flags |= FLAG_LPV_GLOSSY;
+    }
+    if set.mirrored_sun {
+        flags |= FLAG_MIRRORED_SUN;
     }
     u.csm[2] = if bound.cubes { set.point_shadow_resolution } else { 0 };
     if let Some(m) = bound.shadows.filter(|m| m.count > 0) {

@@ -33,6 +33,8 @@ pub struct LightingInputs<'a> {
     pub sky_volume: bool,
     pub indirect: IndirectSource<'a>,
     pub materials: &'a wgpu::Buffer,
+    /// The scene's planar reflectors (`crate::mirrored_sun`).
+    pub reflectors: &'a wgpu::Buffer,
     pub lights: &'a wgpu::Buffer,
     /// The point lights' depth cube array and its comparison sampler.
     pub cubes: (&'a wgpu::TextureView, &'a wgpu::Sampler),
@@ -154,6 +156,7 @@ impl LightingPass {
                 tv(inputs.cubes.0),
                 wgpu::BindingResource::Sampler(inputs.cubes.1),
                 self.glossy_out.as_entire_binding(),
+                inputs.reflectors.as_entire_binding(),
             ],
         );
         draw_fullscreen(enc, "lighting", &self.pipeline, &bg, &targets.lit);

@@ -1,0 +1,51 @@
+// The sun mirrored by a planar reflector (engine::mirrored_sun, whose `Reflector` this is):
+// a rectangle in a plane with its specular parts' reflectance.
+struct Reflector {
+    // centre; w: half extent along axis_u
+    center: vec4<f32>,
+    // unit plane normal; w: half extent along normal x axis_u
+    normal: vec4<f32>,
+    // unit axis in the plane; w: 1 when both sides reflect
+    axis_u: vec4<f32>,
+    // mirror part, glass part, index of refraction, glossy part
+    params: vec4<f32>,
+}
+
+// engine::mirrored_sun::MAX_REFLECTORS (the struct layout test compares the sizes).
+const MAX_REFLECTORS: u32 = 16u;
+
+// The scene's reflectors, a uniform buffer.
+struct Reflectors {
+    // x: how many
+    count: vec4<u32>,
+    items: array<Reflector, MAX_REFLECTORS>,
+}
+
+// What reflector `r` sends to point `p` of the sun in unit direction `l`: xyz the unit
+// direction from `p` towards the mirrored sun, w the reflectance (0: nothing reaches `p`, which
+// is behind the reflector or whose ray towards the mirrored sun misses the rectangle).
+// `*q` is set to where that ray meets the reflector.
+fn mirrored_sun(r: Reflector, p: vec3<f32>, l: vec3<f32>, q: ptr<function, vec3<f32>>) -> vec4<f32> {
+    var nr = r.normal.xyz;
+    var cos_l = dot(l, nr);
+    if cos_l < 0.0 && r.axis_u.w > 0.5 {
+        nr = -nr;
+        cos_l = -cos_l;
+    }
+    // 1 cm in front: a reflector does not light itself.
+    let height = dot(p - r.center.xyz, nr);
+    if cos_l <= 0.0 || height <= 0.01 {
+        return vec4<f32>(0.0);
+    }
+    // The light leaves the reflector along reflect(-l, nr); `p` sees it come from `lm`.
+    let lm = l - 2.0 * cos_l * nr;
+    let hit = p + lm * (height / cos_l);
+    let d = hit - r.center.xyz;
+    let u = r.axis_u.xyz;
+    let v = cross(r.normal.xyz, u);
+    if abs(dot(d, u)) > r.center.w || abs(dot(d, v)) > r.normal.w {
+        return vec4<f32>(0.0);
+    }
+    *q = hit;
+    return vec4<f32>(lm, r.params.x + r.params.y * fresnel_schlick(cos_l, r.params.z) + r.params.w);
+}
