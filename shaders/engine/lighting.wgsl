@@ -137,7 +137,11 @@ fn mirrored_sunlight(a: vec3<f32>, g: f32, power: f32, n: vec3<f32>, v: vec3<f32
         if any(f > vec3<f32>(0.0)) {
             let q_depth = dot(q - frame.camera_pos.xyz, frame.camera_fwd.xyz);
             let nr = r.normal.xyz * sign(dot(l, r.normal.xyz));
-            sum += f * ms.w * sun_visibility(q, nr, q_depth);
+            var vis = 1.0;
+            if (frame.size.w & FLAG_SHADOWS) != 0u {
+                vis = csm_visibility_hard(q, nr, q_depth);
+            }
+            sum += f * ms.w * vis;
         }
     }
     return sum * frame.sun_irradiance.rgb;

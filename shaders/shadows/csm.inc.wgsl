@@ -43,20 +43,42 @@ fn csm_receiver(cs: CsmCascade, p: vec3<f32>, gn: vec3<f32>, r: ptr<function, Pc
     return true;
 }
 
-// Visibility (1 lit) of world point p with unit geometry normal gn at view depth view_depth.
-fn csm_visibility(p: vec3<f32>, gn: vec3<f32>, view_depth: f32) -> f32 {
+// The cascade that holds world point p (unit geometry normal gn, view depth view_depth),
+// with p's receiver in it and `csm_layer` set, or -1 where no cascade holds p (lit).
+fn csm_find(p: vec3<f32>, gn: vec3<f32>, view_depth: f32, r: ptr<function, PcssReceiver>) -> i32 {
     let count = csm_count();
     for (var c = 0; c < count; c = c + 1) {
         let cs = csm_cascade(c);
         if view_depth > cs.info.x && c < count - 1 {
             continue;
         }
-        var r: PcssReceiver;
-        if !csm_receiver(cs, p, gn, &r) {
-            return 1.0;
+        if !csm_receiver(cs, p, gn, r) {
+            return -1;
         }
         csm_layer = c;
-        return pcss_soft(cs.pcss, r);
+        return c;
     }
-    return 1.0;
+    return -1;
+}
+
+// Visibility (1 lit) of world point p with unit geometry normal gn at view depth view_depth.
+fn csm_visibility(p: vec3<f32>, gn: vec3<f32>, view_depth: f32) -> f32 {
+    var r: PcssReceiver;
+    let c = csm_find(p, gn, view_depth, &r);
+    if c < 0 {
+        return 1.0;
+    }
+    return pcss_soft(csm_cascade(c).pcss, r);
+}
+
+// The same with one hard comparison instead of PCSS (1 lit, 0 shadowed): for points whose
+// shadow's edge matters little and whose lookups should cost one tap. The twin of
+// csm_visibility_hard (crates/shadows/src/csm_lookup.rs).
+fn csm_visibility_hard(p: vec3<f32>, gn: vec3<f32>, view_depth: f32) -> f32 {
+    var r: PcssReceiver;
+    let c = csm_find(p, gn, view_depth, &r);
+    if c < 0 {
+        return 1.0;
+    }
+    return pcss_hard(csm_cascade(c).pcss, r);
 }

@@ -22,7 +22,8 @@ pub struct RenderJob {
     pub indirect: Indirect,
     /// The sun's glint in mirror and glass parts (`engine::Settings::sun_glints`).
     pub sun_glints: bool,
-    /// The sun mirrored by planar reflectors (`engine::Settings::mirrored_sun`).
+    /// The sun mirrored by planar reflectors (`engine::Settings::mirrored_sun`; on in the
+    /// presets).
     pub mirrored_sun: bool,
     /// Sky-bounce VPLs across the view for the LPV (`engine::Settings::sky_bounce`; 0 off).
     pub sky_bounce: u32,
@@ -57,7 +58,7 @@ impl Default for RenderJob {
             preset: Preset::Default,
             indirect: Indirect::Rsm,
             sun_glints: false,
-            mirrored_sun: false,
+            mirrored_sun: true,
             sky_bounce: 0,
             lpv_glossy: 0,
             traced_shading: engine::TracedShading::Cpu,

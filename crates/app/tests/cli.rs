@@ -109,6 +109,7 @@ fn render_help_lists_the_switches_as_options() {
         ("--lpv-glossy", "glossy lookup"),
         ("--components", "ledger"),
         ("--supersample", "box-filter"),
+        ("--no-mirrored-sun", "mirrored"),
     ] {
         let line = help.lines().position(|l| l.trim_start().starts_with(flag));
         let Some(at) = line else { panic!("{flag} missing from\n{help}") };

@@ -1,6 +1,7 @@
 //! The sun mirrored by a planar reflector (`Settings::mirrored_sun`): a mirror wall facing the
 //! sun lights the floor in front of it, where the mirrored sun's rays come down, by its
-//! reflectance times the sun's irradiance from the mirrored direction, and nowhere else.
+//! reflectance times the sun's irradiance from the mirrored direction, and nowhere else; a
+//! mirror in shadow sends nothing.
 
 mod common;
 
@@ -21,17 +22,22 @@ fn rectangle(o: Vec3, u: Vec3, v: Vec3, material: scene::MaterialId) -> scene::M
 
 /// A white floor, and a mirror wall 4 m high at x = 0 facing +x, the sun in the +x half at
 /// 53 degrees: the mirrored rays come down along `(0.6, -0.8, 0)` onto the floor between
-/// x = 0 and x = 3.
-fn scene() -> Scene {
+/// x = 0 and x = 3. With `slab`, a roof 6 m up over x in -1..5 shades the mirror but not
+/// that floor (whose sun rays pass it beyond x = 5.5).
+fn scene(slab: bool) -> Scene {
     let mut s = Scene::new("mirrored sun");
     let white = s.add_material(Material::diffuse("white", Vec3::ONE));
     // Reflectivity 0.9 and a power-2048 lobe of weight 0.1: reflectance 1.
     let mirror = s.add_material(Material::mirror("mirror", 0.9));
     s.meshes.push(rectangle(Vec3::new(-1.0, 0.0, 4.0), Vec3::X * 12.0, -Vec3::Z * 8.0, white));
     s.meshes.push(rectangle(Vec3::new(0.0, 0.0, 4.0), -Vec3::Z * 8.0, Vec3::Y * 4.0, mirror));
+    if slab {
+        let o = Vec3::new(-1.0, 6.0, -5.0);
+        s.meshes.push(rectangle(o, Vec3::X * 6.0, Vec3::Z * 10.0, white));
+    }
     s.sun = Some(Sun::from_direction(Vec3::new(0.6, 0.8, 0.0)));
     s.camera =
-        Camera::look_at(Vec3::new(3.0, 9.0, 7.0), Vec3::new(3.0, 0.0, 0.0), 60.0, 16.0 / 9.0);
+        Camera::look_at(Vec3::new(3.0, 4.0, 9.0), Vec3::new(2.5, 0.0, 0.0), 60.0, 16.0 / 9.0);
     s
 }
 
@@ -44,9 +50,9 @@ fn pixel(camera: &Camera, p: Vec3) -> usize {
 }
 
 /// The linear image of `component` (`None`: the full frame) with the setting on or off.
-fn frame(mirrored_sun: bool, component: Option<Component>) -> Option<Vec<Vec3>> {
+fn frame(slab: bool, mirrored_sun: bool, component: Option<Component>) -> Option<Vec<Vec3>> {
     let settings = Settings { mirrored_sun, ..Settings::preset(Preset::Default, W, H) };
-    let mut r = common::renderer(scene(), settings)?;
+    let mut r = common::renderer(scene(slab), settings)?;
     r.set_component(component);
     let mut f = r.render_frame().expect("frame");
     for _ in 0..r.sky_volume_frames() {
@@ -57,9 +63,11 @@ fn frame(mirrored_sun: bool, component: Option<Component>) -> Option<Vec<Vec3>> 
 
 #[test]
 fn a_mirror_wall_lights_the_floor_where_its_reflected_sun_comes_down() {
-    let (Some(on), Some(off)) = (frame(true, None), frame(false, None)) else { return };
-    let Some(direct) = frame(true, Some(Component::SunDirect)) else { return };
-    let camera = scene().camera;
+    let (Some(on), Some(off)) = (frame(false, true, None), frame(false, false, None)) else {
+        return;
+    };
+    let Some(direct) = frame(false, true, Some(Component::SunDirect)) else { return };
+    let camera = scene(false).camera;
     let at = |image: &[Vec3], x: f32| image[pixel(&camera, Vec3::new(x, 0.0, 0.5))].y;
     for x in [1.0, 2.0, 2.7] {
         // The floor's own sun: E cos / pi with cos 0.8; the mirrored sun's: E R cos / pi with
@@ -74,6 +82,21 @@ fn a_mirror_wall_lights_the_floor_where_its_reflected_sun_comes_down() {
     }
     for x in [3.6, 6.0] {
         let (with, without) = (at(&on, x), at(&off, x));
+        assert!((with - without).abs() <= 1e-3 * without, "x = {x}: {with} vs {without}");
+    }
+}
+
+#[test]
+fn a_mirror_in_shadow_sends_no_sun() {
+    let (Some(on), Some(off)) = (frame(true, true, None), frame(true, false, None)) else {
+        return;
+    };
+    let Some(direct) = frame(true, true, Some(Component::SunDirect)) else { return };
+    let camera = scene(true).camera;
+    let at = |image: &[Vec3], x: f32| image[pixel(&camera, Vec3::new(x, 0.0, 0.5))].y;
+    for x in [1.0, 2.0, 2.7] {
+        let (with, without, sun) = (at(&on, x), at(&off, x), at(&direct, x));
+        assert!(sun > 0.1 * without, "x = {x}: the floor is not sunlit ({sun} of {without})");
         assert!((with - without).abs() <= 1e-3 * without, "x = {x}: {with} vs {without}");
     }
 }

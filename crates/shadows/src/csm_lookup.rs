@@ -84,10 +84,36 @@ pub fn csm_visibility(
     view_depth: f32,
 ) -> f32 {
     let count = cascades.len().min(pcss.len()).min(maps.len());
-    let Some(c) = (0..count).find(|&c| view_depth <= cascades[c].info[0] || c + 1 == count) else {
-        return 1.0;
-    };
-    cascades[c].receiver(p, gn).map_or(1.0, |r| pcss[c].pcss(&maps[c], &r))
+    csm_find(&cascades[..count], p, gn, view_depth).map_or(1.0, |(c, r)| pcss[c].pcss(&maps[c], &r))
+}
+
+/// [`csm_visibility`] with one hard comparison instead of PCSS (1 lit, 0 shadowed), for
+/// points whose shadow's edge matters little (where a reflector sends the sun on). The twin
+/// of `csm_visibility_hard` in `shaders/shadows/csm.inc.wgsl`.
+pub fn csm_visibility_hard(
+    cascades: &[CsmCascade],
+    pcss: &[Pcss],
+    maps: &[DepthMap],
+    p: Vec3,
+    gn: Vec3,
+    view_depth: f32,
+) -> f32 {
+    let count = cascades.len().min(pcss.len()).min(maps.len());
+    csm_find(&cascades[..count], p, gn, view_depth).map_or(1.0, |(c, r)| pcss[c].hard(&maps[c], &r))
+}
+
+/// The cascade that holds `p` at `view_depth` (the first whose far split is beyond it, the
+/// last one past all splits) and `p`'s receiver in it; `None` outside the map. The twin of
+/// `csm_find` in `shaders/shadows/csm.inc.wgsl`.
+fn csm_find(
+    cascades: &[CsmCascade],
+    p: Vec3,
+    gn: Vec3,
+    view_depth: f32,
+) -> Option<(usize, Receiver)> {
+    let count = cascades.len();
+    let c = (0..count).find(|&c| view_depth <= cascades[c].info[0] || c + 1 == count)?;
+    Some((c, cascades[c].receiver(p, gn)?))
 }
 
 /// Sun visibility of world point `p` with unit geometry normal `gn` in overlapped shadow maps

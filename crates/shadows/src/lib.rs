@@ -13,7 +13,9 @@
 //! - **Cube shadow maps** for point lights ([`cube_face_view_proj`], [`cube_shadow_depth`];
 //!   on the GPU one depth cube array for all lights, `gpu::CubeShadows`).
 //! - **The cascade lookup** ([`csm_visibility`]): cascade choice, normal offset, receiver
-//!   plane and PCSS, the CPU twin of the WGSL snippet a lighting shader includes.
+//!   plane and PCSS, the CPU twin of the WGSL snippet a lighting shader includes; and
+//!   [`csm_visibility_hard`], the same with one hard comparison (a point's sun where the
+//!   shadow's edge matters little, such as where a reflector sends the sun on).
 //! - **PCF and PCSS** ([`Pcss`]; Fernando, "Percentage-closer soft shadows", SIGGRAPH 2005
 //!   sketch): blocker search, penumbra `w = (d_r - d_b) * light_size / d_b`, PCF over `w`,
 //!   8..64 Poisson or spiral taps, slope-scaled and receiver-plane depth bias. The same
@@ -61,7 +63,9 @@ mod taps;
 pub mod gpu;
 
 pub use csm::{Camera, Cascade, CascadedShadowMap, CsmSettings, split_distances};
-pub use csm_lookup::{CSM_NORMAL_OFFSET_TEXELS, CsmCascade, csm_visibility, osm_visibility};
+pub use csm_lookup::{
+    CSM_NORMAL_OFFSET_TEXELS, CsmCascade, csm_visibility, csm_visibility_hard, osm_visibility,
+};
 pub use cube::{CUBE_FACES, cube_face_of, cube_face_view_proj, cube_shadow_depth};
 pub use depth_map::DepthMap;
 pub use error::ShadowError;

@@ -110,33 +110,38 @@ fn csm_lookup_cpu_gpu_parity() {
         queries.push([p.x, p.y, p.z, depth, n.x, n.y, n.z, 0.0]);
     }
     let depths: Vec<f32> = maps.iter().flat_map(|m| m.as_slice().iter().copied()).collect();
-    let out = ctx
-        .run_compute(
-            CSM_EVAL_WGSL,
-            "main",
-            &[
-                Binding::Read(bytemuck::cast_slice(&blocks)),
-                Binding::Read(bytemuck::cast_slice(&depths)),
-                Binding::Read(bytemuck::cast_slice(pcss[0].taps())),
-                Binding::Read(bytemuck::cast_slice(&queries)),
-                Binding::Output(queries.len() as u64 * 4),
-            ],
-            [(queries.len() as u32).div_ceil(64), 1, 1],
-        )
-        .unwrap();
-    let gpu: &[f32] = bytemuck::cast_slice(&out[4]);
-    let (mut differ, mut shadowed, mut lit) = (0, 0, 0);
-    for (q, g) in queries.iter().zip(gpu) {
-        let p = Vec3::new(q[0], q[1], q[2]);
-        let cpu = csm_visibility(&blocks, &pcss, &maps, p, Vec3::new(q[4], q[5], q[6]), q[3]);
-        differ += ((cpu - g).abs() > 1e-5) as usize;
-        shadowed += (cpu < 0.1) as usize;
-        lit += (cpu > 0.9) as usize;
+    type Lookup = fn(&[CsmCascade], &[Pcss], &[DepthMap], Vec3, Vec3, f32) -> f32;
+    let lookups: [(&str, Lookup); 2] =
+        [("main", csm_visibility), ("main_hard", shadows::csm_visibility_hard)];
+    for (entry, cpu_lookup) in lookups {
+        let out = ctx
+            .run_compute(
+                CSM_EVAL_WGSL,
+                entry,
+                &[
+                    Binding::Read(bytemuck::cast_slice(&blocks)),
+                    Binding::Read(bytemuck::cast_slice(&depths)),
+                    Binding::Read(bytemuck::cast_slice(pcss[0].taps())),
+                    Binding::Read(bytemuck::cast_slice(&queries)),
+                    Binding::Output(queries.len() as u64 * 4),
+                ],
+                [(queries.len() as u32).div_ceil(64), 1, 1],
+            )
+            .unwrap();
+        let gpu: &[f32] = bytemuck::cast_slice(&out[4]);
+        let (mut differ, mut shadowed, mut lit) = (0, 0, 0);
+        for (q, g) in queries.iter().zip(gpu) {
+            let p = Vec3::new(q[0], q[1], q[2]);
+            let cpu = cpu_lookup(&blocks, &pcss, &maps, p, Vec3::new(q[4], q[5], q[6]), q[3]);
+            differ += ((cpu - g).abs() > 1e-5) as usize;
+            shadowed += (cpu < 0.1) as usize;
+            lit += (cpu > 0.9) as usize;
+        }
+        let n = queries.len();
+        // Equal up to rare comparison ties flipped by FMA contraction on the GPU.
+        assert!(differ * 100 < n, "{entry}: {differ} of {n} visibilities differ");
+        assert!(shadowed > n / 50 && lit > n / 2, "{entry}: shadowed {shadowed}, lit {lit} of {n}");
     }
-    let n = queries.len();
-    // Equal up to rare comparison ties flipped by FMA contraction on the GPU.
-    assert!(differ * 100 < n, "{differ} of {n} visibilities differ");
-    assert!(shadowed > n / 50 && lit > n / 2, "shadowed {shadowed}, lit {lit} of {n}");
     // The box's shadow falls where the CPU reference says: a point just behind the box
     // (away from the sun) is shadowed, one in front of it lit.
     let behind = Vec3::new(0.0, 0.0, 0.0) - scene.sun_direction.with_y(0.0).normalize() * -1.5;

@@ -38,10 +38,11 @@ struct Args {
     /// `engine::Settings::sun_glints` for what it buys and costs on the ledger).
     #[arg(long)]
     sun_glints: bool,
-    /// Adds the sun mirrored by the scene's large planar reflectors (glass walls, mirrors)
-    /// onto the surfaces in front of them (see `engine::mirrored_sun`).
+    /// Leaves out the sun mirrored by the scene's large planar reflectors (glass walls,
+    /// mirrors) onto the surfaces in front of them (on in the presets; see
+    /// `engine::mirrored_sun`).
     #[arg(long)]
-    mirrored_sun: bool,
+    no_mirrored_sun: bool,
     /// Sky-bounce VPLs across the view for the LPV (`--indirect lpv`; thesis 5.3.7; see
     /// `engine::Settings::sky_bounce`); 0: off, as in the presets.
     #[arg(long, default_value_t = 0)]
@@ -74,7 +75,7 @@ fn main() -> anyhow::Result<()> {
         preset: a.engine.preset,
         indirect: a.engine.indirect,
         sun_glints: a.sun_glints,
-        mirrored_sun: a.mirrored_sun,
+        mirrored_sun: !a.no_mirrored_sun,
         sky_bounce: a.sky_bounce,
         lpv_glossy: a.lpv_glossy,
         traced_shading: a.traced_shading,
