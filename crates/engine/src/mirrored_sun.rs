@@ -11,8 +11,10 @@
 //! second sun from the mirrored direction, when the ray towards it meets the rectangle, scaled
 //! by that reflectance and the real sun's visibility where the ray meets the reflector (the
 //! view's cascades). Not modelled: occluders between the pixel and the reflector, the
-//! glossy lobe's spread (the mirrored sun is a point direction), curved reflectors (the
-//! statue), and the traced rays' surfaces (lit on the CPU without it).
+//! glossy lobe's spread (the mirrored sun is a point direction) and curved reflectors (the
+//! statue). The traced rays' surfaces, lit on the CPU, get it with shadow rays
+//! ([`Reflector::mirror`], the CPU twin, in `crate::trace`); the traced G-buffer lit on the
+//! GPU (`TracedShading::Gpu`) does not.
 //!
 //! On the city's ledger (`serein-render --size 320x180 --reference 16 --components`, default
 //! preset, full frame, engine / reference luminance): the east facade across from the glass
@@ -68,13 +70,50 @@ impl ReflectorSet {
     }
 }
 
+/// What a reflector sends to a point ([`Reflector::mirror`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Mirrored {
+    /// Unit direction from the point towards the mirrored sun.
+    pub dir: Vec3,
+    /// The reflector's reflectance for the sun.
+    pub reflectance: f32,
+    /// Where the light leaves the reflector, and the reflector's normal on the sun's side.
+    pub at: Vec3,
+    pub normal: Vec3,
+}
+
 impl Reflector {
+    /// What this reflector sends of the sun in unit direction `l` to point `p`: `None` when
+    /// `p` is behind it (or within 1 cm of its plane), the sun is behind a one-sided
+    /// reflector, or the ray towards the mirrored sun misses the rectangle. The twin of
+    /// `mirrored_sun` in `shaders/engine/mirrored_sun.inc.wgsl`.
+    pub fn mirror(&self, p: Vec3, l: Vec3) -> Option<Mirrored> {
+        let (c, n0, u) = (xyz(self.center), xyz(self.normal), xyz(self.axis_u));
+        let (mut n, mut cos_l) = (n0, l.dot(n0));
+        if cos_l < 0.0 && self.axis_u[3] > 0.5 {
+            (n, cos_l) = (-n, -cos_l);
+        }
+        let height = (p - c).dot(n);
+        if cos_l <= 0.0 || height <= 0.01 {
+            return None;
+        }
+        let dir = l - 2.0 * cos_l * n;
+        let at = p + dir * (height / cos_l);
+        let d = at - c;
+        let inside = d.dot(u).abs() <= self.center[3] && d.dot(n0.cross(u)).abs() <= self.normal[3];
+        inside.then(|| Mirrored { dir, reflectance: self.reflectance(cos_l), at, normal: n })
+    }
+
     /// Reflectance of the reflector's specular parts for the sun at incidence cosine `cos`
     /// (Fresnel-Schlick for the glass part, as the engine's shaders).
     pub fn reflectance(&self, cos: f32) -> f32 {
         let [mirror, glass, ior, glossy] = self.params;
         mirror + glass * crate::trace::fresnel_schlick(ior, cos) + glossy
     }
+}
+
+fn xyz(v: [f32; 4]) -> Vec3 {
+    Vec3::new(v[0], v[1], v[2])
 }
 
 /// The specular parts of a material that mirror the sun: (mirror, glass, ior, glossy), or

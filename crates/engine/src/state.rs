@@ -44,6 +44,8 @@ pub struct State {
     pub lights: wgpu::Buffer,
     pub point_shadow: PointShadowPass,
     pub point_lights: Vec<scene::PointLight>,
+    /// The scene's planar reflectors (`crate::mirrored_sun`), for the traced rays' shading.
+    pub reflectors: Vec<crate::mirrored_sun::Reflector>,
 }
 
 /// The sun as the passes light with it.
@@ -79,7 +81,8 @@ impl State {
         settings.validate()?;
         scene.validate()?;
         let device = &gpu.device;
-        let buffers = SceneBuffers::new(device, &gpu.queue, scene);
+        let reflectors = crate::mirrored_sun::planar_reflectors(scene);
+        let buffers = SceneBuffers::new(device, &gpu.queue, scene, &reflectors);
         let targets = GBufferTargets::new(device, settings.width, settings.height);
         let sky = if scene.sky { Some(SkySetup::new(scene)?) } else { None };
         let cube_size = settings.point_shadow_resolution;
@@ -104,6 +107,7 @@ impl State {
             sky,
             bounds: scene.bounds(),
             point_lights: scene.point_lights.clone(),
+            reflectors,
             scene: buffers,
             targets,
             settings,

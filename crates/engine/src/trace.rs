@@ -18,6 +18,9 @@
 //!   (the sun lights a glass tower's floors, as it does in the reference, where it is a
 //!   caustic); point lights contribute nothing beyond their radius. The indirect
 //!   irradiance `E_ambient` is the caller's (the engine passes its sky volume + LPV lookup).
+//!   With [`TraceLighting::reflectors`], the sun mirrored by planar reflectors
+//!   ([`crate::mirrored_sun`]) lights the hits as further suns, each with a shadow ray to
+//!   the reflector and one from the reflector to the sun.
 //! - **Sky correction** (6.3.2): a ray that leaves the scene returns the sky radiance in its
 //!   direction.
 //! - **Mirrors and glass**: with [`TraceSettings::max_depth`] above 1 a mirror hit adds
@@ -234,6 +237,9 @@ pub struct TraceLighting<'a> {
     /// Indirect irradiance at (position, normal) (the engine passes its sky volume + LPV
     /// lookup).
     pub ambient: &'a (dyn Fn(Vec3, Vec3) -> Vec3 + Sync),
+    /// Planar reflectors whose mirrored sun lights the hits, with shadow rays to the
+    /// reflector and from it to the sun ([`crate::mirrored_sun`]; empty: none).
+    pub reflectors: &'a [crate::mirrored_sun::Reflector],
 }
 
 /// One ray of the ray casting buffer (thesis 6.2.6). `dir` need not be normalised.
@@ -451,16 +457,35 @@ impl Tracer<'_> {
         let s = self.scene;
         let mut irradiance = finite((self.lighting.ambient)(p, n));
         let mut specular = Vec3::ZERO;
-        if let Some((l, e)) = self.sun {
+        // Irradiance `e` from unit direction `l` (visibility applied) on the diffuse and
+        // glossy parts.
+        let mut add = |l: Vec3, e: Vec3| {
             let cos = n.dot(l);
-            let through =
-                if cos > 0.0 { s.transmittance(po, l, f32::INFINITY, self.alpha) } else { 0.0 };
-            if through > 0.0 {
-                let e = e * through;
-                irradiance += e * cos;
-                if m.glossiness > 0.0 {
-                    let lobe = scene::phong_lobe(m.specular_power.max(1.0), reflect(dir, n).dot(l));
-                    specular = e * cos * m.glossiness * lobe;
+            irradiance += e * cos;
+            if m.glossiness > 0.0 {
+                let lobe = scene::phong_lobe(m.specular_power.max(1.0), reflect(dir, n).dot(l));
+                specular += e * cos * m.glossiness * lobe;
+            }
+        };
+        if let Some((l, e)) = self.sun {
+            if n.dot(l) > 0.0 {
+                let through = s.transmittance(po, l, f32::INFINITY, self.alpha);
+                if through > 0.0 {
+                    add(l, e * through);
+                }
+            }
+            // The sun mirrored by planar reflectors: the path to the reflector and the
+            // reflector's own sun both have to be clear.
+            for r in self.lighting.reflectors {
+                let Some(mirrored) = r.mirror(p, l).filter(|m| n.dot(m.dir) > 0.0) else {
+                    continue;
+                };
+                let to = (mirrored.at - po).length() - s.epsilon();
+                let lit = s.surfaces.offset(mirrored.at, mirrored.normal, l);
+                let through = s.transmittance(po, mirrored.dir, to, self.alpha)
+                    * s.transmittance(lit, l, f32::INFINITY, self.alpha);
+                if through > 0.0 {
+                    add(mirrored.dir, e * (mirrored.reflectance * through));
                 }
             }
         }

@@ -49,6 +49,7 @@ fn trace(s: &Scene, sun: Vec3, ambient: Vec3, rays: &[TraceRay], st: TraceSettin
         point_lights: &[],
         sky: &sky,
         ambient: &amb,
+        reflectors: &[],
     };
     trace_rays(&ts, &lighting, rays, &st)
 }
@@ -199,7 +200,13 @@ fn random_rays_in_a_generated_scene_are_finite() {
     assert_eq!(ts.triangle_count(), s.triangle_count());
     let sun = s.sun.map(|sun| (sun.direction().unwrap(), sun.color));
     let amb = |_: Vec3, n: Vec3| n.abs() * 0.1;
-    let lighting = TraceLighting { sun, point_lights: &s.point_lights, sky: &sky, ambient: &amb };
+    let lighting = TraceLighting {
+        sun,
+        point_lights: &s.point_lights,
+        sky: &sky,
+        ambient: &amb,
+        reflectors: &[],
+    };
     let mut state = 0x9e37_79b9_7f4a_7c15u64;
     let mut next = move || {
         state ^= state << 13;
@@ -220,4 +227,50 @@ fn random_rays_in_a_generated_scene_are_finite() {
         assert!(a.iter().any(|v| v.max_element() > 0.0));
         assert_eq!(a, trace_rays(&ts, &lighting, &rays, &st));
     }
+}
+
+/// The sun mirrored by a mirror wall (`TraceLighting::reflectors`) lights a traced hit on the
+/// floor in front of it as a second sun from the mirrored direction, times the mirror's
+/// reflectance; with the mirror shaded by a roof (shadow ray from the mirror to the sun), or
+/// the hit beyond the mirrored rays' footprint, it adds nothing.
+#[test]
+fn a_mirror_wall_mirrors_the_sun_onto_traced_hits() {
+    let sun = Vec3::new(0.6, 0.8, 0.0);
+    let scene = |roof: bool| {
+        let mut s = floor_scene();
+        // Reflectivity 0.9 and a power-2048 lobe of weight 0.1: reflectance 1.
+        let m = s.add_material(Material::mirror("mirror", 0.9));
+        s.meshes.push(quad(Vec3::new(0.0, 0.0, 4.0), -Vec3::Z * 8.0, Vec3::Y * 4.0, m));
+        if roof {
+            let w = s.add_material(Material::diffuse("roof", Vec3::ONE));
+            s.meshes.push(quad(Vec3::new(-1.0, 6.0, -5.0), Vec3::X * 6.0, Vec3::Z * 10.0, w));
+        }
+        s
+    };
+    let radiance = |s: &Scene, x: f32, mirrored: bool| {
+        let ts = TraceScene::new(s).unwrap();
+        let reflectors = engine::mirrored_sun::planar_reflectors(s);
+        assert_eq!(reflectors.len(), 1);
+        let no_ambient = |_: Vec3, _: Vec3| Vec3::ZERO;
+        let lighting = TraceLighting {
+            sun: Some((sun, E)),
+            point_lights: &[],
+            sky: &sky,
+            ambient: &no_ambient,
+            reflectors: if mirrored { &reflectors } else { &[] },
+        };
+        let r = [ray(Vec3::new(x, 5.0, 0.5), Vec3::new(x, 0.0, 0.5))];
+        trace_rays(&ts, &lighting, &r, &TraceSettings::default())[0]
+    };
+    let open = scene(false);
+    for x in [1.0, 2.0, 2.7] {
+        let added = radiance(&open, x, true) - radiance(&open, x, false);
+        // Albedo 0.5, the mirrored direction's cosine 0.8, reflectance 1.
+        assert!(close(added, 0.5 / PI * E * 0.8), "x = {x}: {added}");
+    }
+    assert_eq!(radiance(&open, 3.6, true), radiance(&open, 3.6, false), "beyond the footprint");
+    let roofed = scene(true);
+    let sunlit = radiance(&roofed, 2.0, false);
+    assert!(close(sunlit, 0.5 / PI * E * 0.8), "the floor stays sunlit: {sunlit}");
+    assert_eq!(radiance(&roofed, 2.0, true), sunlit, "the mirror is in the roof's shadow");
 }

@@ -239,7 +239,14 @@ fn diffuse_albedo(scene: &scene::Scene, m: &scene::Material) -> Vec3 {
 }
 
 impl SceneBuffers {
-    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, scene: &scene::Scene) -> Self {
+    /// The scene's buffers, with `reflectors` (its [`crate::mirrored_sun::planar_reflectors`])
+    /// as the lighting pass's uniform.
+    pub fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &scene::Scene,
+        reflectors: &[crate::mirrored_sun::Reflector],
+    ) -> Self {
         let (vertices, indices, draws) = flatten(scene);
         let material_table: Vec<GpuMaterial> =
             scene.materials.iter().map(GpuMaterial::new).collect();
@@ -261,8 +268,7 @@ impl SceneBuffers {
         } else {
             bytemuck::cast_slice(&material_table)
         };
-        let reflectors = crate::mirrored_sun::planar_reflectors(scene);
-        let reflectors = crate::mirrored_sun::ReflectorSet::new(&reflectors);
+        let reflectors = crate::mirrored_sun::ReflectorSet::new(reflectors);
         Self {
             vertices: bytes(
                 bytemuck::cast_slice(&vertices),

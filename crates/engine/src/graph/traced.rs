@@ -54,6 +54,7 @@ pub(super) fn trace_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
                 point_lights: &s.point_lights,
                 sky: &sky_fn,
                 ambient: &ambient,
+                reflectors: if s.settings.mirrored_sun { &s.reflectors } else { &[] },
             };
             let settings = TraceSettings { max_depth: s.settings.trace_depth, alpha_test: true };
             let traced = match s.settings.traced_shading {
