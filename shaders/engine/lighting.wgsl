@@ -120,31 +120,13 @@ fn sun_glint(r: vec3<f32>, l: vec3<f32>, alpha: f32, pixel: f32, power: f32, wid
     return q / (2.0 * PI) * exp(-q * one_minus_cos);
 }
 
-// The sun mirrored by the scene's planar reflectors onto the base part at `p`: the base BRDF
-// times the mirrored irradiance, each reflector's light scaled by its reflectance and the
-// sun's visibility where the light leaves it.
-fn mirrored_sunlight(a: vec3<f32>, g: f32, power: f32, n: vec3<f32>, v: vec3<f32>, p: vec3<f32>) -> vec3<f32> {
-    var sum = vec3<f32>(0.0);
-    let l = frame.sun_dir.xyz;
-    for (var k = 0u; k < min(reflectors.count.x, MAX_REFLECTORS); k++) {
-        let r = reflectors.items[k];
-        var q = vec3<f32>(0.0);
-        let ms = mirrored_sun(r, p, l, &q);
-        if ms.w <= 0.0 {
-            continue;
-        }
-        let f = base_brdf_cos(a, g, power, n, ms.xyz, v);
-        if any(f > vec3<f32>(0.0)) {
-            let q_depth = dot(q - frame.camera_pos.xyz, frame.camera_fwd.xyz);
-            let nr = r.normal.xyz * sign(dot(l, r.normal.xyz));
-            var vis = 1.0;
-            if (frame.size.w & FLAG_SHADOWS) != 0u {
-                vis = csm_visibility_hard(q, nr, q_depth);
-            }
-            sum += f * ms.w * vis;
-        }
+// The sun's visibility where a reflector sends it on (mirrored_sun.inc.wgsl): one tap of
+// the view's cascades.
+fn mirrored_sun_visibility(q: vec3<f32>, nr: vec3<f32>) -> f32 {
+    if (frame.size.w & FLAG_SHADOWS) == 0u {
+        return 1.0;
     }
-    return sum * frame.sun_irradiance.rgb;
+    return csm_visibility_hard(q, nr, dot(q - frame.camera_pos.xyz, frame.camera_fwd.xyz));
 }
 
 @fragment

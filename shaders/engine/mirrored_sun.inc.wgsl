@@ -49,3 +49,28 @@ fn mirrored_sun(r: Reflector, p: vec3<f32>, l: vec3<f32>, q: ptr<function, vec3<
     *q = hit;
     return vec4<f32>(lm, r.params.x + r.params.y * fresnel_schlick(cos_l, r.params.z) + r.params.w);
 }
+
+// The sun mirrored by the scene's planar reflectors onto the base part (albedo `a`,
+// glossiness `g`, Phong power `power`, shading normal `n`, towards the eye `v`) at `p`: the
+// base BRDF times the mirrored irradiance, each reflector's light scaled by its reflectance
+// and the sun's visibility where the light leaves it. The includer provides the frame, the
+// uniform `reflectors: Reflectors`, shading.inc.wgsl's base_brdf_cos, and
+//   fn mirrored_sun_visibility(q: vec3<f32>, nr: vec3<f32>) -> f32  // the sun at reflector point q
+fn mirrored_sunlight(a: vec3<f32>, g: f32, power: f32, n: vec3<f32>, v: vec3<f32>, p: vec3<f32>) -> vec3<f32> {
+    var sum = vec3<f32>(0.0);
+    let l = frame.sun_dir.xyz;
+    for (var k = 0u; k < min(reflectors.count.x, MAX_REFLECTORS); k++) {
+        let r = reflectors.items[k];
+        var q = vec3<f32>(0.0);
+        let ms = mirrored_sun(r, p, l, &q);
+        if ms.w <= 0.0 {
+            continue;
+        }
+        let f = base_brdf_cos(a, g, power, n, ms.xyz, v);
+        if any(f > vec3<f32>(0.0)) {
+            let nr = r.normal.xyz * sign(dot(l, r.normal.xyz));
+            sum += f * ms.w * mirrored_sun_visibility(q, nr);
+        }
+    }
+    return sum * frame.sun_irradiance.rgb;
+}

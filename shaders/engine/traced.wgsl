@@ -4,6 +4,7 @@
 // include: shadows/osm.inc.wgsl
 // include: shadows/cube.inc.wgsl
 // include: engine/shading.inc.wgsl
+// include: engine/mirrored_sun.inc.wgsl
 // The traced G-buffer lit on the GPU (thesis 6.3): the CPU ray tracer hands over each
 // traced ray's first surface (`engine::trace::TracedHit`), and its base part is lit here as
 // the deferred pass lights the view: the sun through the overlapped shadow maps (6.3.1: the
@@ -53,6 +54,14 @@ struct TracedParams {
 @group(0) @binding(11) var cubes: texture_depth_cube_array;
 @group(0) @binding(12) var cube_cmp: sampler_comparison;
 @group(0) @binding(13) var<storage, read_write> out: array<vec4<f32>>;
+// The scene's planar reflectors (engine::mirrored_sun).
+@group(0) @binding(14) var<uniform> reflectors: Reflectors;
+
+// The sun's visibility where a reflector sends it on (mirrored_sun.inc.wgsl): the
+// overlapped maps, as for the hits themselves.
+fn mirrored_sun_visibility(q: vec3<f32>, nr: vec3<f32>) -> f32 {
+    return osm_visibility(q, nr);
+}
 
 fn csm_count() -> i32 {
     return i32(params.counts.y);
@@ -107,6 +116,9 @@ fn traced_lighting(@builtin(global_invocation_id) id: vec3<u32>) {
             let f = base_brdf_cos(h.albedo.rgb, g, power, n, frame.sun_dir.xyz, v);
             if any(f > vec3<f32>(0.0)) {
                 light += f * frame.sun_irradiance.rgb * osm_visibility(p, gn);
+            }
+            if (frame.size.w & FLAG_MIRRORED_SUN) != 0u {
+                light += mirrored_sunlight(h.albedo.rgb, g, power, n, v, p);
             }
         }
         if (frame.size.w & FLAG_SKY_VOLUME) != 0u {

@@ -12,9 +12,11 @@
 //! by that reflectance and the real sun's visibility where the ray meets the reflector (the
 //! view's cascades). Not modelled: occluders between the pixel and the reflector, the
 //! glossy lobe's spread (the mirrored sun is a point direction) and curved reflectors (the
-//! statue). The traced rays' surfaces, lit on the CPU, get it with shadow rays
-//! ([`Reflector::mirror`], the CPU twin, in `crate::trace`); the traced G-buffer lit on the
-//! GPU (`TracedShading::Gpu`) does not.
+//! statue). The traced G-buffer lit on the GPU (`TracedShading::Gpu`) includes the same
+//! snippet (with the overlapped maps' visibility at the reflector); the traced rays'
+//! surfaces lit on the CPU get it from the CPU twin ([`Reflector::mirror`], in
+//! `crate::trace`) with shadow rays, which also see occluders between a hit and the
+//! reflector.
 //!
 //! On the city's ledger (`serein-render --size 320x180 --reference 16 --components`, default
 //! preset, full frame, engine / reference luminance): the east facade across from the glass

@@ -41,7 +41,7 @@ pub fn lighting() -> String {
 pub fn traced() -> String {
     use shadows::gpu::{CSM_INC_WGSL, CUBE_INC_WGSL, OSM_INC_WGSL, PCSS_INC_WGSL};
     let shadows = format!("{PCSS_INC_WGSL}\n{CSM_INC_WGSL}\n{OSM_INC_WGSL}\n{CUBE_INC_WGSL}");
-    format!("{COMMON}\n{shadows}\n{SHADING}\n{TRACED}")
+    format!("{COMMON}\n{shadows}\n{SHADING}\n{MIRRORED_SUN}\n{TRACED}")
 }
 
 pub fn queries() -> String {

@@ -37,13 +37,30 @@ fn scene(awning: bool) -> Scene {
     s
 }
 
-fn reflections(shading: TracedShading, awning: bool) -> Option<(Vec<Vec3>, engine::Frame)> {
-    let settings = Settings { traced_shading: shading, ..Settings::preset(Preset::Default, W, H) };
+/// The reflections component in `shading` mode. The mirror floor is also a planar reflector
+/// that mirrors the sun onto the wall; `mirrored_sun` turns that on. The GPU mode's mirrored
+/// sun does not test occluders between a hit and the reflector (the CPU's shadow rays do),
+/// and the awning is one for the wall above it, so the parity of the two modes' sun is
+/// measured without it.
+fn reflections_with(
+    shading: TracedShading,
+    awning: bool,
+    mirrored_sun: bool,
+) -> Option<(Vec<Vec3>, engine::Frame)> {
+    let settings = Settings {
+        traced_shading: shading,
+        mirrored_sun,
+        ..Settings::preset(Preset::Default, W, H)
+    };
     let mut r = common::renderer(scene(awning), settings)?;
     r.set_component(Some(Component::Reflections));
     r.render_frame().expect("first frame");
     let frame = r.render_frame().expect("frame");
     Some((frame.hdr.rgb().collect(), frame))
+}
+
+fn reflections(shading: TracedShading, awning: bool) -> Option<(Vec<Vec3>, engine::Frame)> {
+    reflections_with(shading, awning, false)
 }
 
 fn luminance(c: Vec3) -> f64 {
@@ -84,4 +101,11 @@ fn the_gpu_lights_the_traced_gbuffer_as_the_cpu_shades_it() {
         let without = mean(&reflections(shading, false).expect("renderer").0);
         assert!(without > 1.05 * with, "{shading}: {with} with the awning, {without} without");
     }
+    // The mirrored sun: without occluders between the wall and the floor, the same in both
+    // modes, and it adds to the wall's light.
+    let mirrored = |shading| mean(&reflections_with(shading, false, true).expect("renderer").0);
+    let (a, b) = (mirrored(TracedShading::Cpu), mirrored(TracedShading::Gpu));
+    let plain = mean(&reflections(TracedShading::Cpu, false).expect("renderer").0);
+    assert!(a > 1.2 * plain, "the mirrored sun lights the wall: {a} against {plain}");
+    assert!((b / a - 1.0).abs() < 0.05, "with the mirrored sun: CPU {a}, GPU {b}");
 }

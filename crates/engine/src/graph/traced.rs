@@ -138,6 +138,7 @@ pub(super) fn traced_gbuffer_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) 
                 lights: &s.lights,
                 cubes: s.point_shadow.bindings(),
                 out: s.combine.traced(),
+                reflectors: &s.scene.reflectors,
             };
             pass.run(&s.gpu, io.read(r.batch)?, hits, &inputs)?;
             s.gpu.take_error()?;

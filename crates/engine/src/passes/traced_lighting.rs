@@ -79,6 +79,8 @@ pub struct TracedInputs<'a> {
     pub cubes: (&'a wgpu::TextureView, &'a wgpu::Sampler),
     /// The combine pass's traced radiance (two `vec4` slots per texel), written here.
     pub out: &'a wgpu::Buffer,
+    /// The scene's planar reflectors (`crate::mirrored_sun`).
+    pub reflectors: &'a wgpu::Buffer,
 }
 
 /// The traced G-buffer's per-hit buffers, for `capacity` hits.
@@ -191,6 +193,7 @@ impl TracedLightingPass {
                 (11, tv(inputs.cubes.0)),
                 (12, wgpu::BindingResource::Sampler(inputs.cubes.1)),
                 (13, inputs.out.as_entire_binding()),
+                (14, inputs.reflectors.as_entire_binding()),
             ],
         );
         dispatch(&mut enc, &self.lighting, &lighting, groups);
