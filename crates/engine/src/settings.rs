@@ -260,7 +260,11 @@ pub struct Settings {
     /// `statue west` full-frame ratio 0.55 -> 1.18, but the whole frame's unclamped rel RMS
     /// 0.803 -> 0.904 (clamped 0.301 -> 0.302): the spread glints sit a pixel or two from the
     /// reference's, and at one pixel where the reference has none, so the per-pixel error of
-    /// the misplaced energy outweighs the energy found. Off until the placement matches.
+    /// the misplaced energy outweighs the energy found. Supersampled 4x4 against 64 spp
+    /// (`serein-render --supersample 4`, so that placement within a pixel does not count) it
+    /// is no better: 0.697 -> 1.001 unclamped, and `statue west`'s reflections go 0.30 ->
+    /// 1.64 of the reference's, so on the curved statue the glints carry too much energy,
+    /// not only misplaced energy. Off until both match.
     pub sun_glints: bool,
     /// The sun mirrored by the scene's large planar reflectors (glass walls, mirrors) onto
     /// the surfaces in front of them ([`crate::mirrored_sun`]), in the full frame.
