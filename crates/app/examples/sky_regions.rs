@@ -72,10 +72,8 @@ const REGIONS: [&str; 7] = [
 
 fn main() -> anyhow::Result<()> {
     let (w, h) = (320u32, 180u32);
-    let city = scene::Generated::City.build(1);
-    let mut camera = city.camera;
-    camera.aspect = w as f32 / h as f32;
-    let regions = app::regions::region_map(&city, &camera, w, h)?;
+    let app::regions::View { scene: city, camera, regions } =
+        app::regions::View::of(scene::Generated::City, w, h)?;
     let truth = app::to_reference(SKY);
     let reference = compare::reference_component(&city, &camera, (w, h), 16, truth, true)?;
     println!("variant | {}", REGIONS.join(" | "));

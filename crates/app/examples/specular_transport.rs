@@ -38,10 +38,8 @@ fn variant(scene: &scene::Scene, f: impl Fn(&mut scene::Material)) -> scene::Sce
 fn main() -> Result<()> {
     let args = Args::parse();
     let (w, h) = app::cli::parse_size(&args.size)?;
-    let city = scene::Generated::City.build(1);
-    let mut camera = city.camera;
-    camera.aspect = w as f32 / h as f32;
-    let regions = app::regions::region_map(&city, &camera, w, h)?;
+    let app::regions::View { scene: city, camera, regions } =
+        app::regions::View::of(scene::Generated::City, w, h)?;
     let Some(id) = regions.id(&args.region) else {
         bail!("no region {:?} in the view; the regions are {:?}", args.region, regions.names)
     };

@@ -69,6 +69,25 @@ pub fn facing_name(n: Vec3) -> &'static str {
     }
 }
 
+/// A generated scene seen from its own camera at `width x height`, with the region map of that
+/// view: what the ledger's examples measure.
+pub struct View {
+    pub scene: scene::Scene,
+    pub camera: scene::Camera,
+    pub regions: RegionMap,
+}
+
+impl View {
+    /// `g` (seed 1) from its camera, its aspect made `width / height`.
+    pub fn of(g: scene::Generated, width: u32, height: u32) -> Result<Self, EngineError> {
+        let scene = g.build(1);
+        let mut camera = scene.camera;
+        camera.aspect = width as f32 / height as f32;
+        let regions = region_map(&scene, &camera, width, height)?;
+        Ok(Self { scene, camera, regions })
+    }
+}
+
 /// The region map of `scene` seen from `camera` at `width x height`.
 pub fn region_map(
     scene: &scene::Scene,
