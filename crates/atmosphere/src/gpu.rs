@@ -175,18 +175,9 @@ impl ResidentSkyMap {
 
     fn create(device: &wgpu::Device, inputs: &SkyMapGpuInputs, settings: &SkyMapSettings) -> Self {
         use gpu_harness::init_buffer;
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("atmosphere skymap"),
-            source: wgpu::ShaderSource::Wgsl(std::borrow::Cow::Borrowed(SKYMAP_WGSL)),
-        });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("atmosphere skymap"),
-            layout: None,
-            module: &module,
-            entry_point: Some(SKYMAP_ENTRY),
-            compilation_options: Default::default(),
-            cache: None,
-        });
+        let label = "atmosphere skymap";
+        let pipeline =
+            gpu_harness::compute_pipeline(device, label, SKYMAP_WGSL, SKYMAP_ENTRY, None);
         let storage = wgpu::BufferUsages::STORAGE;
         let params_buffer = init_buffer(
             device,

@@ -15,6 +15,9 @@ pub enum EngineError {
     /// A wgpu error (validation, out of memory, lost device).
     #[error("GPU: {0}")]
     Gpu(String),
+    /// A wgpu call through the shared GPU plumbing failed (validation, read-back).
+    #[error("GPU: {0}")]
+    Wgpu(#[from] gpu_harness::GpuError),
     /// The ray tracer could not be built.
     #[error("ray tracer: {0}")]
     Trace(#[from] kdtree_tracer::Error),

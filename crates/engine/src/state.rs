@@ -1,7 +1,7 @@
 //! The renderer's GPU and technique state that the pass bodies share, and the per-frame
 //! context the scheduler evaluates conditions and keys on.
 
-use crate::gpu::{GBufferTargets, Gpu, SceneBuffers, storage, uniform};
+use crate::gpu::{GBufferTargets, Gpu, SceneBuffers, storage_buffer, uniform_buffer};
 use crate::passes::{
     combine::CombinePass,
     display::DisplayPass,
@@ -91,8 +91,11 @@ impl State {
             // Bindings need one element; the frame uniform's light count stays 0.
             lights.push(bytemuck::Zeroable::zeroed());
         }
-        let frame =
-            uniform(device, "frame", &[0u8; std::mem::size_of::<crate::frame::FrameUniform>()]);
+        let frame = uniform_buffer(
+            device,
+            "frame",
+            &[0u8; std::mem::size_of::<crate::frame::FrameUniform>()],
+        );
         let state = Self {
             gbuffer: GBufferPass::new(device, &buffers)?,
             shadow: ShadowPass::new(device, &settings)?,
@@ -102,7 +105,7 @@ impl State {
             display: DisplayPass::new(device, &targets)?,
             trace: TraceScene::new(scene)?,
             frame,
-            lights: storage(device, "point lights", bytemuck::cast_slice(&lights)),
+            lights: storage_buffer(device, "point lights", bytemuck::cast_slice(&lights)),
             point_shadow: PointShadowPass::new(device, &scene.point_lights, cube_size)?,
             sky,
             bounds: scene.bounds(),

@@ -1,7 +1,6 @@
 //! The device on the best adapter, compute dispatch and buffer read-back.
 
 use crate::GpuError;
-use std::borrow::Cow;
 
 /// One storage buffer bound to `@group(0) @binding(i)`, in slice order.
 #[derive(Clone, Copy, Debug)]
@@ -91,18 +90,7 @@ impl GpuContext {
         use wgpu::util::DeviceExt;
         let device = &self.device;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(entry_point),
-            source: wgpu::ShaderSource::Wgsl(Cow::Borrowed(wgsl)),
-        });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some(entry_point),
-            layout: None,
-            module: &module,
-            entry_point: Some(entry_point),
-            compilation_options: Default::default(),
-            cache: None,
-        });
+        let pipeline = crate::compute_pipeline(device, entry_point, wgsl, entry_point, None);
         let usage_rw = wgpu::BufferUsages::STORAGE
             | wgpu::BufferUsages::COPY_SRC
             | wgpu::BufferUsages::COPY_DST;
@@ -148,11 +136,14 @@ impl GpuContext {
                 resource: buf.as_entire_binding(),
             })
             .collect();
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("gpu_harness"),
-            layout: &pipeline.get_bind_group_layout(0),
-            entries: &entries,
-        });
+        let bind_group = crate::create_bind_group(
+            device,
+            &wgpu::BindGroupDescriptor {
+                label: Some("gpu_harness"),
+                layout: &pipeline.get_bind_group_layout(0),
+                entries: &entries,
+            },
+        );
         let mut encoder = device.create_command_encoder(&Default::default());
         {
             let mut pass = encoder.begin_compute_pass(&Default::default());

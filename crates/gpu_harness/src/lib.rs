@@ -1,6 +1,12 @@
-//! A wgpu device on whatever adapter exists, for tests, parity checks and benchmarks, and
+//! A wgpu device on whatever adapter exists, for tests, parity checks and benchmarks; the
+//! wgpu pieces every crate's resident passes are built from, written once (buffers and 2D
+//! textures, compute and full-screen pipelines, [`dispatch`], [`clear_pass`], bind groups and
+//! the [`BindGroupCache`] that keeps a pass from making its groups again every frame); and
 //! the buffer read-back every crate's GPU path offers beside its resident passes
 //! ([`read_buffer`], [`map_read`]).
+//!
+//! Every bind group in the workspace is made by [`create_bind_group`], which counts them
+//! ([`bind_groups_created`]): a renderer's test can show that a steady frame makes none.
 //!
 //! Every GPU kernel in the workspace is tested against its CPU path on small inputs. Those
 //! tests need a device, and CI machines have no GPU: wgpu then finds Mesa's software
@@ -29,15 +35,24 @@
 //! assert_eq!(doubled, &[2.0, 4.0, 6.0]);
 //! ```
 
+mod bind_cache;
 mod context;
 mod error;
+mod pipelines;
 mod plumbing;
 mod readback;
 mod support;
 
+pub use bind_cache::{BindGroupCache, CACHED_GROUPS, bind_groups_created, create_bind_group};
 pub use context::{Binding, GpuContext, device_descriptor};
 pub use error::GpuError;
-pub use plumbing::{bind_entries, init_buffer, storage_entry, validated};
+pub use pipelines::{
+    clear_pass, compute_pipeline, dispatch, draw_fullscreen, fullscreen_pipeline, pipeline_layout,
+};
+pub use plumbing::{
+    bind_entries, bind_group, empty_storage, init_buffer, storage_buffer, storage_entry,
+    texture_2d, uniform_buffer, validated,
+};
 pub use readback::{map_read, read_buffer, read_buffer_after, read_texture};
 pub use support::{
     LiveObjects, SKIP_ENV, cast_vec, gpu_test_context, live_objects, skip_requested,

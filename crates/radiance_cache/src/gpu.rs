@@ -97,16 +97,6 @@ fn contents(cache: &RadianceCache) -> (LookupParams, Vec<u32>) {
     (params, tables)
 }
 
-/// A storage buffer of at least `size` bytes (at least 16: bindings need something).
-fn storage(device: &wgpu::Device, label: &str, size: u64) -> wgpu::Buffer {
-    device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some(label),
-        size: size.max(16).next_multiple_of(4),
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    })
-}
-
 impl GpuCacheData {
     /// Buffers for `cache` as it is now (fill them with [`GpuCacheData::write`]).
     pub fn with_capacity_of(device: &wgpu::Device, cache: &RadianceCache) -> Self {
@@ -114,9 +104,21 @@ impl GpuCacheData {
         let slots = cache.pool.len() as u64;
         Self {
             params,
-            tables: storage(device, "radiance_cache tables", tables.len() as u64 * 4),
-            irradiance: storage(device, "radiance_cache irradiance", slots * IRRADIANCE_BYTES),
-            moments: storage(device, "radiance_cache moments", cache.pool.moments.len() as u64 * 8),
+            tables: gpu_harness::empty_storage(
+                device,
+                "radiance_cache tables",
+                tables.len() as u64 * 4,
+            ),
+            irradiance: gpu_harness::empty_storage(
+                device,
+                "radiance_cache irradiance",
+                slots * IRRADIANCE_BYTES,
+            ),
+            moments: gpu_harness::empty_storage(
+                device,
+                "radiance_cache moments",
+                cache.pool.moments.len() as u64 * 8,
+            ),
             generation: 0,
         }
     }
@@ -154,7 +156,7 @@ impl GpuCacheData {
             ),
         ] {
             if bytes.len() as u64 > buffer.size() {
-                *buffer = storage(device, label, 2 * bytes.len() as u64);
+                *buffer = gpu_harness::empty_storage(device, label, 2 * bytes.len() as u64);
                 grown = true;
             }
             if !bytes.is_empty() {
@@ -198,22 +200,11 @@ pub struct GpuLookup {
 impl GpuLookup {
     /// Compiles [`LOOKUP_WGSL`] on `device`; a shader or pipeline error is [`CacheError::Gpu`].
     pub fn new(device: &wgpu::Device) -> Result<Self, CacheError> {
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("radiance_cache lookup"),
-            source: wgpu::ShaderSource::Wgsl(std::borrow::Cow::Borrowed(LOOKUP_WGSL)),
-        });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("radiance_cache lookup"),
-            layout: None,
-            module: &module,
-            entry_point: Some("main"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
-        if let Some(err) = pollster::block_on(scope.pop()) {
-            return Err(CacheError::Gpu(err.to_string()));
-        }
+        let label = "radiance_cache lookup";
+        let pipeline = gpu_harness::validated(device, || {
+            gpu_harness::compute_pipeline(device, label, LOOKUP_WGSL, "main", None)
+        })
+        .map_err(|e| CacheError::Gpu(e.to_string()))?;
         Ok(Self { pipeline })
     }
 
@@ -234,19 +225,9 @@ impl GpuLookup {
             mapped_at_creation: false,
         });
         let entries = [&uniform, &data.tables, &data.irradiance, &data.moments, queries, output];
-        let entries: Vec<wgpu::BindGroupEntry> = entries
-            .iter()
-            .enumerate()
-            .map(|(i, b)| wgpu::BindGroupEntry {
-                binding: i as u32,
-                resource: b.as_entire_binding(),
-            })
-            .collect();
-        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("radiance_cache lookup"),
-            layout: &self.pipeline.get_bind_group_layout(0),
-            entries: &entries,
-        });
+        let resources = entries.map(|b| b.as_entire_binding());
+        let layout = self.pipeline.get_bind_group_layout(0);
+        let group = gpu_harness::bind_group(device, "radiance_cache lookup", &layout, &resources);
         LookupBinding { uniform, group, count, generation: data.generation }
     }
 
@@ -293,14 +274,14 @@ impl GpuLookup {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let mut encoder = device.create_command_encoder(&Default::default());
-        let binding = self.bind(device, data, &queries, &output, points.len() as u32);
-        self.record_bound(queue, &mut encoder, data, &binding)?;
-        queue.submit([encoder.finish()]);
-        if let Some(err) = pollster::block_on(scope.pop()) {
-            return Err(CacheError::Gpu(err.to_string()));
-        }
+        gpu_harness::validated(device, || {
+            let mut encoder = device.create_command_encoder(&Default::default());
+            let binding = self.bind(device, data, &queries, &output, points.len() as u32);
+            self.record_bound(queue, &mut encoder, data, &binding)?;
+            queue.submit([encoder.finish()]);
+            Ok::<(), CacheError>(())
+        })
+        .map_err(|e| CacheError::Gpu(e.to_string()))??;
         let v: Vec<[f32; 4]> = read_back(device, queue, &output)?;
         Ok(v.iter().take(points.len()).map(|c| glam::Vec3::new(c[0], c[1], c[2])).collect())
     }
@@ -312,25 +293,7 @@ pub fn read_back<T: Pod>(
     queue: &wgpu::Queue,
     buffer: &wgpu::Buffer,
 ) -> Result<Vec<T>, CacheError> {
-    let staging = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("radiance_cache staging"),
-        size: buffer.size(),
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let mut encoder = device.create_command_encoder(&Default::default());
-    encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, buffer.size());
-    queue.submit([encoder.finish()]);
-    let slice = staging.slice(..);
-    let (tx, rx) = std::sync::mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |r| {
-        let _ = tx.send(r);
-    });
-    device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| CacheError::Gpu(e.to_string()))?;
-    rx.recv()
-        .map_err(|e| CacheError::Gpu(e.to_string()))?
+    let bytes = gpu_harness::read_buffer(device, queue, buffer, buffer.size())
         .map_err(|e| CacheError::Gpu(e.to_string()))?;
-    let bytes = slice.get_mapped_range().map_err(|e| CacheError::Gpu(e.to_string()))?.to_vec();
-    staging.unmap();
     Ok(bytemuck::pod_collect_to_vec(&bytes))
 }

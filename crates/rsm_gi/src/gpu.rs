@@ -208,23 +208,8 @@ fn pipeline(
 ) -> (wgpu::ComputePipeline, wgpu::BindGroupLayout) {
     let layout = device
         .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries });
-    let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some(label),
-        bind_group_layouts: &[Some(&layout)],
-        immediate_size: 0,
-    });
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some(label),
-        source: wgpu::ShaderSource::Wgsl(std::borrow::Cow::Borrowed(source)),
-    });
-    let p = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some(label),
-        layout: Some(&pl),
-        module: &module,
-        entry_point: Some(entry),
-        compilation_options: Default::default(),
-        cache: None,
-    });
+    let pl = gpu_harness::pipeline_layout(device, label, &layout);
+    let p = gpu_harness::compute_pipeline(device, label, source, entry, Some(&pl));
     (p, layout)
 }
 
@@ -483,11 +468,14 @@ impl GpuGather {
                 binding,
                 resource: b.as_entire_binding(),
             }));
-            device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("rsm_gi gather"),
-                layout,
-                entries: &entries,
-            })
+            gpu_harness::create_bind_group(
+                device,
+                &wgpu::BindGroupDescriptor {
+                    label: Some("rsm_gi gather"),
+                    layout,
+                    entries: &entries,
+                },
+            )
         };
         gpu_call(device, || {
             let first = group(&self.first.1, &self.views[0], &[(8, &self.images[0])]);
@@ -513,23 +501,26 @@ impl GpuGather {
         };
         let tv = wgpu::BindingResource::TextureView;
         gpu_call(device, || {
-            let first = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("rsm_gi splat"),
-                layout: &self.first.1,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: self.views[0].as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry { binding: 1, resource: tv(&g.position) },
-                    wgpu::BindGroupEntry { binding: 2, resource: tv(&g.normal) },
-                    wgpu::BindGroupEntry { binding: 3, resource: vpls.as_entire_binding() },
-                    wgpu::BindGroupEntry {
-                        binding: 4,
-                        resource: self.images[0].as_entire_binding(),
-                    },
-                ],
-            });
+            let first = gpu_harness::create_bind_group(
+                device,
+                &wgpu::BindGroupDescriptor {
+                    label: Some("rsm_gi splat"),
+                    layout: &self.first.1,
+                    entries: &[
+                        wgpu::BindGroupEntry {
+                            binding: 0,
+                            resource: self.views[0].as_entire_binding(),
+                        },
+                        wgpu::BindGroupEntry { binding: 1, resource: tv(&g.position) },
+                        wgpu::BindGroupEntry { binding: 2, resource: tv(&g.normal) },
+                        wgpu::BindGroupEntry { binding: 3, resource: vpls.as_entire_binding() },
+                        wgpu::BindGroupEntry {
+                            binding: 4,
+                            resource: self.images[0].as_entire_binding(),
+                        },
+                    ],
+                },
+            );
             self.binding(device, g, first, None, (0, 0))
         })
     }
@@ -545,26 +536,29 @@ impl GpuGather {
     ) -> GatherBinding {
         let tv = wgpu::BindingResource::TextureView;
         let blur = [(0usize, 1usize), (1, 2)].map(|(src, dst)| {
-            device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("rsm_gi blur"),
-                layout: &self.blur.1,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: self.views[src + 1].as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry { binding: 1, resource: tv(&g.position) },
-                    wgpu::BindGroupEntry { binding: 2, resource: tv(&g.normal) },
-                    wgpu::BindGroupEntry {
-                        binding: 3,
-                        resource: self.images[src].as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 4,
-                        resource: self.images[dst].as_entire_binding(),
-                    },
-                ],
-            })
+            gpu_harness::create_bind_group(
+                device,
+                &wgpu::BindGroupDescriptor {
+                    label: Some("rsm_gi blur"),
+                    layout: &self.blur.1,
+                    entries: &[
+                        wgpu::BindGroupEntry {
+                            binding: 0,
+                            resource: self.views[src + 1].as_entire_binding(),
+                        },
+                        wgpu::BindGroupEntry { binding: 1, resource: tv(&g.position) },
+                        wgpu::BindGroupEntry { binding: 2, resource: tv(&g.normal) },
+                        wgpu::BindGroupEntry {
+                            binding: 3,
+                            resource: self.images[src].as_entire_binding(),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 4,
+                            resource: self.images[dst].as_entire_binding(),
+                        },
+                    ],
+                },
+            )
         });
         GatherBinding { owner: self.id, first, blur, upsample, rsm_size }
     }

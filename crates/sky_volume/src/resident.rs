@@ -46,18 +46,7 @@ fn pipeline(
     entry: &str,
     layout: Option<&wgpu::PipelineLayout>,
 ) -> wgpu::ComputePipeline {
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("sky volume"),
-        source: wgpu::ShaderSource::Wgsl(source.into()),
-    });
-    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some(entry),
-        layout,
-        module: &module,
-        entry_point: Some(entry),
-        compilation_options: Default::default(),
-        cache: None,
-    })
+    gpu_harness::compute_pipeline(device, entry, source, entry, layout)
 }
 
 impl ResidentSkyVolume {
@@ -128,11 +117,7 @@ impl ResidentSkyVolume {
                 storage_entry(4, false),
             ],
         });
-        let fill_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("sky volume fill"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
+        let fill_layout = gpu_harness::pipeline_layout(device, "sky volume fill", &layout);
         let fill = pipeline(device, &fill_shader(), "fill", Some(&fill_layout));
         let params = wgpu::BufferBinding {
             buffer: &fill_inputs[0],

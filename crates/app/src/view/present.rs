@@ -52,40 +52,16 @@ impl Presenter {
         }
         surface.configure(&device, &config);
         let source = include_str!("../../../../shaders/app/blit.wgsl");
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("blit"),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
-        let blit = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("blit"),
-            layout: None,
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: Default::default(),
-            depth_stencil: None,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[Some(config.format.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
-        let srgb = [u32::from(config.format.is_srgb()), 0, 0, 0];
-        let blit_uniform = wgpu::util::DeviceExt::create_buffer_init(
+        let blit = gpu_harness::fullscreen_pipeline(
             &device,
-            &wgpu::util::BufferInitDescriptor {
-                label: Some("blit"),
-                contents: bytemuck::cast_slice(&srgb),
-                usage: wgpu::BufferUsages::UNIFORM,
-            },
+            "blit",
+            source,
+            ("vs_main", "fs_main"),
+            config.format,
         );
+        let srgb = [u32::from(config.format.is_srgb()), 0, 0, 0];
+        let blit_uniform =
+            gpu_harness::uniform_buffer(&device, "blit", bytemuck::cast_slice(&srgb));
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             mag_filter: wgpu::FilterMode::Linear,
             min_filter: wgpu::FilterMode::Linear,
@@ -158,24 +134,16 @@ impl Presenter {
         };
         let target = frame.texture.create_view(&Default::default());
         let view = image.create_view(&Default::default());
-        let group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("blit"),
-            layout: &self.blit.get_bind_group_layout(0),
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: wgpu::BindingResource::TextureView(&view),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::Sampler(&self.sampler),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: self.blit_uniform.as_entire_binding(),
-                },
+        let group = gpu_harness::bind_group(
+            &self.device,
+            "blit",
+            &self.blit.get_bind_group_layout(0),
+            &[
+                wgpu::BindingResource::TextureView(&view),
+                wgpu::BindingResource::Sampler(&self.sampler),
+                self.blit_uniform.as_entire_binding(),
             ],
-        });
+        );
         let screen = ScreenDescriptor {
             size_in_pixels: [self.config.width, self.config.height],
             pixels_per_point: output.pixels_per_point,
@@ -184,22 +152,7 @@ impl Presenter {
         let mut enc = self.device.create_command_encoder(&Default::default());
         let extra = self.egui.update_buffers(&self.device, &self.queue, &mut enc, &jobs, &screen);
         {
-            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("present"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &target,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: None,
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
+            let mut pass = gpu_harness::clear_pass(&mut enc, "present", &target);
             pass.set_pipeline(&self.blit);
             pass.set_bind_group(0, &group, &[]);
             pass.draw(0..3, 0..1);

@@ -73,7 +73,7 @@ impl Gpu {
         size: u64,
     ) -> Result<Vec<u8>, EngineError> {
         self.transfers.read_back(size);
-        super::util::read_back(&self.device, &self.queue, encoder, src, size)
+        Ok(gpu_harness::read_buffer_after(&self.device, &self.queue, encoder, src, size.max(4))?)
     }
 
     /// Reads a whole 2D texture back, rows unpadded (counted as read back).
@@ -82,7 +82,9 @@ impl Gpu {
         texture: &wgpu::Texture,
         bytes_per_texel: u32,
     ) -> Result<Vec<u8>, EngineError> {
-        let bytes = super::util::read_texture(&self.device, &self.queue, texture, bytes_per_texel)?;
+        let all = wgpu::TextureAspect::All;
+        let bytes =
+            gpu_harness::read_texture(&self.device, &self.queue, texture, 0, all, bytes_per_texel)?;
         self.transfers.read_back(bytes.len() as u64);
         Ok(bytes)
     }

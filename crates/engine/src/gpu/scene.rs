@@ -1,7 +1,7 @@
 //! The scene on the GPU: one world-space vertex buffer, one index buffer, draws grouped by
 //! material, a material table and the textures (linear RGBA16F with their mip chains).
 
-use super::util::{buffer_init, storage};
+use super::util::{init_buffer, storage_buffer};
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 
@@ -185,24 +185,27 @@ impl MaterialTextures {
             .materials
             .iter()
             .map(|m| {
-                device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("material"),
-                    layout,
-                    entries: &[
-                        wgpu::BindGroupEntry {
-                            binding: 0,
-                            resource: tv(self.view(m.albedo_texture)),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 1,
-                            resource: tv(self.view(m.alpha_mask.map(|a| a.texture))),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 2,
-                            resource: wgpu::BindingResource::Sampler(&self.sampler),
-                        },
-                    ],
-                })
+                gpu_harness::create_bind_group(
+                    device,
+                    &wgpu::BindGroupDescriptor {
+                        label: Some("material"),
+                        layout,
+                        entries: &[
+                            wgpu::BindGroupEntry {
+                                binding: 0,
+                                resource: tv(self.view(m.albedo_texture)),
+                            },
+                            wgpu::BindGroupEntry {
+                                binding: 1,
+                                resource: tv(self.view(m.alpha_mask.map(|a| a.texture))),
+                            },
+                            wgpu::BindGroupEntry {
+                                binding: 2,
+                                resource: wgpu::BindingResource::Sampler(&self.sampler),
+                            },
+                        ],
+                    },
+                )
             })
             .collect()
     }
@@ -260,7 +263,7 @@ impl SceneBuffers {
             base_vertex: 0,
         };
         let material_ranges = draws.iter().map(|d| range(d.first_index, d.index_count)).collect();
-        let bytes = |v: &[u8], label, usage| buffer_init(device, label, v, usage);
+        let bytes = |v: &[u8], label, usage| init_buffer(device, label, v, usage);
         // A shader's storage array binds at least one element: a scene without materials (an
         // empty scene) binds one zeroed material nothing refers to.
         let table = if material_table.is_empty() {
@@ -277,7 +280,7 @@ impl SceneBuffers {
             ),
             indices: bytes(bytemuck::cast_slice(&indices), "indices", wgpu::BufferUsages::INDEX),
             draws,
-            materials: storage(device, "materials", table),
+            materials: storage_buffer(device, "materials", table),
             material_table,
             diffuse_albedo,
             material_groups,

@@ -91,7 +91,8 @@ impl GpuTimer for TimestampTimer<'_> {
         let n = self.passes.len() as u32 * 2;
         let mut enc = self.device.create_command_encoder(&Default::default());
         enc.resolve_query_set(set, 0..n, resolve, 0);
-        let Ok(bytes) = super::read_back(self.device, self.queue, enc, resolve, n as u64 * 8)
+        let Ok(bytes) =
+            gpu_harness::read_buffer_after(self.device, self.queue, enc, resolve, n as u64 * 8)
         else {
             return Vec::new();
         };

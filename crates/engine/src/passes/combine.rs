@@ -4,13 +4,13 @@
 
 use super::raycast::{RayBatch, RayCastPass};
 use crate::EngineError;
-use crate::gpu::{
-    GBufferTargets, Gpu, bind_group, draw_fullscreen, fullscreen_pipeline, storage_empty,
-};
+use crate::gpu::{GBufferTargets, Gpu, draw_fullscreen, empty_storage, fullscreen_pipeline};
 use glam::Vec3;
 
 pub struct CombinePass {
     pipeline: wgpu::RenderPipeline,
+    /// Made once, again only when what it binds changes.
+    group: gpu_harness::BindGroupCache,
     traced: wgpu::Buffer,
     texels: usize,
 }
@@ -22,8 +22,9 @@ impl CombinePass {
         let (qw, qh) = targets.quarter();
         let texels = (qw * qh) as usize;
         Ok(Self {
+            group: Default::default(),
             pipeline,
-            traced: storage_empty(device, "traced radiance", texels as u64 * 32),
+            traced: empty_storage(device, "traced radiance", texels as u64 * 32),
             texels,
         })
     }
@@ -57,8 +58,9 @@ impl CombinePass {
         raycast: &RayCastPass,
     ) {
         let tv = wgpu::BindingResource::TextureView;
-        let bg = bind_group(
+        let bg = self.group.get_in_order(
             device,
+            "combine",
             &self.pipeline.get_bind_group_layout(0),
             &[
                 frame.as_entire_binding(),

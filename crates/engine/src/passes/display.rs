@@ -59,13 +59,6 @@ pub struct DisplayPass {
     size: (u32, u32),
 }
 
-fn entries<'a>(resources: &'a [(u32, wgpu::BindingResource<'a>)]) -> Vec<wgpu::BindGroupEntry<'a>> {
-    resources
-        .iter()
-        .map(|(binding, r)| wgpu::BindGroupEntry { binding: *binding, resource: r.clone() })
-        .collect()
-}
-
 impl DisplayPass {
     pub fn new(device: &wgpu::Device, targets: &GBufferTargets) -> Result<Self, EngineError> {
         let src = crate::shaders::tonemap();
@@ -122,11 +115,8 @@ impl DisplayPass {
             };
             let chosen: Vec<(u32, wgpu::BindingResource<'_>)> =
                 all.iter().filter(|(b, _)| used.contains(b)).cloned().collect();
-            device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("tone mapping"),
-                layout: &pipeline.get_bind_group_layout(0),
-                entries: &entries(&chosen),
-            })
+            let layout = pipeline.get_bind_group_layout(0);
+            gpu_harness::bind_entries(device, "tone mapping", &layout, &chosen)
         };
         let groups =
             [&reduce, &adapt, &map].map(|p| [group(p, &targets.lit), group(p, &targets.combined)]);

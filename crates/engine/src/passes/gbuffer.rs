@@ -1,12 +1,12 @@
 //! G-buffer pass (thesis 3.2, Table 3.1): rasterises the opaque and alpha-tested geometry.
 
 use crate::EngineError;
-use crate::gpu::{
-    GBUFFER_FORMATS, GBufferTargets, SceneBuffers, bind_group, depth_write_state, shader,
-};
+use crate::gpu::{GBUFFER_FORMATS, GBufferTargets, SceneBuffers, depth_write_state, shader};
 
 pub struct GBufferPass {
     pipeline: wgpu::RenderPipeline,
+    /// Made once, again only when what it binds changes.
+    frame_group: gpu_harness::BindGroupCache,
 }
 
 impl GBufferPass {
@@ -65,7 +65,7 @@ impl GBufferPass {
             multiview_mask: None,
             cache: None,
         });
-        Ok(Self { pipeline })
+        Ok(Self { pipeline, frame_group: Default::default() })
     }
 
     /// Records the pass into `enc`.
@@ -77,8 +77,9 @@ impl GBufferPass {
         frame: &wgpu::Buffer,
         scene: &SceneBuffers,
     ) {
-        let frame_group = bind_group(
+        let frame_group = self.frame_group.get_in_order(
             device,
+            "g-buffer frame",
             &self.pipeline.get_bind_group_layout(0),
             &[frame.as_entire_binding(), scene.materials.as_entire_binding()],
         );

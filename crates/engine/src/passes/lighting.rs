@@ -6,13 +6,16 @@
 use super::{lpv::LpvState, radiance_cache::CacheState, rsm_gather::RsmGatherState, sky::SkyLight};
 use crate::EngineError;
 use crate::gpu::{
-    GBufferTargets, Gpu, bind_group, compute_pipeline, dispatch, draw_fullscreen,
-    fullscreen_pipeline, storage_empty,
+    GBufferTargets, Gpu, compute_pipeline, dispatch, draw_fullscreen, empty_storage,
+    fullscreen_pipeline,
 };
 
 pub struct LightingPass {
     queries: wgpu::ComputePipeline,
     pipeline: wgpu::RenderPipeline,
+    /// Made once, again only when what it binds changes.
+    queries_group: gpu_harness::BindGroupCache,
+    lighting_group: gpu_harness::BindGroupCache,
     sky_q: wgpu::Buffer,
     lpv_q: wgpu::Buffer,
     /// The LPV's glossy lookup: per pixel (position, mirror direction), and the radiance.
@@ -57,6 +60,8 @@ impl LightingPass {
             fullscreen_pipeline(device, "lighting", &crate::shaders::lighting(), "fs_lighting")?;
         let n = targets.pixels() as u64;
         Ok(Self {
+            queries_group: Default::default(),
+            lighting_group: Default::default(),
             queries: compute_pipeline(
                 device,
                 "lookup queries",
@@ -64,12 +69,12 @@ impl LightingPass {
                 "main",
             )?,
             pipeline,
-            sky_q: storage_empty(device, "sky queries", n * 48),
-            lpv_q: storage_empty(device, "lpv queries", n * 32),
-            glossy_q: storage_empty(device, "lpv glossy queries", n * 32),
-            glossy_out: storage_empty(device, "lpv glossy light", n * 16),
-            sky_out: storage_empty(device, "sky light", n * 16),
-            lpv_out: storage_empty(device, "lpv light", n * 16),
+            sky_q: empty_storage(device, "sky queries", n * 48),
+            lpv_q: empty_storage(device, "lpv queries", n * 32),
+            glossy_q: empty_storage(device, "lpv glossy queries", n * 32),
+            glossy_out: empty_storage(device, "lpv glossy light", n * 16),
+            sky_out: empty_storage(device, "sky light", n * 16),
+            lpv_out: empty_storage(device, "lpv light", n * 16),
             pixels: n as u32,
         })
     }
@@ -98,8 +103,9 @@ impl LightingPass {
         let (device, tv) = (&gpu.device, wgpu::BindingResource::TextureView);
         let indirect = !matches!(inputs.indirect, IndirectSource::None);
         if inputs.sky_volume || indirect {
-            let bg = bind_group(
+            let bg = self.queries_group.get_in_order(
                 device,
+                "lookup queries",
                 &self.queries.get_bind_group_layout(0),
                 &[
                     inputs.frame.as_entire_binding(),
@@ -136,8 +142,9 @@ impl LightingPass {
             IndirectSource::None => &self.lpv_out,
         };
         let skymap = inputs.sky.map(|s| &s.map.buffer).unwrap_or(inputs.lights);
-        let bg = bind_group(
+        let bg = self.lighting_group.get_in_order(
             device,
+            "lighting",
             &self.pipeline.get_bind_group_layout(0),
             &[
                 inputs.frame.as_entire_binding(),

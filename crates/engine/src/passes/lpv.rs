@@ -15,7 +15,9 @@
 use super::sky::SkyLight;
 use super::sky_bounce::{SkyBounce, SkyBounceInputs};
 use super::sun_rsm::SunRsm;
-use crate::gpu::{Gpu, SceneBuffers, compute_pipeline, dispatch_lookup, storage_empty, uniform};
+use crate::gpu::{
+    Gpu, SceneBuffers, compute_pipeline, dispatch_lookup, empty_storage, uniform_buffer,
+};
 use crate::state::SunLight;
 use crate::{EngineError, Settings};
 use glam::Vec3;
@@ -36,6 +38,9 @@ pub struct LpvState {
     lookup: wgpu::ComputePipeline,
     /// The glossy lookup (`Settings::lpv_glossy` points marched; 0: not recorded).
     glossy: wgpu::ComputePipeline,
+    /// The lookups' bind groups, made once per pair of query and output buffers.
+    lookup_groups: gpu_harness::BindGroupCache,
+    glossy_groups: gpu_harness::BindGroupCache,
     glossy_steps: u32,
     lookup_params: wgpu::Buffer,
     /// The GPU path updated the volumes since `lpv` last read them back.
@@ -88,7 +93,9 @@ impl LpvState {
             None
         };
         Ok(Self {
-            volumes: storage_empty(&gpu.device, "lpv volumes", volume_bytes(&lpv)),
+            lookup_groups: Default::default(),
+            glossy_groups: Default::default(),
+            volumes: empty_storage(&gpu.device, "lpv volumes", volume_bytes(&lpv)),
             lpv,
             rsm,
             sky_bounce,
@@ -96,7 +103,7 @@ impl LpvState {
             lookup: compute_pipeline(&gpu.device, "lpv lookup", lpv::gpu::LOOKUP_WGSL, "lookup")?,
             glossy: compute_pipeline(&gpu.device, "lpv glossy", lpv::gpu::LOOKUP_WGSL, "glossy")?,
             glossy_steps: settings.lpv_glossy,
-            lookup_params: uniform(
+            lookup_params: uniform_buffer(
                 &gpu.device,
                 "lpv lookup",
                 bytemuck::bytes_of(&GpuLookupParams::default()),
@@ -202,7 +209,8 @@ impl LpvState {
         count: u32,
     ) {
         self.write_lookup_params(gpu, count);
-        dispatch_lookup(&gpu.device, enc, &self.lookup, self.lookup_buffers(queries, out), count);
+        let kernel = (&self.lookup, &self.lookup_groups);
+        dispatch_lookup(&gpu.device, enc, kernel, self.lookup_buffers(queries, out), count);
     }
 
     /// Records the glossy lookup from `queries` (position, mirror direction) to `out`, when
@@ -216,13 +224,8 @@ impl LpvState {
         count: u32,
     ) {
         if self.glossy_steps > 0 {
-            dispatch_lookup(
-                &gpu.device,
-                enc,
-                &self.glossy,
-                self.lookup_buffers(queries, out),
-                count,
-            );
+            let kernel = (&self.glossy, &self.glossy_groups);
+            dispatch_lookup(&gpu.device, enc, kernel, self.lookup_buffers(queries, out), count);
         }
     }
 

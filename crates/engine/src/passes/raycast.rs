@@ -2,7 +2,7 @@
 //! resolution, read back for the CPU ray tracer.
 
 use crate::EngineError;
-use crate::gpu::{GBufferTargets, Gpu, bind_group, compute_pipeline, dispatch, storage_empty};
+use crate::gpu::{GBufferTargets, Gpu, compute_pipeline, dispatch, empty_storage};
 use crate::trace::TraceRay;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
@@ -31,6 +31,8 @@ pub struct RayBatch {
 
 pub struct RayCastPass {
     pipeline: wgpu::ComputePipeline,
+    /// Made once, again only when what it binds changes.
+    group: gpu_harness::BindGroupCache,
     pub rays: wgpu::Buffer,
     texels: u32,
 }
@@ -39,13 +41,14 @@ impl RayCastPass {
     pub fn new(device: &wgpu::Device, targets: &GBufferTargets) -> Result<Self, EngineError> {
         let (qw, qh) = targets.quarter();
         Ok(Self {
+            group: Default::default(),
             pipeline: compute_pipeline(
                 device,
                 "ray casting buffer",
                 &crate::shaders::raycast(),
                 "main",
             )?,
-            rays: storage_empty(device, "ray casting buffer", (qw * qh) as u64 * 48),
+            rays: empty_storage(device, "ray casting buffer", (qw * qh) as u64 * 48),
             texels: qw * qh,
         })
     }
@@ -59,8 +62,9 @@ impl RayCastPass {
         materials: &wgpu::Buffer,
     ) -> Result<RayBatch, EngineError> {
         let (device, tv) = (&gpu.device, wgpu::BindingResource::TextureView);
-        let bg = bind_group(
+        let bg = self.group.get_in_order(
             device,
+            "ray casting buffer",
             &self.pipeline.get_bind_group_layout(0),
             &[
                 frame.as_entire_binding(),

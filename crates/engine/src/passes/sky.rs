@@ -4,7 +4,7 @@
 //! graph's resources ([`SkyMapState`], [`SkyVolumeState`]), made by their passes on first
 //! use and read by the passes after them through [`SkyLight`].
 
-use crate::gpu::{Gpu, storage_empty};
+use crate::gpu::{Gpu, empty_storage};
 use crate::{EngineError, Settings};
 use atmosphere::{Sky, SkyMap, SkyMapSettings, SkyRadiance as _};
 use glam::Vec3;
@@ -74,7 +74,7 @@ impl SkyMapState {
         let texels: Vec<[f32; 4]> = map.texels().iter().map(|t| t.extend(0.0).to_array()).collect();
         let (buffer, generation) = match previous {
             Some(p) => (p.buffer, p.generation + 1),
-            None => (storage_empty(&gpu.device, "sky map", texels.len() as u64 * 16), 0),
+            None => (empty_storage(&gpu.device, "sky map", texels.len() as u64 * 16), 0),
         };
         gpu.write(&buffer, 0, bytemuck::cast_slice(&texels));
         Ok(Self { map, buffer, generation })

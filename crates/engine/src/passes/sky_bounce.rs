@@ -12,8 +12,8 @@
 use super::sky::SkyLight;
 use crate::EngineError;
 use crate::gpu::{
-    GBufferTargets, Gpu, compute_pipeline, dispatch, numbered_bind_group, storage_empty,
-    texture_2d, uniform,
+    GBufferTargets, Gpu, bind_entries, compute_pipeline, dispatch, empty_storage, texture_2d,
+    uniform_buffer,
 };
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
@@ -74,16 +74,18 @@ impl SkyBounce {
         let queries_pipeline =
             compute_pipeline(device, "sky vpl queries", &source, "sky_vpl_queries")?;
         let flux_pipeline = compute_pipeline(device, "sky vpl flux", &source, "sky_vpl_flux")?;
-        let grid = uniform(device, "sky vpl grid", bytemuck::bytes_of(&GpuSkyVplGrid::default()));
-        let queries = storage_empty(device, "sky vpl queries", n * 48);
-        let sky_e = storage_empty(device, "sky vpl irradiance", n * 16);
+        let grid =
+            uniform_buffer(device, "sky vpl grid", bytemuck::bytes_of(&GpuSkyVplGrid::default()));
+        let queries = empty_storage(device, "sky vpl queries", n * 48);
+        let sky_e = empty_storage(device, "sky vpl irradiance", n * 16);
         let textures = ["sky vpl flux", "sky vpl normal", "sky vpl position"]
             .map(|label| rsm_target(device, label, cells));
         let views = textures.each_ref().map(|t| t.create_view(&Default::default()));
         let tv = wgpu::BindingResource::TextureView;
-        let queries_group = numbered_bind_group(
+        let queries_group = bind_entries(
             device,
-            &queries_pipeline,
+            "sky bounce",
+            &queries_pipeline.get_bind_group_layout(0),
             &[
                 (0, inputs.frame.as_entire_binding()),
                 (1, grid.as_entire_binding()),
@@ -94,9 +96,10 @@ impl SkyBounce {
                 (6, tv(&views[2])),
             ],
         );
-        let flux_group = numbered_bind_group(
+        let flux_group = bind_entries(
             device,
-            &flux_pipeline,
+            "sky bounce",
+            &flux_pipeline.get_bind_group_layout(0),
             &[
                 (0, inputs.frame.as_entire_binding()),
                 (1, grid.as_entire_binding()),

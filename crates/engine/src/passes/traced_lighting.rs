@@ -9,9 +9,7 @@ use super::lpv::LpvState;
 use super::raycast::RayBatch;
 use super::shadow::render_sun_maps;
 use super::sky::SkyLight;
-use crate::gpu::{
-    Gpu, SceneBuffers, compute_pipeline, dispatch, numbered_bind_group, storage_empty, uniform,
-};
+use crate::gpu::{Gpu, SceneBuffers, compute_pipeline, dispatch, empty_storage, uniform_buffer};
 use crate::state::SunLight;
 use crate::trace::TracedHit;
 use crate::{EngineError, Settings};
@@ -97,11 +95,11 @@ impl HitBuffers {
     fn new(device: &wgpu::Device, capacity: usize) -> Self {
         let n = capacity as u64;
         Self {
-            hits: storage_empty(device, "traced g-buffer", n * 96),
-            sky_q: storage_empty(device, "traced sky queries", n * 48),
-            sky_out: storage_empty(device, "traced sky light", n * 16),
-            lpv_q: storage_empty(device, "traced lpv queries", n * 32),
-            lpv_out: storage_empty(device, "traced lpv light", n * 16),
+            hits: empty_storage(device, "traced g-buffer", n * 96),
+            sky_q: empty_storage(device, "traced sky queries", n * 48),
+            sky_out: empty_storage(device, "traced sky light", n * 16),
+            lpv_q: empty_storage(device, "traced lpv queries", n * 32),
+            lpv_out: empty_storage(device, "traced lpv light", n * 16),
             capacity,
         }
     }
@@ -112,6 +110,9 @@ impl HitBuffers {
 pub struct TracedLightingPass {
     queries: wgpu::ComputePipeline,
     lighting: wgpu::ComputePipeline,
+    /// Made once per set of buffers (the hit buffers grow with the rays).
+    queries_groups: gpu_harness::BindGroupCache,
+    lighting_groups: gpu_harness::BindGroupCache,
     params: wgpu::Buffer,
     buffers: HitBuffers,
 }
@@ -120,9 +121,11 @@ impl TracedLightingPass {
     pub fn new(device: &wgpu::Device) -> Result<Self, EngineError> {
         let source = crate::shaders::traced();
         Ok(Self {
+            queries_groups: Default::default(),
+            lighting_groups: Default::default(),
             queries: compute_pipeline(device, "traced queries", &source, "traced_queries")?,
             lighting: compute_pipeline(device, "traced lighting", &source, "traced_lighting")?,
-            params: uniform(device, "traced params", &[0u8; 16]),
+            params: uniform_buffer(device, "traced params", &[0u8; 16]),
             buffers: HitBuffers::new(device, 1024),
         })
     }
@@ -159,9 +162,10 @@ impl TracedLightingPass {
         let mut enc = device.create_command_encoder(&Default::default());
         enc.clear_buffer(inputs.out, 0, None);
         let groups = [count.div_ceil(64).max(1), 1, 1];
-        let queries = numbered_bind_group(
+        let queries = self.queries_groups.get(
             device,
-            &self.queries,
+            "traced queries",
+            &self.queries.get_bind_group_layout(0),
             &[
                 (1, self.params.as_entire_binding()),
                 (2, b.hits.as_entire_binding()),
@@ -177,9 +181,10 @@ impl TracedLightingPass {
             lpv.record_lookup(gpu, &mut enc, &b.lpv_q, &b.lpv_out, count);
         }
         let tv = wgpu::BindingResource::TextureView;
-        let lighting = numbered_bind_group(
+        let lighting = self.lighting_groups.get(
             device,
-            &self.lighting,
+            "traced lighting",
+            &self.lighting.get_bind_group_layout(0),
             &[
                 (0, inputs.frame.as_entire_binding()),
                 (1, self.params.as_entire_binding()),

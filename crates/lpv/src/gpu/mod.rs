@@ -21,8 +21,7 @@ use crate::settings::LpvSettings;
 use crate::vpl::{Surfel, Vpl};
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
-use std::borrow::Cow;
-use wgpu::util::DeviceExt;
+use gpu_harness::{dispatch, storage_buffer, uniform_buffer};
 
 mod resident;
 
@@ -149,67 +148,17 @@ pub struct GpuLpv {
 }
 
 fn pipeline(device: &wgpu::Device, src: &str, entry: &str) -> wgpu::ComputePipeline {
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some(entry),
-        source: wgpu::ShaderSource::Wgsl(Cow::Borrowed(src)),
-    });
-    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some(entry),
-        layout: None,
-        module: &module,
-        entry_point: Some(entry),
-        compilation_options: Default::default(),
-        cache: None,
-    })
+    gpu_harness::compute_pipeline(device, entry, src, entry, None)
 }
 
-fn storage(device: &wgpu::Device, label: &str, data: &[u8]) -> wgpu::Buffer {
-    let mut padded = data.to_vec();
-    padded.resize(data.len().max(16).next_multiple_of(4), 0);
-    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some(label),
-        contents: &padded,
-        usage: wgpu::BufferUsages::STORAGE
-            | wgpu::BufferUsages::COPY_SRC
-            | wgpu::BufferUsages::COPY_DST,
-    })
-}
-
-fn uniform(device: &wgpu::Device, data: &[u8]) -> wgpu::Buffer {
-    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("lpv uniform"),
-        contents: data,
-        usage: wgpu::BufferUsages::UNIFORM,
-    })
-}
-
+/// A bind group of `p`'s group 0 from `buffers` in binding order.
 fn bind(
     device: &wgpu::Device,
     p: &wgpu::ComputePipeline,
     buffers: &[&wgpu::Buffer],
 ) -> wgpu::BindGroup {
-    let entries: Vec<wgpu::BindGroupEntry> = buffers
-        .iter()
-        .enumerate()
-        .map(|(i, b)| wgpu::BindGroupEntry { binding: i as u32, resource: b.as_entire_binding() })
-        .collect();
-    device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("lpv"),
-        layout: &p.get_bind_group_layout(0),
-        entries: &entries,
-    })
-}
-
-fn dispatch(
-    enc: &mut wgpu::CommandEncoder,
-    p: &wgpu::ComputePipeline,
-    g: &wgpu::BindGroup,
-    n: [u32; 3],
-) {
-    let mut pass = enc.begin_compute_pass(&Default::default());
-    pass.set_pipeline(p);
-    pass.set_bind_group(0, g, &[]);
-    pass.dispatch_workgroups(n[0], n[1], n[2]);
+    let resources: Vec<_> = buffers.iter().map(|b| b.as_entire_binding()).collect();
+    gpu_harness::bind_group(device, "lpv", &p.get_bind_group_layout(0), &resources)
 }
 
 fn read_back(
@@ -251,21 +200,25 @@ impl GpuLpv {
         let bytes = (floats * 4) as u64;
         let scale = fixed_point_scale(vpls);
         let flags = u32::from(faces.is_some());
-        let g_inject = uniform(
+        let g_inject = uniform_buffer(
             device,
+            "lpv uniform",
             bytemuck::bytes_of(&GpuGrid::new(grid, flags, scale, vpls.len() as u32)),
         );
-        let g_cells =
-            uniform(device, bytemuck::bytes_of(&GpuGrid::new(grid, flags, scale, floats as u32)));
-        let vpl_buf = storage(device, "vpls", bytemuck::cast_slice(vpls));
-        let zeros = vec![0u8; floats * 4];
-        let fixed = storage(device, "fixed", &zeros);
-        let (a, b, accum) = (
-            storage(device, "a", &zeros),
-            storage(device, "b", &zeros),
-            storage(device, "accum", &zeros),
+        let g_cells = uniform_buffer(
+            device,
+            "lpv uniform",
+            bytemuck::bytes_of(&GpuGrid::new(grid, flags, scale, floats as u32)),
         );
-        let face_buf = storage(
+        let vpl_buf = storage_buffer(device, "vpls", bytemuck::cast_slice(vpls));
+        let zeros = vec![0u8; floats * 4];
+        let fixed = storage_buffer(device, "fixed", &zeros);
+        let (a, b, accum) = (
+            storage_buffer(device, "a", &zeros),
+            storage_buffer(device, "b", &zeros),
+            storage_buffer(device, "accum", &zeros),
+        );
+        let face_buf = storage_buffer(
             device,
             "faces",
             faces.map_or(&[0u8; 16][..], |f| bytemuck::cast_slice(&f.data)),
@@ -369,11 +322,11 @@ impl GpuLpv {
                 normal: n.extend(0.0).to_array(),
             })
             .collect();
-        let u = uniform(device, bytemuck::bytes_of(&params));
-        let vb = storage(device, "volumes", bytemuck::cast_slice(&volumes));
-        let qb = storage(device, "queries", bytemuck::cast_slice(&queries));
+        let u = uniform_buffer(device, "lpv uniform", bytemuck::bytes_of(&params));
+        let vb = storage_buffer(device, "volumes", bytemuck::cast_slice(&volumes));
+        let qb = storage_buffer(device, "queries", bytemuck::cast_slice(&queries));
         let bytes = points.len() as u64 * 16;
-        let out = storage(device, "result", &vec![0u8; bytes as usize]);
+        let out = storage_buffer(device, "result", &vec![0u8; bytes as usize]);
         let mut enc = device.create_command_encoder(&Default::default());
         let bg = bind(device, kernel, &[&u, &vb, &qb, &out]);
         dispatch(&mut enc, kernel, &bg, [(points.len() as u32).div_ceil(64), 1, 1]);

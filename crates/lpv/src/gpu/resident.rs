@@ -12,13 +12,14 @@
 //! largest flux one texel can carry, [`RsmFrame::max_texel_flux`]; texels are clamped to it),
 //! so that no cell can overflow whatever the RSM holds.
 
-use super::{GpuGrid, GpuLookupParams, dispatch, pipeline, read_back};
+use super::{GpuGrid, GpuLookupParams, pipeline, read_back};
 use crate::error::LpvError;
 use crate::grid::{COEFFS, Grid};
 use crate::lpv::Lpv;
 use crate::settings::LpvSettings;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
+use gpu_harness::dispatch;
 
 /// Fixed-point units per unit of geometry-volume blocking.
 const BLOCKING_SCALE: f32 = 65536.0;
@@ -117,23 +118,9 @@ fn inject_pipeline(device: &wgpu::Device) -> wgpu::ComputePipeline {
             entry(6, storage),
         ],
     });
-    let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some("lpv inject_rsm"),
-        bind_group_layouts: &[Some(&layout)],
-        immediate_size: 0,
-    });
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("lpv inject_rsm"),
-        source: wgpu::ShaderSource::Wgsl(super::INJECT_RSM_WGSL.into()),
-    });
-    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some("lpv inject_rsm"),
-        layout: Some(&pl),
-        module: &module,
-        entry_point: Some("inject_rsm"),
-        compilation_options: Default::default(),
-        cache: None,
-    })
+    let pl = gpu_harness::pipeline_layout(device, "lpv inject_rsm", &layout);
+    let source = super::INJECT_RSM_WGSL;
+    gpu_harness::compute_pipeline(device, "lpv inject_rsm", source, "inject_rsm", Some(&pl))
 }
 
 /// One cascade's uniforms and bind groups.
@@ -217,16 +204,7 @@ impl ResidentLpv {
         let lookup = pipeline(device, super::LOOKUP_WGSL, "lookup");
         let tv = wgpu::BindingResource::TextureView;
         let group = |p: &wgpu::ComputePipeline, r: Vec<wgpu::BindingResource<'_>>| {
-            let entries: Vec<wgpu::BindGroupEntry> = r
-                .into_iter()
-                .enumerate()
-                .map(|(i, resource)| wgpu::BindGroupEntry { binding: i as u32, resource })
-                .collect();
-            device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("lpv resident"),
-                layout: &p.get_bind_group_layout(0),
-                entries: &entries,
-            })
+            gpu_harness::bind_group(device, "lpv resident", &p.get_bind_group_layout(0), &r)
         };
         let cascades = (0..settings.cascades)
             .map(|_| {

@@ -32,15 +32,6 @@ pub struct CascadeShadows {
     taps: wgpu::Buffer,
 }
 
-fn storage(device: &wgpu::Device, label: &str, size: u64) -> wgpu::Buffer {
-    device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some(label),
-        size,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    })
-}
-
 impl CascadeShadows {
     /// Up to `cascades` maps of `resolution`² for geometry laid out as `vertex`.
     pub fn new(
@@ -58,8 +49,8 @@ impl CascadeShadows {
         Ok(Self {
             layers,
             array,
-            cascades: storage(device, "sun cascades", size),
-            taps: storage(device, "pcss taps", 8 * MAX_TAPS as u64),
+            cascades: gpu_harness::empty_storage(device, "sun cascades", size),
+            taps: gpu_harness::empty_storage(device, "pcss taps", 8 * MAX_TAPS as u64),
         })
     }
 

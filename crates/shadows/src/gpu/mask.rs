@@ -72,21 +72,24 @@ impl AlphaMask {
                 contents: bytemuck::cast_slice(&[cutoff, 0.0, 0.0, 0.0]),
                 usage: wgpu::BufferUsages::UNIFORM,
             });
-            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("shadow alpha mask"),
-                layout: &mask_layout(device),
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: wgpu::BindingResource::TextureView(alpha),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: wgpu::BindingResource::Sampler(sampler),
-                    },
-                    wgpu::BindGroupEntry { binding: 2, resource: cutoff.as_entire_binding() },
-                ],
-            });
+            let group = gpu_harness::create_bind_group(
+                device,
+                &wgpu::BindGroupDescriptor {
+                    label: Some("shadow alpha mask"),
+                    layout: &mask_layout(device),
+                    entries: &[
+                        wgpu::BindGroupEntry {
+                            binding: 0,
+                            resource: wgpu::BindingResource::TextureView(alpha),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 1,
+                            resource: wgpu::BindingResource::Sampler(sampler),
+                        },
+                        wgpu::BindGroupEntry { binding: 2, resource: cutoff.as_entire_binding() },
+                    ],
+                },
+            );
             Self { group }
         })
     }

@@ -42,18 +42,9 @@ impl GpuVplReduction {
         let tiles_x = map.resolution().div_ceil(block);
         let bytes = tiles_x as u64 * tiles_x as u64 * TILE_BYTES;
         device_call(device, || {
-            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("shadows rsm vpls"),
-                source: wgpu::ShaderSource::Wgsl(RSM_VPLS_WGSL.into()),
-            });
-            let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some("shadows rsm vpls"),
-                layout: None,
-                module: &module,
-                entry_point: Some("main"),
-                compilation_options: Default::default(),
-                cache: None,
-            });
+            let label = "shadows rsm vpls";
+            let pipeline =
+                gpu_harness::compute_pipeline(device, label, RSM_VPLS_WGSL, "main", None);
             let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("shadows rsm vpls params"),
                 contents: bytemuck::cast_slice(&[map.resolution(), block, tiles_x, 0]),
@@ -90,11 +81,14 @@ impl GpuVplReduction {
                 .enumerate()
                 .map(|(i, resource)| wgpu::BindGroupEntry { binding: i as u32, resource })
                 .collect();
-            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("shadows rsm vpls"),
-                layout: &pipeline.get_bind_group_layout(0),
-                entries: &entries,
-            });
+            let group = gpu_harness::create_bind_group(
+                device,
+                &wgpu::BindGroupDescriptor {
+                    label: Some("shadows rsm vpls"),
+                    layout: &pipeline.get_bind_group_layout(0),
+                    entries: &entries,
+                },
+            );
             Self { pipeline, group, output, staging, tiles_x, block }
         })
     }

@@ -42,18 +42,21 @@ impl UniformSlots {
                 count: None,
             }],
         });
-        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some(label),
-            layout: &layout,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                    buffer: &buffer,
-                    offset: 0,
-                    size: wgpu::BufferSize::new(size),
-                }),
-            }],
-        });
+        let group = gpu_harness::create_bind_group(
+            device,
+            &wgpu::BindGroupDescriptor {
+                label: Some(label),
+                layout: &layout,
+                entries: &[wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: &buffer,
+                        offset: 0,
+                        size: wgpu::BufferSize::new(size),
+                    }),
+                }],
+            },
+        );
         Self { buffer, layout, group, stride, capacity }
     }
 
