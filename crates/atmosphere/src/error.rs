@@ -1,7 +1,7 @@
 //! The crate's error type: every bad input gets a typed error, nothing panics on user data.
 
 /// What went wrong building or querying the atmosphere.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, thiserror::Error)]
 pub enum AtmosphereError {
     /// A calendar date that does not exist (month 13, 30 February) or is outside the
     /// algorithm's supported years.
@@ -29,6 +29,7 @@ pub enum AtmosphereError {
     #[error("invalid {what}: {reason}")]
     Invalid { what: &'static str, reason: String },
     /// The GPU path failed (no adapter, validation error, read-back failure).
+    #[cfg(feature = "gpu")]
     #[error("GPU error: {0}")]
-    Gpu(String),
+    Gpu(#[from] gpu_harness::GpuError),
 }

@@ -157,8 +157,8 @@ pub struct ResidentSkyMap {
     _tables: [wgpu::Buffer; 2],
 }
 
-fn gpu_err(e: impl std::fmt::Display) -> AtmosphereError {
-    AtmosphereError::Gpu(e.to_string())
+fn gpu_err(e: gpu_harness::GpuError) -> AtmosphereError {
+    AtmosphereError::Gpu(e)
 }
 
 impl ResidentSkyMap {

@@ -21,9 +21,13 @@ pub enum EngineError {
     /// The ray tracer could not be built.
     #[error("ray tracer: {0}")]
     Trace(#[from] kdtree_tracer::Error),
-    /// A technique crate refused its input.
-    #[error("{technique}: {message}")]
-    Technique { technique: &'static str, message: String },
+    /// A technique crate refused its input or failed; `source` is its own typed error.
+    #[error("{technique}: {source}")]
+    Technique {
+        technique: &'static str,
+        #[source]
+        source: Box<dyn std::error::Error + Send + Sync>,
+    },
     /// A pass of the frame failed.
     #[error("pass '{pass}' failed: {message}")]
     Pass { pass: String, message: String },
@@ -36,7 +40,11 @@ pub enum EngineError {
 }
 
 impl EngineError {
-    pub fn technique(technique: &'static str, e: impl std::fmt::Display) -> Self {
-        Self::Technique { technique, message: e.to_string() }
+    /// `e`, the error of the technique crate `technique`, kept as the source.
+    pub fn technique(
+        technique: &'static str,
+        e: impl std::error::Error + Send + Sync + 'static,
+    ) -> Self {
+        Self::Technique { technique, source: Box::new(e) }
     }
 }

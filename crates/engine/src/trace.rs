@@ -85,15 +85,14 @@ impl TraceScene {
             .enumerate()
             .find(|(_, m)| m.material.index() >= scene.materials.len())
         {
-            return Err(EngineError::technique(
-                "trace",
-                format!(
-                    "mesh {i} (\"{}\") uses material {} but the scene has {}",
-                    m.name,
+            return Err(EngineError::Scene(scene::SceneError::Invalid {
+                element: format!("mesh {i} (\"{}\")", m.name),
+                reason: format!(
+                    "uses material {} but the scene has {}",
                     m.material.0,
                     scene.materials.len()
                 ),
-            ));
+            }));
         }
         let tris = scene.triangles();
         let corners = |t| (tris.triangle(t), tris.corner_uvs(t));
@@ -550,7 +549,7 @@ mod tests {
         assert_eq!(ok.triangle_count(), 1);
         assert!(ok.epsilon() > 0.0);
         let missing = TraceScene::new(&one_triangle(3, glam::Affine3A::IDENTITY));
-        assert!(matches!(missing, Err(EngineError::Technique { technique: "trace", .. })));
+        assert!(matches!(missing, Err(EngineError::Scene(scene::SceneError::Invalid { .. }))));
         let nan = glam::Affine3A::from_translation(Vec3::NAN);
         assert!(matches!(TraceScene::new(&one_triangle(0, nan)), Err(EngineError::Trace(_))));
     }

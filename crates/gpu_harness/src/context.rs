@@ -168,7 +168,7 @@ impl GpuContext {
             .collect();
         self.queue.submit([encoder.finish()]);
         if let Some(err) = pollster::block_on(scope.pop()) {
-            return Err(GpuError::Validation(err.to_string()));
+            return Err(GpuError::Validation(err));
         }
         let sizes: Vec<usize> = bindings
             .iter()

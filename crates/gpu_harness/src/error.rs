@@ -21,8 +21,16 @@ pub enum GpuError {
     },
     /// Shader compilation, pipeline creation or dispatch failed (wgpu validation error).
     #[error("GPU validation failed: {0}")]
-    Validation(String),
-    /// Mapping a buffer for read-back failed.
-    #[error("buffer read-back failed: {0}")]
-    Readback(String),
+    Validation(#[from] wgpu::Error),
+    /// Reading a buffer back failed: `what` of it (waiting for the device, mapping, the
+    /// mapped range).
+    #[error("buffer read-back failed ({what}): {source}")]
+    Readback {
+        what: &'static str,
+        #[source]
+        source: Box<dyn std::error::Error + Send + Sync>,
+    },
+    /// A texture read-back asked for an array layer the texture does not have.
+    #[error("read-back of layer {layer} of a texture of {layers} layers")]
+    LayerOutOfRange { layer: u32, layers: u32 },
 }

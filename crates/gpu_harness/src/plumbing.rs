@@ -118,7 +118,7 @@ pub fn validated<T>(device: &wgpu::Device, create: impl FnOnce() -> T) -> Result
     let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
     let value = create();
     match pollster::block_on(scope.pop()) {
-        Some(e) => Err(GpuError::Validation(e.to_string())),
+        Some(e) => Err(GpuError::Validation(e)),
         None => Ok(value),
     }
 }

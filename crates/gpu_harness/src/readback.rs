@@ -3,8 +3,10 @@
 
 use crate::GpuError;
 
-fn readback_err(e: impl std::fmt::Display) -> GpuError {
-    GpuError::Readback(e.to_string())
+fn readback_err<E: std::error::Error + Send + Sync + 'static>(
+    what: &'static str,
+) -> impl FnOnce(E) -> GpuError {
+    move |e| GpuError::Readback { what, source: Box::new(e) }
 }
 
 /// The bytes of a `MAP_READ` buffer once the queue has finished writing it (blocking; the
@@ -15,9 +17,11 @@ pub fn map_read(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<Vec<u8>,
     slice.map_async(wgpu::MapMode::Read, move |r| {
         let _ = tx.send(r);
     });
-    device.poll(wgpu::PollType::wait_indefinitely()).map_err(readback_err)?;
-    rx.recv().map_err(readback_err)?.map_err(readback_err)?;
-    let data = slice.get_mapped_range().map_err(readback_err)?.to_vec();
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(readback_err("waiting for the device"))?;
+    rx.recv().map_err(readback_err("the mapping's answer"))?.map_err(readback_err("mapping"))?;
+    let data = slice.get_mapped_range().map_err(readback_err("the mapped range"))?.to_vec();
     buffer.unmap();
     Ok(data)
 }
@@ -63,10 +67,7 @@ pub fn read_texture(
     bytes_per_texel: u32,
 ) -> Result<Vec<u8>, GpuError> {
     if layer >= texture.depth_or_array_layers() {
-        return Err(GpuError::Readback(format!(
-            "layer {layer} of a texture of {} layers",
-            texture.depth_or_array_layers()
-        )));
+        return Err(GpuError::LayerOutOfRange { layer, layers: texture.depth_or_array_layers() });
     }
     let (w, h) = (texture.width(), texture.height());
     let row = (w * bytes_per_texel).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);

@@ -34,7 +34,7 @@ fn invalid_shader_is_a_typed_error_not_a_panic() {
     let Some(ctx) = gpu_test_context() else { return };
     let err = ctx.run_compute("fn main( {", "main", &[], [1, 1, 1]);
     assert!(
-        matches!(err, Err(gpu_harness::GpuError::Validation(ref m)) if !m.is_empty()),
+        matches!(err, Err(gpu_harness::GpuError::Validation(ref m)) if !m.to_string().is_empty()),
         "{err:?}"
     );
 }

@@ -1,7 +1,7 @@
 //! Errors for bad settings and broken structures (user data never panics).
 
 /// What went wrong building or validating a light propagation volume.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, thiserror::Error)]
 pub enum LpvError {
     /// A setting is out of its range (the message names it and the range).
     #[error("invalid LPV setting `{name}` = {value}: {why}")]
@@ -9,7 +9,12 @@ pub enum LpvError {
     /// A structure failed its invariant check ([`crate::Lpv::validate`]).
     #[error("LPV invariant broken: {0}")]
     Invariant(String),
+    /// A resident pass was given inputs that do not fit it (the message says what it expected
+    /// and got).
+    #[error("LPV resident pass: {0}")]
+    Mismatch(String),
     /// A GPU entry point could not run (no adapter, validation failure, read-back failure).
+    #[cfg(feature = "gpu")]
     #[error("LPV GPU path: {0}")]
-    Gpu(String),
+    Gpu(#[from] gpu_harness::GpuError),
 }

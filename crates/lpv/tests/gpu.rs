@@ -211,7 +211,7 @@ fn resident_update_from_rsm_textures_matches_the_cpu() {
     let one = [frame(&texels)];
     assert!(matches!(
         resident.record_update(&ctx.queue, &mut enc, &grids, &one),
-        Err(lpv::LpvError::Gpu(_))
+        Err(lpv::LpvError::Mismatch(_))
     ));
-    assert!(matches!(ResidentLpv::new(&ctx.device, s, &[]), Err(lpv::LpvError::Gpu(_))));
+    assert!(matches!(ResidentLpv::new(&ctx.device, s, &[]), Err(lpv::LpvError::Mismatch(_))));
 }

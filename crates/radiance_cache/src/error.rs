@@ -3,7 +3,7 @@
 use thiserror::Error;
 
 /// What can go wrong building or driving a radiance cache.
-#[derive(Debug, Error, Clone, PartialEq)]
+#[derive(Debug, Error)]
 pub enum CacheError {
     /// A setting outside its documented range.
     #[error("invalid setting `{name}`: {reason}")]
@@ -12,8 +12,9 @@ pub enum CacheError {
     #[error("invariant broken: {0}")]
     Invariant(String),
     /// GPU path: no adapter, or a device call failed.
+    #[cfg(feature = "gpu")]
     #[error("gpu: {0}")]
-    Gpu(String),
+    Gpu(#[from] gpu_harness::GpuError),
     /// GPU path: a lookup binding made before the cache data it binds recreated a buffer
     /// (make it again with `GpuLookup::bind`).
     #[error("gpu: the lookup binding is older than the cache data's buffers; bind again")]

@@ -204,7 +204,7 @@ impl GpuLookup {
         let pipeline = gpu_harness::validated(device, || {
             gpu_harness::compute_pipeline(device, label, LOOKUP_WGSL, "main", None)
         })
-        .map_err(|e| CacheError::Gpu(e.to_string()))?;
+        .map_err(CacheError::Gpu)?;
         Ok(Self { pipeline })
     }
 
@@ -281,7 +281,7 @@ impl GpuLookup {
             queue.submit([encoder.finish()]);
             Ok::<(), CacheError>(())
         })
-        .map_err(|e| CacheError::Gpu(e.to_string()))??;
+        .map_err(CacheError::Gpu)??;
         let v: Vec<[f32; 4]> = read_back(device, queue, &output)?;
         Ok(v.iter().take(points.len()).map(|c| glam::Vec3::new(c[0], c[1], c[2])).collect())
     }
@@ -293,7 +293,7 @@ pub fn read_back<T: Pod>(
     queue: &wgpu::Queue,
     buffer: &wgpu::Buffer,
 ) -> Result<Vec<T>, CacheError> {
-    let bytes = gpu_harness::read_buffer(device, queue, buffer, buffer.size())
-        .map_err(|e| CacheError::Gpu(e.to_string()))?;
+    let bytes =
+        gpu_harness::read_buffer(device, queue, buffer, buffer.size()).map_err(CacheError::Gpu)?;
     Ok(bytemuck::pod_collect_to_vec(&bytes))
 }

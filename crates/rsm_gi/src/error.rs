@@ -1,7 +1,7 @@
 //! Errors on settings and user data (user data never panics).
 
 /// What went wrong setting up or running a one-bounce pass.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, thiserror::Error)]
 pub enum RsmGiError {
     /// A setting is out of its range (the message names it and the range).
     #[error("invalid rsm_gi setting `{name}` = {value}: {why}")]
@@ -15,7 +15,12 @@ pub enum RsmGiError {
     /// A projection matrix is not finite.
     #[error("{0}: matrix is not finite")]
     NonFiniteMatrix(&'static str),
+    /// A resident gather was used the way it was not made for: a binding of another gather,
+    /// or the splatting calls on a gathering one (and the other way round).
+    #[error("rsm_gi resident gather: {0}")]
+    Misuse(&'static str),
     /// A GPU entry point could not run (no adapter, validation failure, read-back failure).
+    #[cfg(feature = "gpu")]
     #[error("rsm_gi GPU path: {0}")]
-    Gpu(String),
+    Gpu(#[from] gpu_harness::GpuError),
 }

@@ -170,7 +170,7 @@ impl GpuGBuffer {
 /// Runs `create` inside a validation error scope: the device's complaint becomes an error.
 /// `create` under wgpu's validation scope, its error as [`RsmGiError::Gpu`].
 fn gpu_call<T>(device: &wgpu::Device, create: impl FnOnce() -> T) -> Result<T, RsmGiError> {
-    gpu_harness::validated(device, create).map_err(|e| RsmGiError::Gpu(e.to_string()))
+    gpu_harness::validated(device, create).map_err(RsmGiError::Gpu)
 }
 
 fn tex(binding: u32) -> wgpu::BindGroupLayoutEntry {
@@ -450,7 +450,7 @@ impl GpuGather {
     ) -> Result<GatherBinding, RsmGiError> {
         self.check_size(g)?;
         let FirstInputs::Gather { samples, ranges, upsample } = &self.inputs else {
-            return Err(RsmGiError::Gpu("this GpuGather splats: use bind_splat".into()));
+            return Err(RsmGiError::Misuse("this GpuGather splats: use bind_splat"));
         };
         let tv = wgpu::BindingResource::TextureView;
         let group = |layout, view: &wgpu::Buffer, extra: &[(u32, &wgpu::Buffer)]| {
@@ -497,7 +497,7 @@ impl GpuGather {
     ) -> Result<GatherBinding, RsmGiError> {
         self.check_size(g)?;
         let FirstInputs::Splat { vpls, .. } = &self.inputs else {
-            return Err(RsmGiError::Gpu("this GpuGather gathers: use bind".into()));
+            return Err(RsmGiError::Misuse("this GpuGather gathers: use bind"));
         };
         let tv = wgpu::BindingResource::TextureView;
         gpu_call(device, || {
@@ -631,7 +631,7 @@ impl GpuGather {
     ) -> Result<&wgpu::Buffer, RsmGiError> {
         self.check_binding(binding, true)?;
         let FirstInputs::Splat { vpls: buffer, capacity } = &self.inputs else {
-            return Err(RsmGiError::Gpu("this GpuGather gathers: use record".into()));
+            return Err(RsmGiError::Misuse("this GpuGather gathers: use record"));
         };
         if vpls.len() > *capacity as usize {
             return Err(RsmGiError::SizeMismatch {
@@ -708,11 +708,11 @@ impl GpuGather {
     fn check_binding(&self, binding: &GatherBinding, splat: bool) -> Result<(), RsmGiError> {
         let is_splat = matches!(self.inputs, FirstInputs::Splat { .. });
         if binding.owner != self.id {
-            return Err(RsmGiError::Gpu("a GatherBinding made by another GpuGather".into()));
+            return Err(RsmGiError::Misuse("a GatherBinding made by another GpuGather"));
         }
         if splat != is_splat {
             let what = if is_splat { "this GpuGather splats" } else { "this GpuGather gathers" };
-            return Err(RsmGiError::Gpu(what.into()));
+            return Err(RsmGiError::Misuse(what));
         }
         Ok(())
     }
@@ -761,8 +761,7 @@ impl GpuGather {
         let mut encoder = device.create_command_encoder(&Default::default());
         encoder.copy_buffer_to_buffer(result, 0, &self.readback, 0, self.readback.size());
         queue.submit([encoder.finish()]);
-        let bytes = gpu_harness::map_read(device, &self.readback)
-            .map_err(|e| RsmGiError::Gpu(e.to_string()))?;
+        let bytes = gpu_harness::map_read(device, &self.readback).map_err(RsmGiError::Gpu)?;
         let data: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&bytes);
         Ok(data
             .iter()

@@ -256,8 +256,11 @@ fn bound_passes_are_reused_without_allocating() {
         let other = GpuGather::new(d, &gi, W, H, 64).unwrap();
         let mut enc = d.create_command_encoder(&Default::default());
         let m = Mat4::IDENTITY;
-        assert!(other.record_bound(q, &mut enc, &binding, m, m, true).is_err());
-        assert!(gather.bind_splat(d, &gpu_g).is_err());
+        assert!(matches!(
+            other.record_bound(q, &mut enc, &binding, m, m, true),
+            Err(rsm_gi::RsmGiError::Misuse(_))
+        ));
+        assert!(matches!(gather.bind_splat(d, &gpu_g), Err(rsm_gi::RsmGiError::Misuse(_))));
     }
     let gi = RsmGi::new(Settings { vpls: 128, splat_radius: 3.0, ..Settings::DEFAULT }).unwrap();
     let (vpls, _) = gi.splat_vpls(&rsm).unwrap();
@@ -277,8 +280,11 @@ fn bound_passes_are_reused_without_allocating() {
     let out = splat.record_splat(d, q, &mut enc, &vpls, &gpu_g, true).unwrap();
     q.submit([enc.finish()]);
     assert_eq!(bound, splat.read_back(d, q, out).unwrap());
-    assert!(splat.bind(d, &gpu_rsm, &gpu_g).is_err());
+    assert!(matches!(splat.bind(d, &gpu_rsm, &gpu_g), Err(rsm_gi::RsmGiError::Misuse(_))));
     let m = Mat4::IDENTITY;
     let mut enc = d.create_command_encoder(&Default::default());
-    assert!(splat.record_bound(q, &mut enc, &binding, m, m, true).is_err());
+    assert!(matches!(
+        splat.record_bound(q, &mut enc, &binding, m, m, true),
+        Err(rsm_gi::RsmGiError::Misuse(_))
+    ));
 }

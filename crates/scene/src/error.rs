@@ -75,7 +75,7 @@ impl LoadError {
 }
 
 /// Every error of this crate.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, thiserror::Error)]
 pub enum SceneError {
     /// A file could not be loaded.
     #[error(transparent)]

@@ -1,7 +1,7 @@
 //! Typed errors: nothing in this crate panics on user data.
 
 /// Why a shadow structure could not be built or evaluated.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, thiserror::Error)]
 pub enum ShadowError {
     /// A vector, matrix or scalar argument was NaN or infinite.
     #[error("non-finite input: {0}")]
@@ -13,8 +13,9 @@ pub enum ShadowError {
     #[error("invariant violated: {0}")]
     Invariant(String),
     /// A GPU entry point failed (no adapter, validation error, read-back).
+    #[cfg(feature = "gpu")]
     #[error("GPU: {0}")]
-    Gpu(String),
+    Gpu(#[from] gpu_harness::GpuError),
 }
 
 pub(crate) fn finite3(v: glam::Vec3, what: &'static str) -> Result<(), ShadowError> {

@@ -1,7 +1,7 @@
 //! Typed errors: nothing in this crate panics on user data.
 
 /// What went wrong building or filling a [`crate::SkyVolume`].
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, thiserror::Error)]
 pub enum SkyVolumeError {
     /// An occlusion quad is malformed (index in the slice given, and why).
     #[error("occlusion quad {index} is invalid: {reason}")]
@@ -16,8 +16,9 @@ pub enum SkyVolumeError {
     #[error("layer range {start}..{end} is outside the volume's {layers} layers")]
     LayerOutOfRange { start: u32, end: u32, layers: u32 },
     /// The GPU refused a pipeline, or a read-back failed (the resident pass).
+    #[cfg(feature = "gpu")]
     #[error("sky volume GPU path: {0}")]
-    Gpu(String),
+    Gpu(#[from] gpu_harness::GpuError),
     /// The structure's invariants do not hold (from `validate()`).
     #[error("sky volume invariant broken: {0}")]
     Invariant(String),

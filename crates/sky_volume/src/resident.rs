@@ -13,8 +13,8 @@ use gpu_harness::{bind_entries, init_buffer, storage_entry};
 /// Stride of the fill's per-layer uniform slots (the largest offset alignment wgpu allows).
 const SLOT: u64 = 256;
 
-fn gpu_err(e: impl std::fmt::Display) -> SkyVolumeError {
-    SkyVolumeError::Gpu(e.to_string())
+fn gpu_err(e: gpu_harness::GpuError) -> SkyVolumeError {
+    SkyVolumeError::Gpu(e)
 }
 
 /// The fill and the lookup of one volume, resident on a device.

@@ -168,8 +168,7 @@ fn read_back(
     src: &wgpu::Buffer,
     bytes: u64,
 ) -> Result<Vec<u8>, LpvError> {
-    gpu_harness::read_buffer_after(device, queue, enc, src, bytes)
-        .map_err(|e| LpvError::Gpu(e.to_string()))
+    gpu_harness::read_buffer_after(device, queue, enc, src, bytes).map_err(LpvError::Gpu)
 }
 
 impl GpuLpv {
@@ -236,7 +235,7 @@ impl GpuLpv {
         }
         let data = read_back(device, queue, enc, &accum, bytes)?;
         if let Some(err) = pollster::block_on(scope.pop()) {
-            return Err(LpvError::Gpu(err.to_string()));
+            return Err(LpvError::Gpu(err.into()));
         }
         Ok(Volume { res: grid.res, data: bytemuck::pod_collect_to_vec(&data) })
     }
@@ -332,7 +331,7 @@ impl GpuLpv {
         dispatch(&mut enc, kernel, &bg, [(points.len() as u32).div_ceil(64), 1, 1]);
         let data = read_back(device, queue, enc, &out, bytes)?;
         if let Some(err) = pollster::block_on(scope.pop()) {
-            return Err(LpvError::Gpu(err.to_string()));
+            return Err(LpvError::Gpu(err.into()));
         }
         let v: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&data);
         Ok(v.iter().map(|e| Vec3::new(e[0], e[1], e[2])).collect())

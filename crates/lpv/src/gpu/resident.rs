@@ -167,7 +167,9 @@ impl ResidentLpv {
     ) -> Result<Self, LpvError> {
         settings.validate()?;
         if rsms.is_empty() {
-            return Err(LpvError::Gpu("a resident LPV needs at least one RSM to inject".into()));
+            return Err(LpvError::Mismatch(
+                "a resident LPV needs at least one RSM to inject".into(),
+            ));
         }
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let n = settings.resolution as u64;
@@ -263,7 +265,7 @@ impl ResidentLpv {
             lookup_params,
         };
         if let Some(err) = pollster::block_on(scope.pop()) {
-            return Err(LpvError::Gpu(err.to_string()));
+            return Err(LpvError::Gpu(err.into()));
         }
         Ok(me)
     }
@@ -293,7 +295,7 @@ impl ResidentLpv {
             || frames.len() != self.sources.len()
             || !frames.iter().all(finite)
         {
-            return Err(LpvError::Gpu(format!(
+            return Err(LpvError::Mismatch(format!(
                 "{} grids (of {}³) and {} finite RSM frames expected, got {} and {frames:?}",
                 self.cascades.len(),
                 self.settings.resolution,

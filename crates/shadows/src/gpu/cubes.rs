@@ -99,6 +99,6 @@ impl CubeShadows {
         for f in 0..6 {
             faces.push(readback::depth_layer(device, queue, &self.layers.texture, light * 6 + f)?);
         }
-        faces.try_into().map_err(|_| ShadowError::Gpu("six faces".into()))
+        faces.try_into().map_err(|_| ShadowError::Invariant("a cube has six faces".into()))
     }
 }

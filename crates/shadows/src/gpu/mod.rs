@@ -106,8 +106,8 @@ pub struct PcssEval {
 
 const _: () = assert!(std::mem::size_of::<PcssEval>() == 16);
 
-fn gpu_err(e: impl std::fmt::Display) -> crate::error::ShadowError {
-    crate::error::ShadowError::Gpu(e.to_string())
+fn gpu_err(e: impl Into<gpu_harness::GpuError>) -> crate::error::ShadowError {
+    crate::error::ShadowError::Gpu(e.into())
 }
 
 /// Runs `create` inside a validation error scope: the device's complaint becomes an error.

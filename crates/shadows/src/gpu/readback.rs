@@ -5,7 +5,8 @@ use super::gpu_err;
 use crate::depth_map::DepthMap;
 use crate::error::ShadowError;
 
-/// The rows of `layer` of `texture` (`aspect`), without padding.
+/// The rows of `layer` of `texture` (`aspect`), without padding (a layer past the texture's
+/// is [`ShadowError::Gpu`], from `gpu_harness::read_texture`).
 fn texel_bytes(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
@@ -14,12 +15,6 @@ fn texel_bytes(
     aspect: wgpu::TextureAspect,
     bytes_per_texel: u32,
 ) -> Result<Vec<u8>, ShadowError> {
-    if layer >= texture.depth_or_array_layers() {
-        return Err(ShadowError::InvalidParameter {
-            name: "layer",
-            reason: format!("{layer} of {} layers", texture.depth_or_array_layers()),
-        });
-    }
     gpu_harness::read_texture(device, queue, texture, layer, aspect, bytes_per_texel)
         .map_err(gpu_err)
 }
@@ -54,7 +49,12 @@ pub fn rgba(
     let half = match texture.format() {
         wgpu::TextureFormat::Rgba16Float => true,
         wgpu::TextureFormat::Rgba32Float => false,
-        f => return Err(ShadowError::Gpu(format!("read-back of {f:?}"))),
+        f => {
+            return Err(ShadowError::InvalidParameter {
+                name: "texture",
+                reason: format!("{f:?}: rgba read-back takes Rgba16Float or Rgba32Float"),
+            });
+        }
     };
     let per = if half { 8 } else { 16 };
     let bytes = texel_bytes(device, queue, texture, 0, wgpu::TextureAspect::All, per)?;
