@@ -126,6 +126,8 @@ pub struct Renderer {
     view: crate::views::View,
     effects: Effects,
     indirect: crate::Indirect,
+    /// Per-pass GPU times for the frame report (made once).
+    timer: TimestampTimer,
 }
 
 impl Renderer {
@@ -154,6 +156,7 @@ impl Renderer {
         gpu: crate::gpu::Gpu,
     ) -> Result<Self, EngineError> {
         let state = Arc::new(State::new(&scene, settings, gpu)?);
+        let timer = TimestampTimer::new(&state.gpu.device, &state.gpu.queue);
         let layers = state.sky.as_ref().map_or(1, |s| s.layers());
         let set = &state.settings;
         let (g, out) = graph::build(set, layers);
@@ -175,6 +178,7 @@ impl Renderer {
             view: crate::views::View::Frame,
             effects: Effects::default(),
             indirect,
+            timer,
         })
     }
 
@@ -331,12 +335,12 @@ impl Renderer {
             effects: self.effects,
             indirect: self.indirect,
         };
-        let mut timer = TimestampTimer::new(&self.state.gpu.device, &self.state.gpu.queue);
-        let report = self.scheduler.run_frame_timed(&ctx, &mut timer).map_err(|e| match e {
-            frame_scheduler::FrameError::PassFailed { pass, source, .. } => {
-                EngineError::Pass { pass, message: source.to_string() }
-            }
-        })?;
+        let report =
+            self.scheduler.run_frame_timed(&ctx, &mut self.timer).map_err(|e| match e {
+                frame_scheduler::FrameError::PassFailed { pass, source, .. } => {
+                    EngineError::Pass { pass, message: source.to_string() }
+                }
+            })?;
         self.last_frame = Some(Instant::now());
         let ray_traced = report.pass(pass::RAY_TRACING).is_some_and(|p| p.outcome.executed());
         Ok(FrameStats {

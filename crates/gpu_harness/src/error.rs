@@ -30,6 +30,9 @@ pub enum GpuError {
         #[source]
         source: Box<dyn std::error::Error + Send + Sync>,
     },
+    /// A read-back asked for more bytes than its staging buffer holds.
+    #[error("read-back of {bytes} bytes through a staging buffer of {capacity}")]
+    ReadBackTooLarge { bytes: u64, capacity: u64 },
     /// A texture read-back asked for an array layer the texture does not have.
     #[error("read-back of layer {layer} of a texture of {layers} layers")]
     LayerOutOfRange { layer: u32, layers: u32 },

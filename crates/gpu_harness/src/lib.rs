@@ -53,7 +53,7 @@ pub use plumbing::{
     bind_entries, bind_group, empty_storage, init_buffer, storage_buffer, storage_entry,
     texture_2d, uniform_buffer, validated,
 };
-pub use readback::{map_read, read_buffer, read_buffer_after, read_texture};
+pub use readback::{ReadBack, map_read, read_buffer, read_buffer_after, read_texture};
 pub use support::{
     LiveObjects, SKIP_ENV, cast_vec, gpu_test_context, live_objects, skip_requested,
 };

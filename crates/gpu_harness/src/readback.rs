@@ -12,7 +12,16 @@ fn readback_err<E: std::error::Error + Send + Sync + 'static>(
 /// The bytes of a `MAP_READ` buffer once the queue has finished writing it (blocking; the
 /// buffer is unmapped again).
 pub fn map_read(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<Vec<u8>, GpuError> {
-    let slice = buffer.slice(..);
+    map_read_first(device, buffer, buffer.size())
+}
+
+/// The first `bytes` of a `MAP_READ` buffer, as [`map_read`].
+fn map_read_first(
+    device: &wgpu::Device,
+    buffer: &wgpu::Buffer,
+    bytes: u64,
+) -> Result<Vec<u8>, GpuError> {
+    let slice = buffer.slice(..bytes);
     let (tx, rx) = std::sync::mpsc::channel();
     slice.map_async(wgpu::MapMode::Read, move |r| {
         let _ = tx.send(r);
@@ -26,24 +35,55 @@ pub fn map_read(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<Vec<u8>,
     Ok(data)
 }
 
+/// A staging buffer made once for a read-back repeated every frame, so that reading back
+/// creates nothing per frame (what [`read_buffer_after`] makes for each call).
+pub struct ReadBack {
+    staging: wgpu::Buffer,
+}
+
+impl ReadBack {
+    /// Room for read-backs of up to `capacity` bytes (rounded up to whole words).
+    pub fn new(device: &wgpu::Device, label: &str, capacity: u64) -> Self {
+        let staging = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(label),
+            size: capacity.max(4).next_multiple_of(wgpu::COPY_BUFFER_ALIGNMENT),
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        Self { staging }
+    }
+
+    /// Records a copy of the first `bytes` of `src` (`COPY_SRC`) at the end of `encoder`,
+    /// submits it and returns the bytes (blocking). More than the capacity is
+    /// [`GpuError::ReadBackTooLarge`].
+    pub fn read_after(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        mut encoder: wgpu::CommandEncoder,
+        src: &wgpu::Buffer,
+        bytes: u64,
+    ) -> Result<Vec<u8>, GpuError> {
+        let capacity = self.staging.size();
+        if bytes > capacity {
+            return Err(GpuError::ReadBackTooLarge { bytes, capacity });
+        }
+        encoder.copy_buffer_to_buffer(src, 0, &self.staging, 0, bytes);
+        queue.submit([encoder.finish()]);
+        map_read_first(device, &self.staging, bytes)
+    }
+}
+
 /// Records a copy of the first `bytes` of `src` (`COPY_SRC`) into a new staging buffer at the
 /// end of `encoder`, submits it and returns the bytes (blocking).
 pub fn read_buffer_after(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
-    mut encoder: wgpu::CommandEncoder,
+    encoder: wgpu::CommandEncoder,
     src: &wgpu::Buffer,
     bytes: u64,
 ) -> Result<Vec<u8>, GpuError> {
-    let staging = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("read-back staging"),
-        size: bytes,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    encoder.copy_buffer_to_buffer(src, 0, &staging, 0, bytes);
-    queue.submit([encoder.finish()]);
-    map_read(device, &staging)
+    ReadBack::new(device, "read-back staging", bytes).read_after(device, queue, encoder, src, bytes)
 }
 
 /// The first `bytes` of `src` (`COPY_SRC`), once the work already submitted has written it.

@@ -2,23 +2,26 @@
 //! timeline. Each GPU pass is bracketed by two empty compute passes that write a timestamp
 //! at their start/end (only `TIMESTAMP_QUERY` is needed, not timestamps inside encoders);
 //! the queue executes in order, so the bracket encloses everything the pass submitted.
+//! The renderer keeps one timer: its query set and buffers are made once, not every frame.
 
 use frame_scheduler::{GpuSample, GpuTimer, GpuTimingSupport, PassId};
 
 /// Passes per frame that can be timed.
 const MAX_PASSES: u32 = 32;
 
-pub struct TimestampTimer<'a> {
-    device: &'a wgpu::Device,
-    queue: &'a wgpu::Queue,
+pub struct TimestampTimer {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
     set: Option<wgpu::QuerySet>,
     resolve: Option<wgpu::Buffer>,
+    /// Where the resolved stamps are read back.
+    staging: Option<gpu_harness::ReadBack>,
     passes: Vec<PassId>,
 }
 
-impl<'a> TimestampTimer<'a> {
+impl TimestampTimer {
     /// A timer on `device` (which measures nothing when it lacks `TIMESTAMP_QUERY`).
-    pub fn new(device: &'a wgpu::Device, queue: &'a wgpu::Queue) -> Self {
+    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue) -> Self {
         let on = device.features().contains(wgpu::Features::TIMESTAMP_QUERY);
         let set = on.then(|| {
             device.create_query_set(&wgpu::QuerySetDescriptor {
@@ -35,7 +38,11 @@ impl<'a> TimestampTimer<'a> {
                 mapped_at_creation: false,
             })
         });
-        Self { device, queue, set, resolve, passes: Vec::new() }
+        let staging = on.then(|| {
+            gpu_harness::ReadBack::new(device, "timestamps read-back", MAX_PASSES as u64 * 16)
+        });
+        let (device, queue) = (device.clone(), queue.clone());
+        Self { device, queue, set, resolve, staging, passes: Vec::new() }
     }
 
     fn stamp(&self, index: u32, end: bool) {
@@ -56,7 +63,7 @@ impl<'a> TimestampTimer<'a> {
     }
 }
 
-impl GpuTimer for TimestampTimer<'_> {
+impl GpuTimer for TimestampTimer {
     fn support(&self) -> GpuTimingSupport {
         match self.set {
             Some(_) => GpuTimingSupport::Supported { method: "wgpu timestamp queries".into() },
@@ -84,15 +91,17 @@ impl GpuTimer for TimestampTimer<'_> {
     }
 
     fn end_frame(&mut self) -> Vec<GpuSample> {
-        let (Some(set), Some(resolve)) = (&self.set, &self.resolve) else { return Vec::new() };
+        let (Some(set), Some(resolve), Some(staging)) = (&self.set, &self.resolve, &self.staging)
+        else {
+            return Vec::new();
+        };
         if self.passes.is_empty() {
             return Vec::new();
         }
         let n = self.passes.len() as u32 * 2;
         let mut enc = self.device.create_command_encoder(&Default::default());
         enc.resolve_query_set(set, 0..n, resolve, 0);
-        let Ok(bytes) =
-            gpu_harness::read_buffer_after(self.device, self.queue, enc, resolve, n as u64 * 8)
+        let Ok(bytes) = staging.read_after(&self.device, &self.queue, enc, resolve, n as u64 * 8)
         else {
             return Vec::new();
         };

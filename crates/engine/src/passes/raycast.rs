@@ -34,6 +34,8 @@ pub struct RayCastPass {
     /// Made once, again only when what it binds changes.
     group: gpu_harness::BindGroupCache,
     pub rays: wgpu::Buffer,
+    /// The rays' way to the CPU, made once.
+    read_back: gpu_harness::ReadBack,
     texels: u32,
 }
 
@@ -49,6 +51,11 @@ impl RayCastPass {
                 "main",
             )?,
             rays: empty_storage(device, "ray casting buffer", (qw * qh) as u64 * 48),
+            read_back: gpu_harness::ReadBack::new(
+                device,
+                "ray casting read-back",
+                (qw * qh) as u64 * 48,
+            ),
             texels: qw * qh,
         })
     }
@@ -78,7 +85,7 @@ impl RayCastPass {
         let (qw, qh) = targets.quarter();
         let mut enc = device.create_command_encoder(&Default::default());
         dispatch(&mut enc, &self.pipeline, &bg, [qw.div_ceil(8), qh.div_ceil(8), 1]);
-        let bytes = gpu.read_back(enc, &self.rays, self.texels as u64 * 48)?;
+        let bytes = gpu.read_back(&self.read_back, enc, &self.rays, self.texels as u64 * 48)?;
         let texels: Vec<RayCast> = bytemuck::pod_collect_to_vec(&bytes);
         Ok(batch(&texels))
     }
