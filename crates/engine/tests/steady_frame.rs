@@ -5,7 +5,7 @@
 
 mod common;
 
-use engine::{Indirect, Preset, Settings};
+use engine::{Indirect, Preset, Settings, TracedShading};
 
 /// Bind groups created by `frames` frames of `r` with the camera moving 2 cm sideways each.
 fn created_while_moving(r: &mut engine::Renderer, frames: usize) -> u64 {
@@ -19,18 +19,27 @@ fn created_while_moving(r: &mut engine::Renderer, frames: usize) -> u64 {
     gpu_harness::bind_groups_created() - before
 }
 
+/// (scene, indirect light, sky bounce VPLs, traced hits lit on the GPU): the presets' paths
+/// and the two that light extra queries with the sky volume.
+const CASES: [(scene::Generated, Indirect, u32, TracedShading); 3] = [
+    (scene::Generated::City, Indirect::Rsm, 0, TracedShading::Cpu),
+    (scene::Generated::CornellWindow, Indirect::Lpv, 0, TracedShading::Cpu),
+    (scene::Generated::City, Indirect::Lpv, 8, TracedShading::Gpu),
+];
+
 #[test]
 fn a_moving_camera_creates_no_bind_groups_once_warm() {
-    for (scene, indirect) in
-        [(scene::Generated::City, Indirect::Rsm), (scene::Generated::CornellWindow, Indirect::Lpv)]
-    {
+    for (scene, indirect, sky_bounce, traced_shading) in CASES {
         let mut settings = Settings::preset(Preset::Default, 64, 36);
         settings.indirect = indirect;
+        settings.sky_bounce = sky_bounce;
+        settings.traced_shading = traced_shading;
         let Some(mut r) = common::renderer(scene.build(common::SEED), settings) else { return };
         let warm = r.sky_volume_frames() as usize + 2;
         let first = created_while_moving(&mut r, warm);
         assert!(first > 0, "{scene:?}: the first frames make the bind groups");
         let steady = created_while_moving(&mut r, 3);
-        assert_eq!(steady, 0, "{scene:?} with {indirect:?}: bind groups made in 3 steady frames");
+        let case = format!("{scene:?}, {indirect:?}, sky bounce {sky_bounce}, {traced_shading:?}");
+        assert_eq!(steady, 0, "{case}: bind groups made in 3 steady frames");
     }
 }

@@ -35,6 +35,7 @@ pub struct ResidentSkyVolume {
 }
 
 /// The lookup bound to a caller's query and output buffers ([`ResidentSkyVolume::bind_lookup`]).
+#[derive(Clone)]
 pub struct LookupBinding {
     group: wgpu::BindGroup,
     count: u32,
@@ -224,13 +225,24 @@ impl ResidentSkyVolume {
 
     /// Records the lookup over a binding made by [`Self::bind_lookup`].
     pub fn record_lookup(&self, encoder: &mut wgpu::CommandEncoder, binding: &LookupBinding) {
+        self.record_lookup_first(encoder, binding, binding.count);
+    }
+
+    /// Records the lookup of the first `count` queries of `binding` (at most its count): a
+    /// binding made once for buffers' capacity serves frames with fewer queries.
+    pub fn record_lookup_first(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        binding: &LookupBinding,
+        count: u32,
+    ) {
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("sky volume lookup"),
             timestamp_writes: None,
         });
         pass.set_pipeline(&self.lookup);
         pass.set_bind_group(0, &binding.group, &[]);
-        pass.dispatch_workgroups(binding.count.div_ceil(64), 1, 1);
+        pass.dispatch_workgroups(count.min(binding.count).div_ceil(64), 1, 1);
     }
 
     /// Reads the probes back (blocking; tests and tools).

@@ -10,6 +10,7 @@ use atmosphere::{Sky, SkyMap, SkyMapSettings, SkyRadiance as _};
 use glam::Vec3;
 use sky_volume::gpu::{LookupBinding, ResidentSkyVolume};
 use sky_volume::{OcclusionQuad, SkyVolume, VolumeGrid};
+use std::sync::Mutex;
 
 /// What the sky passes are made from, fixed for the renderer's life: the atmosphere (its
 /// look-up tables) and where the volume goes, with the quads that occlude it.
@@ -96,10 +97,19 @@ impl sky_volume::SkyRadiance for MapSky<'_> {
 /// The sky-light volume, filled on the CPU (the traced rays' lookups read it there) and
 /// uploaded into the crate's resident pass, whose lookup is bound once to the lighting
 /// pass's per-pixel queries.
+/// Which queries and output a lookup binding binds (for all the queries they hold).
+type LookupKey = (wgpu::Buffer, wgpu::Buffer);
+
+/// Bytes of one sky-volume query (`sky_volume::gpu::Query`).
+const QUERY_BYTES: u64 = std::mem::size_of::<sky_volume::gpu::Query>() as u64;
+
 pub struct SkyVolumeState {
     pub volume: SkyVolume,
     resident: ResidentSkyVolume,
     view: LookupBinding,
+    /// The lookups bound to other queries (the sky-bounce VPLs', the traced hits'): made once
+    /// per pair of query and output buffers, the most recent few kept.
+    other_lookups: Mutex<Vec<(LookupKey, LookupBinding)>>,
     /// The map generation the volume is being lit from.
     lit_from: Option<u64>,
 }
@@ -122,7 +132,30 @@ impl SkyVolumeState {
         let volume = SkyVolume::with_quads(setup.grid, vs, &setup.quads).map_err(tech)?;
         let resident = ResidentSkyVolume::new(&gpu.device, &volume).map_err(tech)?;
         let view = resident.bind_lookup(&gpu.device, queries, out, count);
-        Ok(Self { volume, resident, view, lit_from: None })
+        Ok(Self { volume, resident, view, other_lookups: Mutex::default(), lit_from: None })
+    }
+
+    /// Records the lookup of the first `count` of `queries` into `out`, bound once per pair
+    /// of buffers (for as many queries as `queries` holds).
+    fn record_other_lookup(
+        &self,
+        gpu: &Gpu,
+        enc: &mut wgpu::CommandEncoder,
+        (queries, out, count): (&wgpu::Buffer, &wgpu::Buffer, u32),
+    ) {
+        let key = (queries.clone(), out.clone());
+        let mut cached = self.other_lookups.lock().unwrap_or_else(|e| e.into_inner());
+        let binding = match cached.iter().position(|(k, _)| *k == key) {
+            Some(i) => cached[i].1.clone(),
+            None => {
+                let capacity = (queries.size() / QUERY_BYTES) as u32;
+                let binding = self.resident.bind_lookup(&gpu.device, queries, out, capacity);
+                cached.insert(0, (key, binding.clone()));
+                cached.truncate(gpu_harness::CACHED_GROUPS);
+                binding
+            }
+        };
+        self.resident.record_lookup_first(enc, &binding, count);
     }
 
     /// Fills layer `layer` from `map` and uploads the probes (a new map marks the whole
@@ -183,7 +216,6 @@ impl SkyLight<'_> {
         out: &wgpu::Buffer,
         count: u32,
     ) {
-        let resident = &self.volume.resident;
-        resident.record_lookup(enc, &resident.bind_lookup(&gpu.device, queries, out, count));
+        self.volume.record_other_lookup(gpu, enc, (queries, out, count));
     }
 }
