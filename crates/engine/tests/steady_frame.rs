@@ -19,12 +19,13 @@ fn created_while_moving(r: &mut engine::Renderer, frames: usize) -> u64 {
     gpu_harness::bind_groups_created() - before
 }
 
-/// (scene, indirect light, sky bounce VPLs, traced hits lit on the GPU): the presets' paths
-/// and the two that light extra queries with the sky volume.
-const CASES: [(scene::Generated, Indirect, u32, TracedShading); 3] = [
+/// (scene, indirect light, sky bounce VPLs, traced hits lit on the GPU): every one-bounce
+/// technique, and the two paths that light extra queries with the sky volume.
+const CASES: [(scene::Generated, Indirect, u32, TracedShading); 4] = [
     (scene::Generated::City, Indirect::Rsm, 0, TracedShading::Cpu),
     (scene::Generated::CornellWindow, Indirect::Lpv, 0, TracedShading::Cpu),
     (scene::Generated::City, Indirect::Lpv, 8, TracedShading::Gpu),
+    (scene::Generated::CornellWindow, Indirect::Cache, 0, TracedShading::Cpu),
 ];
 
 #[test]
