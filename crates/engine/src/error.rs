@@ -18,9 +18,9 @@ pub enum EngineError {
     /// A wgpu call through the shared GPU plumbing failed (validation, read-back).
     #[error("GPU: {0}")]
     Wgpu(#[from] gpu_harness::GpuError),
-    /// The ray tracer could not be built.
+    /// The scene could not be prepared for ray tracing.
     #[error("ray tracer: {0}")]
-    Trace(#[from] kdtree_tracer::Error),
+    Trace(#[from] traced_effects::TraceError),
     /// A technique crate refused its input or failed; `source` is its own typed error.
     #[error("{technique}: {source}")]
     Technique {

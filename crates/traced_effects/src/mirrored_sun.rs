@@ -12,7 +12,7 @@
 //! by that reflectance and the real sun's visibility where the ray meets the reflector (the
 //! view's cascades). Not modelled: occluders between the pixel and the reflector, the
 //! glossy lobe's spread (the mirrored sun is a point direction) and curved reflectors (the
-//! statue). The traced G-buffer lit on the GPU (`TracedShading::Gpu`) includes the same
+//! statue). The traced G-buffer lit on the GPU (`engine::TracedShading::Gpu`) includes the same
 //! snippet (with the overlapped maps' visibility at the reflector); the traced rays'
 //! surfaces lit on the CPU get it from the CPU twin ([`Reflector::mirror`], in
 //! `crate::trace`) with shadow rays, which also see occluders between a hit and the
@@ -22,7 +22,7 @@
 //! preset, full frame, engine / reference luminance): the east facade across from the glass
 //! tower 0.141 -> 1.014 (rel RMS 0.893 -> 0.432), the paving 0.772 -> 0.938, the street
 //! 0.942 -> 0.956; the whole frame 0.449 -> 0.429 (clamped 0.315 -> 0.269), supersampled 4x4
-//! 0.262 -> 0.224. The presets turn it on (`Settings::mirrored_sun`).
+//! 0.262 -> 0.224. The engine's presets turn it on (`engine::Settings::mirrored_sun`).
 
 use glam::Vec3;
 use std::collections::HashMap;

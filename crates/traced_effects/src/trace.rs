@@ -36,7 +36,7 @@
 //! independent, so the result does not depend on the thread count. Invalid rays (non-finite
 //! origin or direction, zero direction) and non-finite lighting give black, never NaN.
 
-use crate::EngineError;
+use crate::TraceError;
 use glam::{Vec2, Vec3};
 use kdtree_tracer::{Hit, Mesh, Ray, RayQuery, Settings, SurfaceHit, Surfaces};
 use rayon::prelude::*;
@@ -78,14 +78,14 @@ impl TraceScene {
     /// surface layer. A scene without triangles is fine (every ray returns the sky).
     /// Errors: a mesh whose material does not exist, a non-finite world position or too many
     /// triangles.
-    pub fn new(scene: &scene::Scene) -> Result<Self, EngineError> {
+    pub fn new(scene: &scene::Scene) -> Result<Self, TraceError> {
         if let Some((i, m)) = scene
             .meshes
             .iter()
             .enumerate()
             .find(|(_, m)| m.material.index() >= scene.materials.len())
         {
-            return Err(EngineError::Scene(scene::SceneError::Invalid {
+            return Err(TraceError::Scene(scene::SceneError::Invalid {
                 element: format!("mesh {i} (\"{}\")", m.name),
                 reason: format!(
                     "uses material {} but the scene has {}",
@@ -300,8 +300,8 @@ pub struct TracedHit {
 const _: () = assert!(std::mem::size_of::<TracedHit>() == 96);
 
 /// The first surface of each ray with everything but its base part's light (which the
-/// GPU adds, `passes::traced_lighting`): rayon-parallel, deterministic; invalid rays give
-/// an empty record.
+/// GPU adds: the engine's `passes::traced_lighting`): rayon-parallel, deterministic; invalid
+/// rays give an empty record.
 pub fn trace_surfaces(
     scene: &TraceScene,
     lighting: &TraceLighting,
@@ -549,9 +549,9 @@ mod tests {
         assert_eq!(ok.triangle_count(), 1);
         assert!(ok.epsilon() > 0.0);
         let missing = TraceScene::new(&one_triangle(3, glam::Affine3A::IDENTITY));
-        assert!(matches!(missing, Err(EngineError::Scene(scene::SceneError::Invalid { .. }))));
+        assert!(matches!(missing, Err(TraceError::Scene(scene::SceneError::Invalid { .. }))));
         let nan = glam::Affine3A::from_translation(Vec3::NAN);
-        assert!(matches!(TraceScene::new(&one_triangle(0, nan)), Err(EngineError::Trace(_))));
+        assert!(matches!(TraceScene::new(&one_triangle(0, nan)), Err(TraceError::Tree(_))));
     }
 
     #[test]

@@ -1,11 +1,11 @@
-//! Tests of the CPU reflection/refraction tracer (`engine::trace`): analytic shading of a
+//! Tests of the CPU reflection/refraction tracer (`traced_effects::trace`): analytic shading of a
 //! sunlit plane, shadows, sky, mirrors, glass, alpha testing, invalid rays, empty scenes and
 //! seeded random rays in a generated scene.
 
-use engine::trace::{TraceLighting, TraceRay, TraceScene, TraceSettings, trace_rays};
 use glam::{Vec2, Vec3};
 use scene::{AlphaMask, Generated, Material, MaterialId, MeshData, Scene, Texture};
 use std::f32::consts::PI;
+use traced_effects::trace::{TraceLighting, TraceRay, TraceScene, TraceSettings, trace_rays};
 
 const E: Vec3 = Vec3::new(1.0, 0.9, 0.8);
 
@@ -249,7 +249,7 @@ fn a_mirror_wall_mirrors_the_sun_onto_traced_hits() {
     };
     let radiance = |s: &Scene, x: f32, mirrored: bool| {
         let ts = TraceScene::new(s).unwrap();
-        let reflectors = engine::mirrored_sun::planar_reflectors(s);
+        let reflectors = traced_effects::mirrored_sun::planar_reflectors(s);
         assert_eq!(reflectors.len(), 1);
         let no_ambient = |_: Vec3, _: Vec3| Vec3::ZERO;
         let lighting = TraceLighting {
