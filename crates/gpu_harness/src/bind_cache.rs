@@ -98,8 +98,6 @@ impl BindGroupCache {
         layout: &wgpu::BindGroupLayout,
         resources: &[wgpu::BindingResource<'_>],
     ) -> wgpu::BindGroup {
-        let numbered: Vec<(u32, wgpu::BindingResource<'_>)> =
-            resources.iter().enumerate().map(|(i, r)| (i as u32, r.clone())).collect();
-        self.get(device, label, layout, &numbered)
+        self.get(device, label, layout, &crate::plumbing::numbered(resources))
     }
 }

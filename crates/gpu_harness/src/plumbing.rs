@@ -89,9 +89,14 @@ pub fn bind_group(
     layout: &wgpu::BindGroupLayout,
     resources: &[wgpu::BindingResource<'_>],
 ) -> wgpu::BindGroup {
-    let numbered: Vec<(u32, wgpu::BindingResource<'_>)> =
-        resources.iter().enumerate().map(|(i, r)| (i as u32, r.clone())).collect();
-    bind_entries(device, label, layout, &numbered)
+    bind_entries(device, label, layout, &numbered(resources))
+}
+
+/// `resources` numbered `0..` as `(binding, resource)` pairs.
+pub(crate) fn numbered<'a>(
+    resources: &[wgpu::BindingResource<'a>],
+) -> Vec<(u32, wgpu::BindingResource<'a>)> {
+    resources.iter().enumerate().map(|(i, r)| (i as u32, r.clone())).collect()
 }
 
 /// A bind group of `layout` from `(binding, resource)` pairs.
