@@ -1,13 +1,42 @@
 //! Typed errors: every failure names the file (or `<memory>`) and the element it concerns.
 
 use std::fmt;
+use std::sync::Arc;
+
+/// An error from outside this crate (the file system, the image decoder) kept as the source
+/// of a [`LoadErrorKind`]. Two causes are equal when their messages are (the errors they
+/// wrap have no equality of their own).
+#[derive(Debug, Clone, thiserror::Error)]
+#[error(transparent)]
+pub struct Cause(Arc<dyn std::error::Error + Send + Sync>);
+
+impl Cause {
+    pub fn new(e: impl std::error::Error + Send + Sync + 'static) -> Self {
+        Self(Arc::new(e))
+    }
+
+    /// The error itself (`downcast_ref` it to its type, e.g. `std::io::Error`).
+    pub fn error(&self) -> &(dyn std::error::Error + Send + Sync + 'static) {
+        &*self.0
+    }
+}
+
+impl PartialEq for Cause {
+    fn eq(&self, other: &Self) -> bool {
+        self.0.to_string() == other.0.to_string()
+    }
+}
 
 /// What went wrong while loading a file, without the file/element context.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum LoadErrorKind {
-    /// The file could not be read.
-    #[error("cannot read: {0}")]
-    Io(String),
+    /// The file at `path` could not be read.
+    #[error("cannot read {path}: {cause}")]
+    Io {
+        path: String,
+        #[source]
+        cause: Cause,
+    },
     /// The file is not well-formed in its format (JSON, GLB container, OBJ line, TOML).
     #[error("malformed: {0}")]
     Parse(String),
@@ -16,7 +45,7 @@ pub enum LoadErrorKind {
     MissingTexture(String),
     /// An image that could not be decoded.
     #[error("cannot decode image: {0}")]
-    Image(String),
+    Image(#[source] Cause),
     /// A triangle index that points past the end of the vertex list.
     #[error("index {index} out of range ({vertex_count} vertices)")]
     IndexOutOfRange { index: u64, vertex_count: usize },
@@ -66,7 +95,12 @@ impl fmt::Display for LoadError {
     }
 }
 
-impl std::error::Error for LoadError {}
+impl std::error::Error for LoadError {
+    /// What went wrong, whose own source (an I/O or decoding error) follows it.
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        Some(&self.kind)
+    }
+}
 
 impl LoadError {
     pub fn new(file: impl Into<String>, element: impl Into<String>, kind: LoadErrorKind) -> Self {

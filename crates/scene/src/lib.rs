@@ -72,7 +72,7 @@ pub use atmosphere::CivilDate;
 pub use bounds::Aabb;
 pub use camera::{Camera, Frustum};
 pub use change::{SceneChange, SceneState};
-pub use error::{LoadError, LoadErrorKind, SceneError};
+pub use error::{Cause, LoadError, LoadErrorKind, SceneError};
 pub use generate::{
     FURNACE_ALBEDO, FURNACE_EMISSION, Generated, city, cornell_window, furnace, furnace_radiance,
     plane_box, two_rooms,

@@ -89,7 +89,12 @@ fn gltf_external_buffer_in_memory_is_an_error_and_from_disk_a_missing_file_is_na
     let (file, element, kind) = load_kind(scene::load(&path));
     assert!(file.ends_with("external.gltf"));
     assert_eq!(element, "buffer 0");
-    assert!(matches!(kind, LoadErrorKind::Io(m) if m.contains("quad.bin")));
+    assert!(matches!(&kind, LoadErrorKind::Io { path, .. } if path.contains("quad.bin")));
+    // The file system's own error is kept as the source, not only as text.
+    assert!(std::error::Error::source(&kind).is_some(), "a source");
+    let LoadErrorKind::Io { cause, .. } = &kind else { unreachable!() };
+    let io = cause.error().downcast_ref::<std::io::Error>();
+    assert!(io.is_some_and(|e| e.kind() == std::io::ErrorKind::NotFound), "{cause:?}");
     // Now provide the buffer: it loads.
     std::fs::write(dir.join("quad.bin"), quad_buffer(false).0).unwrap();
     assert_eq!(scene::load(&path).unwrap().triangle_count(), 2);

@@ -98,7 +98,10 @@ impl Ctx {
 
     /// Reads a regular file of at most `max_file_bytes` (never a device, FIFO or folder).
     pub fn read(&self, path: &Path) -> Result<Vec<u8>, LoadErrorKind> {
-        let io = |e: std::io::Error| LoadErrorKind::Io(format!("{}: {e}", path.display()));
+        let io = |e: std::io::Error| LoadErrorKind::Io {
+            path: path.display().to_string(),
+            cause: crate::Cause::new(e),
+        };
         let meta = std::fs::metadata(path).map_err(io)?;
         if !meta.is_file() {
             return Err(LoadErrorKind::NotAFile(path.display().to_string()));

@@ -344,7 +344,7 @@ impl Loader<'_> {
             }
             gltf::image::Source::Uri { uri, .. } => read_uri(uri, self.base_dir, self.ctx)
                 .map_err(|k| match k {
-                    LoadErrorKind::Io(_) => LoadErrorKind::MissingTexture(uri.to_owned()),
+                    LoadErrorKind::Io { .. } => LoadErrorKind::MissingTexture(uri.to_owned()),
                     k => k,
                 })
                 .map_err(|k| self.err(el.clone(), k))?,

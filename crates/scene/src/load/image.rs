@@ -18,9 +18,10 @@ pub(crate) fn decode(
     let reader = || {
         image::ImageReader::new(std::io::Cursor::new(bytes))
             .with_guessed_format()
-            .map_err(|e| LoadErrorKind::Image(e.to_string()))
+            .map_err(|e| LoadErrorKind::Image(crate::Cause::new(e)))
     };
-    let (w, h) = reader()?.into_dimensions().map_err(|e| LoadErrorKind::Image(e.to_string()))?;
+    let (w, h) =
+        reader()?.into_dimensions().map_err(|e| LoadErrorKind::Image(crate::Cause::new(e)))?;
     ctx.add_image(w, h)?;
     let mut reader = reader()?;
     let mut limits = image::Limits::default();
@@ -28,8 +29,8 @@ pub(crate) fn decode(
     limits.max_image_width = Some(crate::texture::MAX_TEXTURE_SIZE);
     limits.max_image_height = Some(crate::texture::MAX_TEXTURE_SIZE);
     reader.limits(limits);
-    let img = reader.decode().map_err(|e| LoadErrorKind::Image(e.to_string()))?.to_rgba8();
+    let img = reader.decode().map_err(|e| LoadErrorKind::Image(crate::Cause::new(e)))?.to_rgba8();
     let (w, h) = img.dimensions();
     Texture::from_rgba8(name, w, h, img.as_raw(), space)
-        .map_err(|e| LoadErrorKind::Image(e.to_string()))
+        .map_err(|e| LoadErrorKind::Image(crate::Cause::new(e)))
 }

@@ -124,7 +124,7 @@ fn finish(
             .resolve(base, name)
             .and_then(|p| {
                 ctx.read(&p).map_err(|k| match k {
-                    LoadErrorKind::Io(_) => LoadErrorKind::MissingTexture(name.to_owned()),
+                    LoadErrorKind::Io { .. } => LoadErrorKind::MissingTexture(name.to_owned()),
                     k => k,
                 })
             })
