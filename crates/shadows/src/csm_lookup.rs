@@ -83,8 +83,7 @@ pub fn csm_visibility(
     gn: Vec3,
     view_depth: f32,
 ) -> f32 {
-    let count = cascades.len().min(pcss.len()).min(maps.len());
-    csm_find(&cascades[..count], p, gn, view_depth).map_or(1.0, |(c, r)| pcss[c].pcss(&maps[c], &r))
+    csm_filtered((cascades, pcss, maps), p, gn, view_depth, Pcss::pcss)
 }
 
 /// [`csm_visibility`] with one hard comparison instead of PCSS (1 lit, 0 shadowed), for
@@ -98,8 +97,20 @@ pub fn csm_visibility_hard(
     gn: Vec3,
     view_depth: f32,
 ) -> f32 {
+    csm_filtered((cascades, pcss, maps), p, gn, view_depth, Pcss::hard)
+}
+
+/// The cascade lookup both visibilities share, with `filter` applied in the cascade found.
+fn csm_filtered(
+    (cascades, pcss, maps): (&[CsmCascade], &[Pcss], &[DepthMap]),
+    p: Vec3,
+    gn: Vec3,
+    view_depth: f32,
+    filter: impl Fn(&Pcss, &DepthMap, &Receiver) -> f32,
+) -> f32 {
     let count = cascades.len().min(pcss.len()).min(maps.len());
-    csm_find(&cascades[..count], p, gn, view_depth).map_or(1.0, |(c, r)| pcss[c].hard(&maps[c], &r))
+    csm_find(&cascades[..count], p, gn, view_depth)
+        .map_or(1.0, |(c, r)| filter(&pcss[c], &maps[c], &r))
 }
 
 /// The cascade that holds `p` at `view_depth` (the first whose far split is beyond it, the

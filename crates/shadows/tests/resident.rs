@@ -82,6 +82,32 @@ fn submit(ctx: &GpuContext, record: impl FnOnce(&mut wgpu::CommandEncoder)) {
 /// `csm.inc.wgsl` and `csm_visibility` agree on receivers all over the plane and the box top,
 /// through all three cascades, over the maps the resident pass rendered; and the lookup sees
 /// the box's shadow (some receivers shadowed, some lit).
+/// `entry` of `shaders/shadows/csm_eval.wgsl` over `queries` (position, view depth, normal)
+/// with the cascades' blocks, maps and taps: one visibility per query.
+fn eval_on_gpu(
+    ctx: &GpuContext,
+    entry: &str,
+    (blocks, maps, pcss): (&[CsmCascade], &[DepthMap], &Pcss),
+    queries: &[[f32; 8]],
+) -> Vec<f32> {
+    let depths: Vec<f32> = maps.iter().flat_map(|m| m.as_slice().iter().copied()).collect();
+    let out = ctx
+        .run_compute(
+            CSM_EVAL_WGSL,
+            entry,
+            &[
+                Binding::Read(bytemuck::cast_slice(blocks)),
+                Binding::Read(bytemuck::cast_slice(&depths)),
+                Binding::Read(bytemuck::cast_slice(pcss.taps())),
+                Binding::Read(bytemuck::cast_slice(queries)),
+                Binding::Output(queries.len() as u64 * 4),
+            ],
+            [(queries.len() as u32).div_ceil(64), 1, 1],
+        )
+        .unwrap();
+    gpu_harness::cast_vec(&out[4])
+}
+
 #[test]
 fn csm_lookup_cpu_gpu_parity() {
     let Some(ctx) = gpu_test_context() else { return };
@@ -109,26 +135,11 @@ fn csm_lookup_cpu_gpu_parity() {
         let depth = (p - eye).dot(fwd).max(0.2);
         queries.push([p.x, p.y, p.z, depth, n.x, n.y, n.z, 0.0]);
     }
-    let depths: Vec<f32> = maps.iter().flat_map(|m| m.as_slice().iter().copied()).collect();
     type Lookup = fn(&[CsmCascade], &[Pcss], &[DepthMap], Vec3, Vec3, f32) -> f32;
     let lookups: [(&str, Lookup); 2] =
         [("main", csm_visibility), ("main_hard", shadows::csm_visibility_hard)];
     for (entry, cpu_lookup) in lookups {
-        let out = ctx
-            .run_compute(
-                CSM_EVAL_WGSL,
-                entry,
-                &[
-                    Binding::Read(bytemuck::cast_slice(&blocks)),
-                    Binding::Read(bytemuck::cast_slice(&depths)),
-                    Binding::Read(bytemuck::cast_slice(pcss[0].taps())),
-                    Binding::Read(bytemuck::cast_slice(&queries)),
-                    Binding::Output(queries.len() as u64 * 4),
-                ],
-                [(queries.len() as u32).div_ceil(64), 1, 1],
-            )
-            .unwrap();
-        let gpu: &[f32] = bytemuck::cast_slice(&out[4]);
+        let gpu = eval_on_gpu(&ctx, entry, (&blocks, &maps, &pcss[0]), &queries);
         let (mut differ, mut shadowed, mut lit) = (0, 0, 0);
         for (q, g) in queries.iter().zip(gpu) {
             let p = Vec3::new(q[0], q[1], q[2]);
@@ -190,22 +201,7 @@ fn osm_lookup_cpu_gpu_parity() {
         let p = Vec3::new(lo.x + (hi.x - lo.x) * u, 0.0, lo.y + (hi.y - lo.y) * v);
         queries.push([p.x, p.y, p.z, 0.0, 0.0, 1.0, 0.0, 0.0]);
     }
-    let depths: Vec<f32> = maps.iter().flat_map(|m| m.as_slice().iter().copied()).collect();
-    let out = ctx
-        .run_compute(
-            CSM_EVAL_WGSL,
-            "main_osm",
-            &[
-                Binding::Read(bytemuck::cast_slice(&blocks)),
-                Binding::Read(bytemuck::cast_slice(&depths)),
-                Binding::Read(bytemuck::cast_slice(pcss[0].taps())),
-                Binding::Read(bytemuck::cast_slice(&queries)),
-                Binding::Output(queries.len() as u64 * 4),
-            ],
-            [(queries.len() as u32).div_ceil(64), 1, 1],
-        )
-        .unwrap();
-    let gpu: &[f32] = bytemuck::cast_slice(&out[4]);
+    let gpu = eval_on_gpu(&ctx, "main_osm", (&blocks, &maps, &pcss[0]), &queries);
     let (mut differ, mut outer, mut shadowed) = (0, 0, 0);
     for (q, g) in queries.iter().zip(gpu) {
         let p = Vec3::new(q[0], q[1], q[2]);
