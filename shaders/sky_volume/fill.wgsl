@@ -28,7 +28,8 @@ struct GpuQuad {
 // Sky radiance per sample direction (rgb).
 @group(0) @binding(2) var<storage, read> sky: array<vec4<f32>>;
 @group(0) @binding(3) var<storage, read> quads: array<GpuQuad>;
-@group(0) @binding(4) var<storage, read_write> probes: array<f32>;
+// Seven vec4 per point, as the lookup reads them.
+@group(0) @binding(4) var<storage, read_write> probes: array<vec4<f32>>;
 
 fn transmittance(p: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
     var t = vec3<f32>(1.0);
@@ -86,10 +87,12 @@ fn fill(@builtin(global_invocation_id) gid: vec3<u32>) {
             b[k] += yb[k] * l.z;
         }
     }
-    let base = i * 27u;
-    for (var k = 0u; k < 9u; k++) {
-        probes[base + k] = r[k];
-        probes[base + 9u + k] = g[k];
-        probes[base + 18u + k] = b[k];
-    }
+    let base = i * 7u;
+    probes[base] = vec4<f32>(r[0], r[1], r[2], r[3]);
+    probes[base + 1u] = vec4<f32>(r[4], r[5], r[6], r[7]);
+    probes[base + 2u] = vec4<f32>(r[8], g[0], g[1], g[2]);
+    probes[base + 3u] = vec4<f32>(g[3], g[4], g[5], g[6]);
+    probes[base + 4u] = vec4<f32>(g[7], g[8], b[0], b[1]);
+    probes[base + 5u] = vec4<f32>(b[2], b[3], b[4], b[5]);
+    probes[base + 6u] = vec4<f32>(b[6], b[7], b[8], 0.0);
 }

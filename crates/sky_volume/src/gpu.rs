@@ -1,15 +1,19 @@
 //! GPU path (feature `gpu`): WGSL for the lookup (the deferred sky-lighting pass, thesis
 //! 5.3.6) and the brute-force fill (thesis 5.3.4), and the `#[repr(C)]` data they read.
 //!
-//! Storage layout: one `array<f32>` of 27 floats per point (r, g, b x 9 radiance SH), in grid
-//! order (x fastest, then z, then y): exactly [`SkyVolume::probes`] as bytes. Bindings are
-//! listed at the top of each shader. [`ResidentSkyVolume`] runs both as resident passes (the
+//! Storage layout: [`PROBE_VEC4S`] `vec4<f32>` per point, in grid order (x fastest, then z,
+//! then y): the 27 floats of [`SkyVolume::probes`]' point (r, g, b x 9 radiance SH) and a zero
+//! ([`SkyVolume::gpu_probe_bytes`]), so that the lookup reads a point in seven loads. Bindings
+//! are listed at the top of each shader. [`ResidentSkyVolume`] runs both as resident passes (the
 //! fill layer by layer, the lookup bound once to the caller's buffers).
 
 pub use crate::resident::{LookupBinding, ResidentSkyVolume};
 use crate::sky::sanitize;
 use crate::{OcclusionQuad, SkyRadiance, SkyVolume};
 use bytemuck::{Pod, Zeroable};
+
+/// `vec4<f32>` per point in the shaders' probe buffer: 27 coefficients and one zero.
+pub const PROBE_VEC4S: usize = 7;
 
 /// WGSL of the lookup (entry point `lookup`, plus `sky_volume_irradiance` for other passes);
 /// needs the `sh_math` snippet: use [`lookup_shader`].
@@ -113,9 +117,22 @@ impl SkyVolume {
         }
     }
 
-    /// The probes as the shaders' `array<f32>`.
-    pub fn gpu_probe_bytes(&self) -> &[u8] {
-        bytemuck::cast_slice(&self.probes)
+    /// The probes as the shaders' buffer ([`PROBE_VEC4S`] `vec4<f32>` per point).
+    pub fn gpu_probe_bytes(&self) -> Vec<u8> {
+        self.gpu_layer_bytes(0..self.grid.dims.y).1
+    }
+
+    /// The probes of `layers` (clamped to the volume) as the shaders' buffer holds them, and
+    /// the byte offset in that buffer where they go: what to upload after
+    /// [`SkyVolume::fill_layers`] of those layers.
+    pub fn gpu_layer_bytes(&self, layers: std::ops::Range<u32>) -> (u64, Vec<u8>) {
+        let per_layer = (self.grid.dims.x * self.grid.dims.z) as usize;
+        let end = (layers.end.min(self.grid.dims.y) as usize) * per_layer;
+        let start = (layers.start as usize * per_layer).min(end);
+        let floats: &[f32] = bytemuck::cast_slice(&self.probes[start..end]);
+        let padded: Vec<f32> =
+            floats.chunks_exact(27).flat_map(|p| p.iter().copied().chain([0.0])).collect();
+        ((start * PROBE_VEC4S * 16) as u64, bytemuck::cast_slice(&padded).to_vec())
     }
 
     /// The fill shader's inputs for this volume, its quads and `sky`.

@@ -93,7 +93,7 @@ impl ResidentSkyVolume {
         );
         let probes = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("sky volume probes"),
-            size: (g.len() * 27 * 4) as u64,
+            size: (g.len() * crate::gpu::PROBE_VEC4S * 16) as u64,
             usage: storage | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
@@ -195,7 +195,8 @@ impl ResidentSkyVolume {
         Ok(())
     }
 
-    /// The probes (27 floats per point in grid order, as [`SkyVolume::probes`]).
+    /// The probe buffer ([`crate::gpu::PROBE_VEC4S`] `vec4` per point, as
+    /// [`SkyVolume::gpu_probe_bytes`]).
     pub fn probes(&self) -> &wgpu::Buffer {
         &self.probes
     }
@@ -245,7 +246,8 @@ impl ResidentSkyVolume {
         pass.dispatch_workgroups(count.min(binding.count).div_ceil(64), 1, 1);
     }
 
-    /// Reads the probes back (blocking; tests and tools).
+    /// Reads the probes back (blocking; tests and tools): 27 floats per point in grid order,
+    /// as [`SkyVolume::probes`].
     pub fn read_back(
         &self,
         device: &wgpu::Device,
@@ -253,6 +255,11 @@ impl ResidentSkyVolume {
     ) -> Result<Vec<f32>, SkyVolumeError> {
         let bytes = gpu_harness::read_buffer(device, queue, &self.probes, self.probes.size())
             .map_err(gpu_err)?;
-        Ok(bytemuck::pod_collect_to_vec(&bytes))
+        let padded: Vec<f32> = bytemuck::pod_collect_to_vec(&bytes);
+        Ok(padded
+            .chunks_exact(crate::gpu::PROBE_VEC4S * 4)
+            .flat_map(|p| &p[..27])
+            .copied()
+            .collect())
     }
 }

@@ -54,13 +54,13 @@ fn fill_matches_cpu() {
                 Binding::Read(bytemuck::cast_slice(&inputs.samples)),
                 Binding::Read(bytemuck::cast_slice(&inputs.sky)),
                 Binding::Read(bytemuck::cast_slice(&inputs.quads)),
-                Binding::Output((n * 27 * 4) as u64),
+                Binding::Output((n * PROBE_VEC4S * 16) as u64),
             ],
             [n.div_ceil(64) as u32, 1, 1],
         )
         .expect("dispatch");
     let gpu = cast_vec::<f32>(&out[4]);
-    let cpu: Vec<f32> = cast_vec::<f32>(v.gpu_probe_bytes());
+    let cpu: Vec<f32> = cast_vec::<f32>(&v.gpu_probe_bytes());
     let (mut num, mut den) = (0.0f64, 0.0f64);
     for (a, b) in gpu.iter().zip(&cpu) {
         num += ((a - b) as f64).powi(2);
@@ -96,7 +96,7 @@ fn lookup_matches_cpu() {
             "lookup",
             &[
                 Binding::Uniform(bytemuck::bytes_of(&params)),
-                Binding::Read(v.gpu_probe_bytes()),
+                Binding::Read(&v.gpu_probe_bytes()),
                 Binding::Read(bytemuck::cast_slice(&queries)),
                 Binding::Output((queries.len() * 16) as u64),
             ],
@@ -165,7 +165,7 @@ fn resident_fill_and_lookup_match_cpu_and_allocate_nothing_per_record() {
         live = Some(now);
     }
     let gpu = resident.read_back(device, queue).unwrap();
-    let cpu: Vec<f32> = cast_vec::<f32>(v.gpu_probe_bytes());
+    let cpu: Vec<f32> = cast_vec::<f32>(bytemuck::cast_slice(v.probes()));
     let (mut num, mut den) = (0.0f64, 0.0f64);
     for (a, b) in gpu.iter().zip(&cpu) {
         num += ((a - b) as f64).powi(2);
@@ -186,4 +186,22 @@ fn resident_fill_and_lookup_match_cpu_and_allocate_nothing_per_record() {
     let mut enc = device.create_command_encoder(&Default::default());
     let e = resident.record_fill(&mut enc, 0..layers + 1).unwrap_err();
     assert!(matches!(e, SkyVolumeError::LayerOutOfRange { .. }), "{e}");
+}
+
+/// Uploading layer by layer at the offsets `gpu_layer_bytes` gives writes the whole buffer;
+/// a range past the volume is clamped.
+#[test]
+fn layer_bytes_tile_the_probe_buffer() {
+    let (v, _) = volume(FillMethod::CachedVisibility);
+    let all = v.gpu_probe_bytes();
+    assert_eq!(all.len(), v.grid().len() * PROBE_VEC4S * 16);
+    let mut tiled = vec![0u8; all.len()];
+    for y in 0..v.grid().dims.y {
+        let (offset, bytes) = v.gpu_layer_bytes(y..y + 1);
+        tiled[offset as usize..offset as usize + bytes.len()].copy_from_slice(&bytes);
+    }
+    assert_eq!(tiled, all);
+    assert!(v.gpu_layer_bytes(v.grid().dims.y..v.grid().dims.y + 3).1.is_empty());
+    let floats: Vec<f32> = cast_vec(&all);
+    assert!(floats.chunks_exact(PROBE_VEC4S * 4).all(|p| p[27] == 0.0));
 }

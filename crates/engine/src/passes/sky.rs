@@ -158,7 +158,7 @@ impl SkyVolumeState {
         self.resident.record_lookup_first(enc, &binding, count);
     }
 
-    /// Fills layer `layer` from `map` and uploads the probes (a new map marks the whole
+    /// Fills layer `layer` from `map` and uploads its probes (a new map marks the whole
     /// volume for re-lighting first).
     pub fn fill_layer(
         &mut self,
@@ -171,7 +171,8 @@ impl SkyVolumeState {
             self.lit_from = Some(map.generation);
         }
         self.volume.fill_layers(layer..layer + 1, &MapSky(&map.map)).map_err(tech)?;
-        gpu.write(self.resident.probes(), 0, self.volume.gpu_probe_bytes());
+        let (offset, bytes) = self.volume.gpu_layer_bytes(layer..layer + 1);
+        gpu.write(self.resident.probes(), offset, &bytes);
         Ok(())
     }
 }
