@@ -1,8 +1,9 @@
 // include: engine/common.inc.wgsl
 // G-buffer (thesis Table 3.1, formats for wgpu): albedo + glossiness (RGBA8), shading normal +
 // specular power (RGBA16F), geometry normal + material id (RGBA16F), linear depth (R32F).
-// Alpha-tested materials discard below their cutoff; surfaces are two-sided, both normals
-// face the viewer.
+// Alpha-tested materials (their own pipeline, `fs_alpha_tested`) discard below their cutoff;
+// the others (`fs_opaque`) cannot discard, which keeps the early depth test for them.
+// Surfaces are two-sided, both normals face the viewer.
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<storage, read> materials: array<Material>;
@@ -42,9 +43,23 @@ struct GBuffer {
 }
 
 @fragment
-fn fs_main(v: VOut) -> GBuffer {
-    let tex = textureSample(albedo_tex, material_sampler, v.uv);
+fn fs_opaque(v: VOut) -> GBuffer {
+    return gbuffer(v);
+}
+
+@fragment
+fn fs_alpha_tested(v: VOut) -> GBuffer {
+    let o = gbuffer(v);
     let alpha = textureSample(alpha_tex, material_sampler, v.uv).a;
+    let m = materials[v.material];
+    if m.flags.y != 0u && alpha < m.emission.w {
+        discard;
+    }
+    return o;
+}
+
+fn gbuffer(v: VOut) -> GBuffer {
+    let tex = textureSample(albedo_tex, material_sampler, v.uv);
     let dx = dpdx(v.world);
     let dy = dpdy(v.world);
     // Specular anti-aliasing: across the pixel the normal turns by its screen derivatives, so
@@ -58,9 +73,6 @@ fn fs_main(v: VOut) -> GBuffer {
     let dny = dpdy(shading);
     let s2 = (dot(dnx, dnx) + dot(dny, dny)) / 12.0;
     let m = materials[v.material];
-    if m.flags.y != 0u && alpha < m.emission.w {
-        discard;
-    }
     let to_eye = frame.camera_pos.xyz - v.world;
     var g = cross(dy, dx);
     if dot(g, g) < 1e-20 {

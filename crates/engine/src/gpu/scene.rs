@@ -306,6 +306,11 @@ impl SceneBuffers {
         uv_offset: Some(24),
     };
 
+    /// Whether draw `d`'s material is alpha-tested (has an alpha mask).
+    pub fn alpha_tested(&self, d: &Draw) -> bool {
+        self.material_table.get(d.material as usize).is_some_and(|m| m.flags[1] != 0)
+    }
+
     /// The scene as the `shadows` passes draw it: one draw per material, in [`Self::draws`]
     /// order, with the alpha masks (`by_material`, or when a material is alpha-tested), else
     /// all triangles in one draw.

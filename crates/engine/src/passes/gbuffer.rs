@@ -4,7 +4,11 @@ use crate::EngineError;
 use crate::gpu::{GBUFFER_FORMATS, GBufferTargets, SceneBuffers, depth_write_state, shader};
 
 pub struct GBufferPass {
-    pipeline: wgpu::RenderPipeline,
+    /// Materials without an alpha mask: a fragment shader that cannot discard, so the
+    /// rasteriser may reject hidden fragments before shading them.
+    opaque: wgpu::RenderPipeline,
+    /// Alpha-tested materials (the draws after the opaque ones).
+    alpha_tested: wgpu::RenderPipeline,
     /// Made once, again only when what it binds changes.
     frame_group: gpu_harness::BindGroupCache,
 }
@@ -44,28 +48,34 @@ impl GBufferPass {
         });
         let targets: Vec<Option<wgpu::ColorTargetState>> =
             GBUFFER_FORMATS.iter().map(|&f| Some(f.into())).collect();
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("gbuffer"),
-            layout: Some(&layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[Some(SceneBuffers::vertex_layout(false))],
-            },
-            primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
-            depth_stencil: Some(depth_write_state()),
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &targets,
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
-        Ok(Self { pipeline, frame_group: Default::default() })
+        let pipeline = |entry: &str| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(entry),
+                layout: Some(&layout),
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some("vs_main"),
+                    compilation_options: Default::default(),
+                    buffers: &[Some(SceneBuffers::vertex_layout(false))],
+                },
+                primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
+                depth_stencil: Some(depth_write_state()),
+                multisample: Default::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some(entry),
+                    compilation_options: Default::default(),
+                    targets: &targets,
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        Ok(Self {
+            opaque: pipeline("fs_opaque"),
+            alpha_tested: pipeline("fs_alpha_tested"),
+            frame_group: Default::default(),
+        })
     }
 
     /// Records the pass into `enc`.
@@ -80,7 +90,7 @@ impl GBufferPass {
         let frame_group = self.frame_group.get_in_order(
             device,
             "g-buffer frame",
-            &self.pipeline.get_bind_group_layout(0),
+            &self.opaque.get_bind_group_layout(0),
             &[frame.as_entire_binding(), scene.materials.as_entire_binding()],
         );
         let clear = |view| {
@@ -114,13 +124,17 @@ impl GBufferPass {
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &frame_group, &[]);
         pass.set_vertex_buffer(0, scene.vertices.slice(..));
         pass.set_index_buffer(scene.indices.slice(..), wgpu::IndexFormat::Uint32);
-        for d in &scene.draws {
-            pass.set_bind_group(1, &scene.material_groups[d.material as usize], &[]);
-            pass.draw_indexed(d.first_index..d.first_index + d.index_count, 0, 0..1);
+        // Opaque draws first, so that the alpha-tested ones are depth-tested against them.
+        for alpha_tested in [false, true] {
+            let pipeline = if alpha_tested { &self.alpha_tested } else { &self.opaque };
+            pass.set_pipeline(pipeline);
+            for d in scene.draws.iter().filter(|d| scene.alpha_tested(d) == alpha_tested) {
+                pass.set_bind_group(1, &scene.material_groups[d.material as usize], &[]);
+                pass.draw_indexed(d.first_index..d.first_index + d.index_count, 0, 0..1);
+            }
         }
     }
 }
