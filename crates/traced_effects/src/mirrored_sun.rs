@@ -70,6 +70,20 @@ impl ReflectorSet {
         set.count[0] = n as u32;
         set
     }
+
+    /// The first [`MAX_REFLECTORS`] of `reflectors` that may light a point of the view
+    /// (`frustum`) inside `bounds` with the sun in unit direction `l`
+    /// ([`Reflector::may_light`]): what a pixel's loop needs, the others giving nothing there.
+    pub fn in_view(
+        reflectors: &[Reflector],
+        l: Vec3,
+        bounds: &scene::Aabb,
+        frustum: &scene::Frustum,
+    ) -> Self {
+        let lit: Vec<Reflector> =
+            reflectors.iter().filter(|r| r.may_light(l, bounds, frustum)).copied().collect();
+        Self::new(&lit)
+    }
 }
 
 /// What a reflector sends to a point ([`Reflector::mirror`]).
@@ -104,6 +118,30 @@ impl Reflector {
         let d = at - c;
         let inside = d.dot(u).abs() <= self.center[3] && d.dot(n0.cross(u)).abs() <= self.normal[3];
         inside.then(|| Mirrored { dir, reflectance: self.reflectance(cos_l), at, normal: n })
+    }
+
+    /// False only when no point inside both `bounds` and `frustum` can get this reflector's
+    /// light of the sun in unit direction `l` ([`Reflector::mirror`] is `None` there): the sun
+    /// is behind it or along its plane, or the prism its rectangle sweeps along the mirrored
+    /// light (to the far side of `bounds`) lies outside one of the frustum's planes. What
+    /// the view's lighting loops over (`engine`: the reflectors of the frame).
+    pub fn may_light(&self, l: Vec3, bounds: &scene::Aabb, frustum: &scene::Frustum) -> bool {
+        let (c, n0, u) = (xyz(self.center), xyz(self.normal), xyz(self.axis_u));
+        let (mut n, mut cos_l) = (n0, l.dot(n0));
+        if cos_l < 0.0 && self.axis_u[3] > 0.5 {
+            (n, cos_l) = (-n, -cos_l);
+        }
+        if !(cos_l > 0.0) || bounds.is_empty() {
+            return false;
+        }
+        let (hu, hv) = (u * self.center[3], n0.cross(u) * self.normal[3]);
+        // The light leaves along reflect(-l, n); every lit point of `bounds` is within the
+        // box's diagonal of the rectangle along it.
+        let out = (2.0 * cos_l * n - l) * (bounds.max - bounds.min).length();
+        let corners = [c + hu + hv, c + hu - hv, c - hu + hv, c - hu - hv];
+        let hull = corners.into_iter().flat_map(|k| [k, k + out]);
+        let hull: Vec<Vec3> = hull.collect();
+        frustum.planes.iter().all(|p| hull.iter().any(|k| p.truncate().dot(*k) + p.w >= 0.0))
     }
 
     /// Reflectance of the reflector's specular parts for the sun at incidence cosine `cos`

@@ -222,6 +222,12 @@ pub(super) fn lighting_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
             let cubes = io.try_read(r.cubes).is_some();
             let sky_map_size = sky.map_or(0, |k| k.map.size());
             write_frame_uniform(c, Bound { shadows, cubes, sky_map_size });
+            let reflectors = match c.sun {
+                Some(sun) => {
+                    ReflectorSet::in_view(&s.reflectors, sun.dir, &s.bounds, &c.camera.frustum())
+                }
+                None => ReflectorSet::new(&[]),
+            };
             let inputs = LightingInputs {
                 frame: &s.frame,
                 shadows: s.shadow.bindings(shadows.as_ref()),
@@ -229,7 +235,7 @@ pub(super) fn lighting_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
                 sky_volume: c.needs.sky_lighting.needed && sky.is_some(),
                 indirect: indirect_source(io, r),
                 materials: &s.scene.materials,
-                reflectors: &s.scene.reflectors,
+                reflectors: &reflectors,
                 lights: &s.lights,
                 cubes: s.point_shadow.bindings(),
             };

@@ -9,6 +9,7 @@ use crate::frame::{
     FLAG_BLINN, FLAG_INDIRECT, FLAG_LPV_GLOSSY, FLAG_MIRRORED_SUN, FLAG_REFLECTIONS,
     FLAG_REFRACTIONS, FLAG_SHADOWS, FLAG_SKY, FLAG_SKY_VOLUME, FLAG_SUN_GLINTS, FrameUniform,
 };
+use crate::mirrored_sun::ReflectorSet;
 use crate::passes::display::{Exposure, Shown};
 use crate::passes::lighting::{IndirectSource, LightingInputs};
 use crate::passes::lpv::LpvState;

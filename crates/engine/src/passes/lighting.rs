@@ -7,7 +7,7 @@ use super::{lpv::LpvState, radiance_cache::CacheState, rsm_gather::RsmGatherStat
 use crate::EngineError;
 use crate::gpu::{
     GBufferTargets, Gpu, compute_pipeline, dispatch, draw_fullscreen, empty_storage,
-    fullscreen_pipeline,
+    fullscreen_pipeline, uniform_buffer,
 };
 
 pub struct LightingPass {
@@ -23,6 +23,8 @@ pub struct LightingPass {
     glossy_out: wgpu::Buffer,
     pub sky_out: wgpu::Buffer,
     pub lpv_out: wgpu::Buffer,
+    /// The frame's reflectors (`LightingInputs::reflectors`), a uniform.
+    reflectors: wgpu::Buffer,
     pixels: u32,
 }
 
@@ -36,8 +38,9 @@ pub struct LightingInputs<'a> {
     pub sky_volume: bool,
     pub indirect: IndirectSource<'a>,
     pub materials: &'a wgpu::Buffer,
-    /// The scene's planar reflectors (`crate::mirrored_sun`).
-    pub reflectors: &'a wgpu::Buffer,
+    /// The planar reflectors that may mirror the sun into this view (`crate::mirrored_sun`,
+    /// `ReflectorSet::in_view`).
+    pub reflectors: &'a crate::mirrored_sun::ReflectorSet,
     pub lights: &'a wgpu::Buffer,
     /// The point lights' depth cube array and its comparison sampler.
     pub cubes: (&'a wgpu::TextureView, &'a wgpu::Sampler),
@@ -75,6 +78,11 @@ impl LightingPass {
             glossy_out: empty_storage(device, "lpv glossy light", n * 16),
             sky_out: empty_storage(device, "sky light", n * 16),
             lpv_out: empty_storage(device, "lpv light", n * 16),
+            reflectors: uniform_buffer(
+                device,
+                "view reflectors",
+                bytemuck::bytes_of(&crate::mirrored_sun::ReflectorSet::new(&[])),
+            ),
             pixels: n as u32,
         })
     }
@@ -141,6 +149,7 @@ impl LightingPass {
             }
             IndirectSource::None => &self.lpv_out,
         };
+        gpu.write(&self.reflectors, 0, bytemuck::bytes_of(inputs.reflectors));
         let skymap = inputs.sky.map(|s| &s.map.buffer).unwrap_or(inputs.lights);
         let bg = self.lighting_group.get_in_order(
             device,
@@ -163,7 +172,7 @@ impl LightingPass {
                 tv(inputs.cubes.0),
                 wgpu::BindingResource::Sampler(inputs.cubes.1),
                 self.glossy_out.as_entire_binding(),
-                inputs.reflectors.as_entire_binding(),
+                self.reflectors.as_entire_binding(),
             ],
         );
         draw_fullscreen(enc, "lighting", &self.pipeline, &bg, &targets.lit);
