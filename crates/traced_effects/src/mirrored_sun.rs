@@ -131,7 +131,7 @@ impl Reflector {
         if cos_l < 0.0 && self.axis_u[3] > 0.5 {
             (n, cos_l) = (-n, -cos_l);
         }
-        if !(cos_l > 0.0) || bounds.is_empty() {
+        if cos_l.is_nan() || cos_l <= 0.0 || bounds.is_empty() {
             return false;
         }
         let (hu, hv) = (u * self.center[3], n0.cross(u) * self.normal[3]);
