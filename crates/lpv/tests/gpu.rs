@@ -215,3 +215,53 @@ fn resident_update_from_rsm_textures_matches_the_cpu() {
     ));
     assert!(matches!(ResidentLpv::new(&ctx.device, s, &[]), Err(lpv::LpvError::Mismatch(_))));
 }
+
+/// The resident lookups over a renderer's copy of the CPU path's volumes give the CPU's
+/// irradiance and glossy light; recording them again into the same buffers creates no bind
+/// group and no buffer.
+#[test]
+fn resident_lookups_match_the_cpu_and_allocate_nothing_per_record() {
+    let Some(ctx) = gpu_harness::gpu_test_context() else { return };
+    let scene = BoxScene::two_rooms(24);
+    let (s, cpu, _) = updated_on_cpu(true, &scene.vpls, &scene.surfels(0.5));
+    let (device, queue) = (&ctx.device, &ctx.queue);
+    let volumes: Vec<f32> = cpu.cascades().iter().flat_map(|c| c.volume.data.clone()).collect();
+    let volumes = gpu_harness::storage_buffer(device, "volumes", bytemuck::cast_slice(&volumes));
+    let pts: Vec<(Vec3, Vec3)> =
+        scene.receivers(0.5).iter().map(|r| (r.position, r.normal)).collect();
+    let queries: Vec<GpuQuery> = pts
+        .iter()
+        .map(|(p, n)| GpuQuery {
+            position: p.extend(1.0).to_array(),
+            normal: n.extend(0.0).to_array(),
+        })
+        .collect();
+    let q = gpu_harness::storage_buffer(device, "queries", bytemuck::cast_slice(&queries));
+    let out = [0, 1].map(|_| gpu_harness::empty_storage(device, "light", pts.len() as u64 * 16));
+    let lookup = ResidentLookup::new(device);
+    let grids: Vec<lpv::Grid> = cpu.cascades().iter().map(|c| c.grid).collect();
+    let params = GpuLookupParams::new(&grids, &s, 3, pts.len() as u32);
+    queue.write_buffer(lookup.params(), 0, bytemuck::bytes_of(&params));
+    let record = || {
+        let mut enc = device.create_command_encoder(&Default::default());
+        let n = pts.len() as u32;
+        lookup.record(device, &mut enc, Lookup::Irradiance, &volumes, (&q, &out[0]), n);
+        lookup.record(device, &mut enc, Lookup::Glossy, &volumes, (&q, &out[1]), n);
+        queue.submit([enc.finish()]);
+        let l = gpu_harness::live_objects(device);
+        [l.buffers, l.bind_groups]
+    };
+    let before = record();
+    assert_eq!(before, record(), "recording the lookups again makes nothing");
+    let read = |b: &wgpu::Buffer| -> Vec<f32> {
+        let v: Vec<[f32; 4]> =
+            gpu_harness::cast_vec(&gpu_harness::read_buffer(device, queue, b, b.size()).unwrap());
+        v.iter().flat_map(|e| [e[0], e[1], e[2]]).collect()
+    };
+    let flat = |v: Vec<Vec3>| v.iter().flat_map(|e| e.to_array()).collect::<Vec<f32>>();
+    let e_cpu = flat(pts.iter().map(|(p, n)| cpu.irradiance(*p, *n)).collect());
+    let l_cpu = flat(pts.iter().map(|(p, r)| cpu.glossy(*p, *r, 3)).collect());
+    assert!(l_cpu.iter().any(|&l| l > 0.0), "the glossy lookup sees light");
+    let (de, dl) = (rel_diff(&read(&out[0]), &e_cpu), rel_diff(&read(&out[1]), &l_cpu));
+    assert!(de < 1e-4 && dl < 1e-4, "resident lookup parity: irradiance {de}, glossy {dl}");
+}

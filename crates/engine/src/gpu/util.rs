@@ -70,21 +70,3 @@ pub(crate) fn depth_write_state() -> wgpu::DepthStencilState {
         bias: Default::default(),
     }
 }
-
-/// One dispatch of a lookup kernel whose group 0 is `(params, data, queries, out)`, one
-/// invocation per query in workgroups of 64, its bind group from `groups`.
-pub(crate) fn dispatch_lookup(
-    device: &wgpu::Device,
-    enc: &mut wgpu::CommandEncoder,
-    (pipeline, groups): (&wgpu::ComputePipeline, &gpu_harness::BindGroupCache),
-    buffers: [&wgpu::Buffer; 4],
-    count: u32,
-) {
-    let bg = groups.get_in_order(
-        device,
-        "lookup",
-        &pipeline.get_bind_group_layout(0),
-        &buffers.map(|b| b.as_entire_binding()),
-    );
-    dispatch(enc, pipeline, &bg, [count.div_ceil(64), 1, 1]);
-}

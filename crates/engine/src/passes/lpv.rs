@@ -15,13 +15,11 @@
 use super::sky::SkyLight;
 use super::sky_bounce::{SkyBounce, SkyBounceInputs};
 use super::sun_rsm::SunRsm;
-use crate::gpu::{
-    Gpu, SceneBuffers, compute_pipeline, dispatch_lookup, empty_storage, uniform_buffer,
-};
+use crate::gpu::{Gpu, SceneBuffers, empty_storage};
 use crate::state::SunLight;
 use crate::{EngineError, Settings};
 use glam::Vec3;
-use lpv::gpu::{GpuGrid, GpuLookupParams, ResidentLpv, RsmFrame, RsmTextures};
+use lpv::gpu::{GpuLookupParams, Lookup, ResidentLookup, ResidentLpv, RsmFrame, RsmTextures};
 use lpv::{Grid, Lpv, Surfel, Vpl};
 
 pub struct LpvState {
@@ -35,14 +33,10 @@ pub struct LpvState {
     resident: Option<ResidentLpv>,
     /// The CPU path's volumes, uploaded for the lookup.
     volumes: wgpu::Buffer,
-    lookup: wgpu::ComputePipeline,
-    /// The glossy lookup (`Settings::lpv_glossy` points marched; 0: not recorded).
-    glossy: wgpu::ComputePipeline,
-    /// The lookups' bind groups, made once per pair of query and output buffers.
-    lookup_groups: gpu_harness::BindGroupCache,
-    glossy_groups: gpu_harness::BindGroupCache,
+    /// The crate's per-pixel lookups, over `resident`'s volumes or `volumes`.
+    lookup: ResidentLookup,
+    /// The glossy lookup's points marched (`Settings::lpv_glossy`; 0: not recorded).
     glossy_steps: u32,
-    lookup_params: wgpu::Buffer,
     /// The GPU path updated the volumes since `lpv` last read them back.
     cpu_stale: bool,
 }
@@ -93,21 +87,13 @@ impl LpvState {
             None
         };
         Ok(Self {
-            lookup_groups: Default::default(),
-            glossy_groups: Default::default(),
             volumes: empty_storage(&gpu.device, "lpv volumes", volume_bytes(&lpv)),
             lpv,
             rsm,
             sky_bounce,
             resident,
-            lookup: compute_pipeline(&gpu.device, "lpv lookup", lpv::gpu::LOOKUP_WGSL, "lookup")?,
-            glossy: compute_pipeline(&gpu.device, "lpv glossy", lpv::gpu::LOOKUP_WGSL, "glossy")?,
+            lookup: ResidentLookup::new(&gpu.device),
             glossy_steps: settings.lpv_glossy,
-            lookup_params: uniform_buffer(
-                &gpu.device,
-                "lpv lookup",
-                bytemuck::bytes_of(&GpuLookupParams::default()),
-            ),
             cpu_stale: false,
         })
     }
@@ -208,9 +194,12 @@ impl LpvState {
         out: &wgpu::Buffer,
         count: u32,
     ) {
-        self.write_lookup_params(gpu, count);
-        let kernel = (&self.lookup, &self.lookup_groups);
-        dispatch_lookup(&gpu.device, enc, kernel, self.lookup_buffers(queries, out), count);
+        // Both kernels of a frame read the same parameters (written once, before the
+        // encoder runs).
+        let grids: Vec<Grid> = self.lpv.cascades().iter().map(|c| c.grid).collect();
+        let params = GpuLookupParams::new(&grids, self.lpv.settings(), self.glossy_steps, count);
+        gpu.write(self.lookup.params(), 0, bytemuck::bytes_of(&params));
+        self.record(gpu, enc, Lookup::Irradiance, (queries, out), count);
     }
 
     /// Records the glossy lookup from `queries` (position, mirror direction) to `out`, when
@@ -224,35 +213,19 @@ impl LpvState {
         count: u32,
     ) {
         if self.glossy_steps > 0 {
-            let kernel = (&self.glossy, &self.glossy_groups);
-            dispatch_lookup(&gpu.device, enc, kernel, self.lookup_buffers(queries, out), count);
+            self.record(gpu, enc, Lookup::Glossy, (queries, out), count);
         }
     }
 
-    /// The lookups' parameters; both kernels of a frame read the same (written once, the
-    /// queue applies it before the encoder runs).
-    fn write_lookup_params(&self, gpu: &Gpu, count: u32) {
-        let s = self.lpv.settings();
-        let mut params = GpuLookupParams {
-            cascades: self.lpv.cascades().len() as u32,
-            blend_cells: s.blend_cells,
-            offset_cells: s.lookup_offset_cells,
-            count,
-            glossy_steps: self.glossy_steps,
-            ..Default::default()
-        };
-        for (i, c) in self.lpv.cascades().iter().enumerate().take(4) {
-            params.grids[i] = GpuGrid::new(&c.grid, 0, 1.0, 0);
-        }
-        gpu.write(&self.lookup_params, 0, bytemuck::bytes_of(&params));
-    }
-
-    fn lookup_buffers<'a>(
-        &'a self,
-        queries: &'a wgpu::Buffer,
-        out: &'a wgpu::Buffer,
-    ) -> [&'a wgpu::Buffer; 4] {
+    fn record(
+        &self,
+        gpu: &Gpu,
+        enc: &mut wgpu::CommandEncoder,
+        which: Lookup,
+        io: (&wgpu::Buffer, &wgpu::Buffer),
+        count: u32,
+    ) {
         let volumes = self.resident.as_ref().map_or(&self.volumes, ResidentLpv::volumes);
-        [&self.lookup_params, volumes, queries, out]
+        self.lookup.record(&gpu.device, enc, which, volumes, io, count);
     }
 }

@@ -17,14 +17,15 @@ use crate::error::LpvError;
 use crate::geometry::{FaceBlocking, GeometryVolume};
 use crate::grid::{COEFFS, Grid, Volume};
 use crate::lpv::Lpv;
-use crate::settings::LpvSettings;
 use crate::vpl::{Surfel, Vpl};
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use gpu_harness::{dispatch, storage_buffer, uniform_buffer};
 
+mod lookup;
 mod resident;
 
+pub use lookup::{Lookup, ResidentLookup};
 pub use resident::{ResidentLpv, RsmFrame, RsmTextures};
 
 macro_rules! shader {
@@ -300,20 +301,11 @@ impl GpuLpv {
             return Ok(Vec::new());
         }
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let s: &LpvSettings = lpv.settings();
-        let mut params = GpuLookupParams {
-            cascades: lpv.cascades().len() as u32,
-            blend_cells: s.blend_cells,
-            offset_cells: s.lookup_offset_cells,
-            count: points.len() as u32,
-            glossy_steps,
-            ..Default::default()
-        };
-        let mut volumes = Vec::new();
-        for (i, c) in lpv.cascades().iter().enumerate() {
-            params.grids[i] = GpuGrid::new(&c.grid, 0, 1.0, 0);
-            volumes.extend_from_slice(&c.volume.data);
-        }
+        let grids: Vec<Grid> = lpv.cascades().iter().map(|c| c.grid).collect();
+        let params =
+            GpuLookupParams::new(&grids, lpv.settings(), glossy_steps, points.len() as u32);
+        let volumes: Vec<f32> =
+            lpv.cascades().iter().flat_map(|c| c.volume.data.iter().copied()).collect();
         let queries: Vec<GpuQuery> = points
             .iter()
             .map(|(p, n)| GpuQuery {

@@ -12,7 +12,7 @@
 //! largest flux one texel can carry, [`RsmFrame::max_texel_flux`]; texels are clamped to it),
 //! so that no cell can overflow whatever the RSM holds.
 
-use super::{GpuGrid, GpuLookupParams, pipeline, read_back};
+use super::{GpuGrid, GpuLookupParams, Lookup, ResidentLookup, pipeline, read_back};
 use crate::error::LpvError;
 use crate::grid::{COEFFS, Grid};
 use crate::lpv::Lpv;
@@ -144,7 +144,7 @@ pub struct ResidentLpv {
     faces: wgpu::ComputePipeline,
     resolve: wgpu::ComputePipeline,
     propagate: wgpu::ComputePipeline,
-    lookup: wgpu::ComputePipeline,
+    lookup: ResidentLookup,
     faces_scale: wgpu::Buffer,
     /// Scratch shared by the cascades (updated one after the other): fixed-point cells,
     /// fixed-point corner blocking, face blocking, the two propagation buffers, the sum.
@@ -154,7 +154,6 @@ pub struct ResidentLpv {
     cascades: Vec<CascadeGroups>,
     /// Every cascade's summed volume, one after the other (the lookup's layout).
     volumes: wgpu::Buffer,
-    lookup_params: wgpu::Buffer,
 }
 
 impl ResidentLpv {
@@ -197,13 +196,11 @@ impl ResidentLpv {
             })
             .collect();
         let faces_scale = buffer(device, "lpv blocking scale", 16, uni);
-        let lookup_params =
-            buffer(device, "lpv lookup", std::mem::size_of::<GpuLookupParams>() as u64, uni);
         let inject = inject_pipeline(device);
         let faces = pipeline(device, super::FACES_WGSL, "faces_of");
         let resolve = pipeline(device, super::RESOLVE_WGSL, "resolve");
         let propagate = pipeline(device, super::PROPAGATE_WGSL, "propagate");
-        let lookup = pipeline(device, super::LOOKUP_WGSL, "lookup");
+        let lookup = ResidentLookup::new(device);
         let tv = wgpu::BindingResource::TextureView;
         let group = |p: &wgpu::ComputePipeline, r: Vec<wgpu::BindingResource<'_>>| {
             gpu_harness::bind_group(device, "lpv resident", &p.get_bind_group_layout(0), &r)
@@ -262,7 +259,6 @@ impl ResidentLpv {
             accum,
             cascades,
             volumes,
-            lookup_params,
         };
         if let Some(err) = pollster::block_on(scope.pop()) {
             return Err(LpvError::Gpu(err.into()));
@@ -367,20 +363,16 @@ impl ResidentLpv {
         grids: &[Grid],
         (queries, out, count): (&wgpu::Buffer, &wgpu::Buffer, u32),
     ) {
-        let mut params = GpuLookupParams {
-            cascades: grids.len().min(4) as u32,
-            blend_cells: self.settings.blend_cells,
-            offset_cells: self.settings.lookup_offset_cells,
+        let params = GpuLookupParams::new(grids, &self.settings, 0, count);
+        queue.write_buffer(self.lookup.params(), 0, bytemuck::bytes_of(&params));
+        self.lookup.record(
+            device,
+            encoder,
+            Lookup::Irradiance,
+            &self.volumes,
+            (queries, out),
             count,
-            ..Default::default()
-        };
-        for (i, g) in grids.iter().enumerate().take(4) {
-            params.grids[i] = GpuGrid::new(g, 0, 1.0, 0);
-        }
-        queue.write_buffer(&self.lookup_params, 0, bytemuck::bytes_of(&params));
-        let group =
-            super::bind(device, &self.lookup, &[&self.lookup_params, &self.volumes, queries, out]);
-        dispatch(encoder, &self.lookup, &group, [count.div_ceil(64), 1, 1]);
+        );
     }
 
     /// Reads the volumes back into `lpv`'s cascades (whose grids the last update used).
