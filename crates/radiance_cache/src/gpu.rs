@@ -131,17 +131,17 @@ impl GpuCacheData {
     }
 
     /// Rewrites the copy from `cache` (call after each allocation or update). A buffer the
-    /// allocated caches outgrew is recreated with room for twice as many; returns whether
-    /// that happened (bindings must then be remade).
+    /// allocated caches outgrew is recreated with room for twice as many (bindings must then
+    /// be remade: [`Written::grown`]).
     pub fn write(
         &mut self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         cache: &RadianceCache,
-    ) -> bool {
+    ) -> Written {
         let (params, tables) = contents(cache);
         self.params = params;
-        let mut grown = false;
+        let (mut grown, mut written) = (false, 0);
         for (buffer, bytes, label) in [
             (&mut self.tables, bytemuck::cast_slice::<u32, u8>(&tables), "radiance_cache tables"),
             (
@@ -161,16 +161,26 @@ impl GpuCacheData {
             }
             if !bytes.is_empty() {
                 queue.write_buffer(buffer, 0, bytes);
+                written += bytes.len() as u64;
             }
         }
         self.generation += u64::from(grown);
-        grown
+        Written { grown, bytes: written }
     }
 
     /// Changes whenever [`GpuCacheData::write`] recreated a buffer.
     pub fn generation(&self) -> u64 {
         self.generation
     }
+}
+
+/// What [`GpuCacheData::write`] did.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Written {
+    /// A buffer was recreated: bindings to the old one must be remade.
+    pub grown: bool,
+    /// Bytes uploaded (the tables and every allocated cache's light).
+    pub bytes: u64,
 }
 
 /// Bytes of one slot's light.

@@ -114,7 +114,10 @@ fn resident_lookup_follows_the_cache_without_allocating() {
         if frame > 0 {
             cache.allocate(eye, &pts);
             cache.update(&vpls, &tree);
-            if data.write(&ctx.device, &ctx.queue, &cache) {
+            let written = data.write(&ctx.device, &ctx.queue, &cache);
+            let held = cache.memory_bytes() as u64;
+            assert!(written.bytes > 0 && written.bytes <= held, "{written:?} of {held} B held");
+            if written.grown {
                 grew += 1;
                 let mut enc = ctx.device.create_command_encoder(&Default::default());
                 let stale = gpu.record_bound(&ctx.queue, &mut enc, &data, &binding);

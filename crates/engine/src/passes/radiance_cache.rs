@@ -9,8 +9,8 @@
 //!    scene's kd-tree finds the surface points the view sees, and they allocate the caches
 //!    their lookups interpolate;
 //! 3. the crate lights the `budget` oldest caches on the CPU, with shadow rays through the
-//!    same kd-tree (alpha-tested holes let light through), and the caches are written in
-//!    place into their resident GPU copy;
+//!    same kd-tree (alpha-tested holes let light through), and the allocated caches are
+//!    uploaded again into their resident GPU copy (counted in the frame's uploads);
 //! 4. the lighting pass records the crate's lookup kernel over the per-pixel queries it
 //!    already writes for the LPV, into the buffer the lighting shader reads the bounce from.
 //!
@@ -194,8 +194,9 @@ impl CacheState {
         let points = view_points(trace, camera, self.points);
         let alloc = self.cache.allocate(camera.position, &points);
         let lit = self.cache.update(&self.vpls, trace);
-        let grown = self.data.write(&gpu.device, &gpu.queue, &self.cache);
-        if grown || self.binding.is_none() {
+        let written = self.data.write(&gpu.device, &gpu.queue, &self.cache);
+        gpu.transfers.uploaded(written.bytes);
+        if written.grown || self.binding.is_none() {
             self.binding = Some(self.lookup.bind(&gpu.device, &self.data, queries, output, count));
         }
         self.last = Some(CacheSummary {
