@@ -3,10 +3,14 @@
 //! the 3D volume directly, so the thesis's 2D unwrapping (a workaround for rendering into
 //! 3D textures) is not needed.
 //!
-//! Two ways in:
+//! Three ways in:
 //! - [`ResidentLpv`] (for renderers): built once over the caller's RSM textures, records the
 //!   whole update into the caller's encoder, keeps the volumes on the GPU; the geometry volume
 //!   is built on the GPU from the RSM's texels.
+//! - [`ResidentLookup`] (for renderers that update the LPV on the CPU, or look a
+//!   [`ResidentLpv`]'s volumes up into their own buffers): the per-pixel irradiance and
+//!   glossy lookups over any buffer of volumes, bound once to the caller's query and output
+//!   buffers.
 //! - [`GpuLpv`] (one call per update, for tests and tools): injects a VPL list, builds the
 //!   geometry volume on the CPU ([`GeometryVolume::build`]) and uploads it as face blocking,
 //!   and reads the volume back. Non-finite VPLs are filtered on the CPU before upload.
