@@ -9,13 +9,7 @@ use gpu_harness::{Binding, cast_vec, gpu_test_context};
 #[test]
 fn shaders_validate_with_naga() {
     for source in [SKYMAP_WGSL.to_owned(), atmosphere::gpu::skymap_sample_eval_shader()] {
-        let module = naga::front::wgsl::parse_str(&source).expect("parses");
-        naga::valid::Validator::new(
-            naga::valid::ValidationFlags::all(),
-            naga::valid::Capabilities::all(),
-        )
-        .validate(&module)
-        .expect("validates");
+        gpu_harness::validate_wgsl(&source).unwrap_or_else(|e| panic!("{e}"));
     }
 }
 

@@ -4,14 +4,7 @@
 #[test]
 fn engine_shaders_validate_with_naga() {
     for (name, source) in engine::shaders::all() {
-        let module = naga::front::wgsl::parse_str(&source)
-            .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(&source)));
-        naga::valid::Validator::new(
-            naga::valid::ValidationFlags::all(),
-            naga::valid::Capabilities::all(),
-        )
-        .validate(&module)
-        .unwrap_or_else(|e| panic!("{name}: {e:?}"));
+        gpu_harness::validate_wgsl(&source).unwrap_or_else(|e| panic!("{name}: {e}"));
     }
 }
 

@@ -55,5 +55,5 @@ pub use plumbing::{
 };
 pub use readback::{ReadBack, map_read, read_buffer, read_buffer_after, read_texture};
 pub use support::{
-    LiveObjects, SKIP_ENV, cast_vec, gpu_test_context, live_objects, skip_requested,
+    LiveObjects, SKIP_ENV, cast_vec, gpu_test_context, live_objects, skip_requested, validate_wgsl,
 };

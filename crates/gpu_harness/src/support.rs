@@ -54,3 +54,32 @@ pub fn live_objects(device: &wgpu::Device) -> LiveObjects {
         bind_groups: c.bind_groups.read(),
     }
 }
+
+/// Parses and validates `source` with naga (every validation flag and capability), as the
+/// tests of every crate's WGSL do: the module, or naga's report with the source lines.
+pub fn validate_wgsl(source: &str) -> Result<naga::Module, String> {
+    let module = naga::front::wgsl::parse_str(source).map_err(|e| e.emit_to_string(source))?;
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::all(),
+    )
+    .validate(&module)
+    .map_err(|e| e.emit_to_string(source))?;
+    Ok(module)
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn validate_wgsl_names_what_is_wrong() {
+        let ok = "@compute @workgroup_size(1) fn main() {}";
+        assert!(super::validate_wgsl(ok).is_ok());
+        let unknown = "@compute @workgroup_size(1) fn main() { let x = missing; }";
+        let e = super::validate_wgsl(unknown).expect_err("an unknown name");
+        assert!(e.contains("missing"), "{e}");
+        // Parses, but a storage write to a read-only binding does not validate.
+        let read_only = "@group(0) @binding(0) var<storage, read> d: array<f32>;
+            @compute @workgroup_size(1) fn main() { d[0] = 1.0; }";
+        assert!(super::validate_wgsl(read_only).is_err());
+    }
+}

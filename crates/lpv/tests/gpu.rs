@@ -8,13 +8,7 @@ use lpv::scenes::BoxScene;
 use lpv::{Lpv, LpvSettings};
 
 fn validate(src: &str) {
-    let module = naga::front::wgsl::parse_str(src).expect("parses");
-    naga::valid::Validator::new(
-        naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::all(),
-    )
-    .validate(&module)
-    .expect("validates");
+    gpu_harness::validate_wgsl(src).unwrap_or_else(|e| panic!("{e}"));
 }
 
 #[test]

@@ -13,13 +13,7 @@ use rsm_gi::gpu::{
 use rsm_gi::{GBuffer, Interleave, RsmGi, RsmInput, Sampling, Settings};
 
 fn validate(src: &str) {
-    let module = naga::front::wgsl::parse_str(src).expect("parses");
-    naga::valid::Validator::new(
-        naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::all(),
-    )
-    .validate(&module)
-    .expect("validates");
+    gpu_harness::validate_wgsl(src).unwrap_or_else(|e| panic!("{e}"));
 }
 
 #[test]

@@ -10,13 +10,7 @@ const PARITY: &str = concat!(
 
 #[test]
 fn wgsl_parity_source_is_valid() {
-    let module = naga::front::wgsl::parse_str(PARITY).expect("parses");
-    naga::valid::Validator::new(
-        naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::all(),
-    )
-    .validate(&module)
-    .expect("validates");
+    gpu_harness::validate_wgsl(PARITY).unwrap_or_else(|e| panic!("{e}"));
     assert!(PARITY.starts_with(sh_math::WGSL));
 }
 

@@ -12,14 +12,7 @@ use shadows::plane_box::PlaneBox;
 use shadows::*;
 
 fn validate_wgsl(src: &str) {
-    let module =
-        naga::front::wgsl::parse_str(src).unwrap_or_else(|e| panic!("{}", e.emit_to_string(src)));
-    naga::valid::Validator::new(
-        naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::all(),
-    )
-    .validate(&module)
-    .unwrap_or_else(|e| panic!("{}", e.emit_to_string(src)));
+    gpu_harness::validate_wgsl(src).unwrap_or_else(|e| panic!("{e}"));
 }
 
 #[test]

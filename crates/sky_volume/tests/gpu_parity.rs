@@ -8,13 +8,7 @@ use sky_volume::gpu::*;
 use sky_volume::*;
 
 fn validate_wgsl(src: &str) {
-    let module = naga::front::wgsl::parse_str(src).expect("WGSL parses");
-    naga::valid::Validator::new(
-        naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::all(),
-    )
-    .validate(&module)
-    .expect("WGSL validates");
+    gpu_harness::validate_wgsl(src).unwrap_or_else(|e| panic!("{e}"));
 }
 
 #[test]

@@ -8,13 +8,7 @@ use ssao::*;
 
 #[test]
 fn wgsl_validates_with_naga() {
-    let module = naga::front::wgsl::parse_str(SSAO_EVAL_WGSL).expect("parse");
-    naga::valid::Validator::new(
-        naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::all(),
-    )
-    .validate(&module)
-    .expect("valid");
+    gpu_harness::validate_wgsl(SSAO_EVAL_WGSL).unwrap_or_else(|e| panic!("{e}"));
 }
 
 #[test]
