@@ -10,7 +10,8 @@
 //! (`shaders/engine/mirrored_sun.inc.wgsl`) lights a pixel in front of a reflector as by a
 //! second sun from the mirrored direction, when the ray towards it meets the rectangle, scaled
 //! by that reflectance and the real sun's visibility where the ray meets the reflector (the
-//! view's cascades). Not modelled: occluders between the pixel and the reflector, the
+//! view's cascades); it loops only over the reflectors that may light the view
+//! ([`ReflectorSet::in_view`]). Not modelled: occluders between the pixel and the reflector, the
 //! glossy lobe's spread (the mirrored sun is a point direction) and curved reflectors (the
 //! statue). The traced G-buffer lit on the GPU (`engine::TracedShading::Gpu`) includes the same
 //! snippet (with the overlapped maps' visibility at the reflector); the traced rays'
