@@ -181,3 +181,32 @@ fn cornell_area_is_lit_by_a_one_sided_ceiling_light_facing_down() {
         assert!(a.y > 5.4 && a.y < 5.5);
     }
 }
+
+/// Every opaque triangle of cornell_window lies on one of its authored occlusion quads, so
+/// that the sky volume is shaded by all of its geometry: its two boxes had none, and the red
+/// wall they shade from the window got 12.6x the reference's sky light
+/// (`app/examples/sky_regions.rs`).
+#[test]
+fn cornell_windows_occlusion_quads_cover_its_opaque_geometry() {
+    for s in [scene::cornell_window(2), scene::cornell_window(7)] {
+        let tris = s.triangles();
+        let on_a_quad = |p: Vec3| {
+            s.occlusion_quads.iter().any(|q| {
+                let d = p - q.center;
+                let n = q.axis_u.cross(q.axis_v);
+                d.dot(n).abs() < 0.01
+                    && d.dot(q.axis_u).abs() <= q.half_u + 0.01
+                    && d.dot(q.axis_v).abs() <= q.half_v + 0.01
+            })
+        };
+        for t in 0..tris.indices.len() {
+            let m = &s.materials[tris.materials[t] as usize];
+            if m.transparency > 0.0 || m.alpha_mask.is_some() {
+                continue;
+            }
+            let [a, b, c] = tris.triangle(t);
+            let centroid = (a + b + c) / 3.0;
+            assert!(on_a_quad(centroid), "{}: triangle {t} at {centroid} is on no quad", s.name);
+        }
+    }
+}
