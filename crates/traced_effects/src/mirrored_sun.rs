@@ -81,9 +81,13 @@ impl ReflectorSet {
         bounds: &scene::Aabb,
         frustum: &scene::Frustum,
     ) -> Self {
-        let lit: Vec<Reflector> =
-            reflectors.iter().filter(|r| r.may_light(l, bounds, frustum)).copied().collect();
-        Self::new(&lit)
+        let mut set = Self::new(&[]);
+        let lit = reflectors.iter().filter(|r| r.may_light(l, bounds, frustum));
+        for (slot, r) in set.items.iter_mut().zip(lit) {
+            *slot = *r;
+            set.count[0] += 1;
+        }
+        set
     }
 }
 
@@ -140,9 +144,9 @@ impl Reflector {
         // box's diagonal of the rectangle along it.
         let out = (2.0 * cos_l * n - l) * (bounds.max - bounds.min).length();
         let corners = [c + hu + hv, c + hu - hv, c - hu + hv, c - hu - hv];
-        let hull = corners.into_iter().flat_map(|k| [k, k + out]);
-        let hull: Vec<Vec3> = hull.collect();
-        frustum.planes.iter().all(|p| hull.iter().any(|k| p.truncate().dot(*k) + p.w >= 0.0))
+        let hull = corners.map(|k| [k, k + out]);
+        let inside = |p: &glam::Vec4, k: &Vec3| p.truncate().dot(*k) + p.w >= 0.0;
+        frustum.planes.iter().all(|p| hull.iter().flatten().any(|k| inside(p, k)))
     }
 
     /// Reflectance of the reflector's specular parts for the sun at incidence cosine `cos`
