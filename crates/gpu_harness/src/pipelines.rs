@@ -1,6 +1,6 @@
 //! Pipelines and the recording of their passes, written once for every crate's resident
 //! passes: a compute pipeline from WGSL source, a full-screen triangle pipeline, one compute
-//! dispatch, and a render pass that clears one colour target.
+//! dispatch, and a render pass over one colour target.
 
 /// A compute pipeline running `entry` of the WGSL `source`; `layout: None` lets wgpu derive
 /// the layout from the shader. Not validated: create it inside [`crate::validated`] to get a
@@ -41,14 +41,14 @@ pub fn pipeline_layout(
 }
 
 /// A pipeline drawing one full-screen triangle with the vertex entry `vs_entry` (no vertex
-/// buffers) and the fragment entry `fs_entry` into one `format` target, layout derived from
-/// the shader. Not validated, as [`compute_pipeline`].
+/// buffers) and the fragment entry `fs_entry` into one target (a format, or a format with a
+/// blend state), layout derived from the shader. Not validated, as [`compute_pipeline`].
 pub fn fullscreen_pipeline(
     device: &wgpu::Device,
     label: &str,
     source: &str,
     (vs_entry, fs_entry): (&str, &str),
-    format: wgpu::TextureFormat,
+    target: impl Into<wgpu::ColorTargetState>,
 ) -> wgpu::RenderPipeline {
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(label),
@@ -70,7 +70,7 @@ pub fn fullscreen_pipeline(
             module: &module,
             entry_point: Some(fs_entry),
             compilation_options: Default::default(),
-            targets: &[Some(format.into())],
+            targets: &[Some(target.into())],
         }),
         multiview_mask: None,
         cache: None,
@@ -97,16 +97,24 @@ pub fn clear_pass<'e>(
     label: &str,
     target: &wgpu::TextureView,
 ) -> wgpu::RenderPass<'e> {
+    color_pass(encoder, label, target, wgpu::LoadOp::Clear(wgpu::Color::BLACK))
+}
+
+/// Begins a render pass over `target` that starts from `load` (cleared, or what it holds)
+/// and stores what is drawn.
+pub fn color_pass<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    label: &str,
+    target: &wgpu::TextureView,
+    load: wgpu::LoadOp<wgpu::Color>,
+) -> wgpu::RenderPass<'e> {
     encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: Some(label),
         color_attachments: &[Some(wgpu::RenderPassColorAttachment {
             view: target,
             depth_slice: None,
             resolve_target: None,
-            ops: wgpu::Operations {
-                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                store: wgpu::StoreOp::Store,
-            },
+            ops: wgpu::Operations { load, store: wgpu::StoreOp::Store },
         })],
         depth_stencil_attachment: None,
         timestamp_writes: None,
