@@ -140,14 +140,15 @@ pub struct ComponentImage {
     pub image: HdrFrame,
 }
 
-/// Renders every component of [`COMPONENTS`] of the renderer's current view (one frame
-/// each: the lighting and combine passes rerun with the component selected, everything
-/// else is reused) and leaves the renderer showing the full frame again.
+/// Renders every component of [`COMPONENTS`] of the renderer's current view (each until
+/// [`Renderer::settle`]d: the lighting and combine passes rerun with the component selected,
+/// once per still-view sample, everything else is reused) and leaves the renderer showing
+/// the full frame again.
 pub fn render_components(renderer: &mut Renderer) -> Result<Vec<ComponentImage>, EngineError> {
     let mut out = Vec::with_capacity(COMPONENTS.len());
     for c in COMPONENTS {
         renderer.set_component(Some(c));
-        let f = renderer.advance_frame().and_then(|_| renderer.read_frame());
+        let f = renderer.settle().and_then(|_| renderer.read_frame());
         renderer.set_component(None);
         out.push(ComponentImage { component: c, image: f?.0 });
     }

@@ -37,9 +37,9 @@ pub struct FrameUniform {
 const _: () = assert!(std::mem::size_of::<FrameUniform>() == 240);
 
 impl FrameUniform {
-    /// The camera part; lights, flags and shadow data are filled by the renderer.
-    pub fn new(camera: &scene::Camera, width: u32, height: u32) -> Self {
-        let vp: Mat4 = camera.view_projection();
+    /// The camera part (`vp` its view-projection, jittered or not); lights, flags and shadow
+    /// data are filled by the renderer.
+    pub fn new(camera: &scene::Camera, vp: Mat4, width: u32, height: u32) -> Self {
         Self {
             view_proj: vp.to_cols_array_2d(),
             inv_view_proj: vp.inverse().to_cols_array_2d(),

@@ -70,6 +70,9 @@ pub struct FrameStats {
     /// Bytes uploaded and read back and CPU waits on the GPU during the frame.
     pub transfers: TransferCounts,
     pub needs: scene::SceneNeeds,
+    /// The still view's sample the frame rendered (`Settings::still_samples`; 0: a first
+    /// frame, its pixels' centres).
+    pub still_sample: u32,
 }
 
 /// One rendered frame with its images ([`Renderer::render_frame`]).
@@ -91,6 +94,8 @@ pub struct Frame {
     /// the read-back of its images.
     pub transfers: TransferCounts,
     pub needs: scene::SceneNeeds,
+    /// The still view's sample the frame rendered ([`FrameStats::still_sample`]).
+    pub still_sample: u32,
 }
 
 impl Frame {
@@ -128,7 +133,31 @@ pub struct Renderer {
     indirect: crate::Indirect,
     /// Per-pass GPU times for the frame report (made once).
     timer: TimestampTimer,
+    still: Still,
 }
+
+/// What the samples of a still view share: a change of any restarts its average.
+#[derive(Clone, Copy, PartialEq)]
+struct StillKey {
+    camera: scene::Camera,
+    sun: Option<scene::Sun>,
+    view: View,
+    effects: Effects,
+    indirect: crate::Indirect,
+}
+
+/// The still view's anti-aliasing ([`crate::passes::accumulate`]) across frames.
+struct Still {
+    /// The last frame's key and sample.
+    key: Option<StillKey>,
+    sample: u32,
+    /// The last frame ran an amortised pass (a sky volume layer, radiance caches): what the
+    /// view shows was still changing, so the next frame starts the average again.
+    restart: bool,
+}
+
+/// Passes that fill their result over several frames.
+const AMORTISED: [&str; 2] = [pass::SKY_VOLUME, pass::RADIANCE_CACHE];
 
 impl Renderer {
     /// Opens the GPU, uploads `scene` and builds every pass for `settings`.
@@ -179,6 +208,7 @@ impl Renderer {
             effects: Effects::default(),
             indirect,
             timer,
+            still: Still { key: None, sample: 0, restart: true },
         })
     }
 
@@ -279,6 +309,44 @@ impl Renderer {
         self.scheduler.progress(self.sky_volume).is_some_and(|p| p.complete())
     }
 
+    /// Whether the last frame is what further frames of an unchanged view would show: no
+    /// amortised pass (sky volume, radiance cache) ran in it, and the still view's average
+    /// holds all `Settings::still_samples` samples.
+    pub fn settled(&self) -> bool {
+        let n = self.state.settings.still_samples;
+        self.still.key.is_some() && !self.still.restart && self.still.sample + 1 >= n
+    }
+
+    /// Most frames [`Self::settle`] renders: a sky volume fill, the radiance cache's frames,
+    /// the still samples, and two frames for the passes' first runs.
+    pub fn frames_to_settle(&self) -> u32 {
+        let set = &self.state.settings;
+        self.sky_volume_frames() + set.cache_frames + set.still_samples + 2
+    }
+
+    /// Renders frames until [`Self::settled`] (at most [`Self::frames_to_settle`]) and returns
+    /// the last one's stats: the converged image of the current view, ready to read back.
+    pub fn settle(&mut self) -> Result<FrameStats, EngineError> {
+        let mut stats = self.advance_frame()?;
+        for _ in 1..self.frames_to_settle() {
+            if self.settled() {
+                break;
+            }
+            stats = self.advance_frame()?;
+        }
+        Ok(stats)
+    }
+
+    /// The still view's sample of the next frame: the next one after the last frame's when
+    /// nothing changed, up to the last; else 0.
+    fn next_still_sample(&self, key: &StillKey) -> u32 {
+        let n = self.state.settings.still_samples;
+        match self.still.key {
+            Some(k) if k == *key && !self.still.restart => (self.still.sample + 1).min(n - 1),
+            _ => 0,
+        }
+    }
+
     /// Frames the sky volume needs for one complete fill.
     pub fn sky_volume_frames(&self) -> u32 {
         let layers = self.state.sky.as_ref().map_or(0, |s| s.layers());
@@ -309,6 +377,7 @@ impl Renderer {
             ray_traced: stats.ray_traced,
             transfers: stats.transfers,
             needs: stats.needs,
+            still_sample: stats.still_sample,
         })
     }
 
@@ -323,6 +392,14 @@ impl Renderer {
         let dt = self
             .fixed_dt
             .unwrap_or_else(|| self.last_frame.map_or(0.0, |l| t0.duration_since(l).as_secs_f32()));
+        let key = StillKey {
+            camera: self.camera,
+            sun: self.scene.sun,
+            view: self.view,
+            effects: self.effects,
+            indirect: self.indirect,
+        };
+        let still_sample = self.next_still_sample(&key);
         let ctx = FrameCtx {
             state: Arc::clone(&self.state),
             camera: self.camera,
@@ -334,6 +411,7 @@ impl Renderer {
             reset_exposure: self.last_frame.is_none(),
             effects: self.effects,
             indirect: self.indirect,
+            still_sample,
         };
         let report =
             self.scheduler.run_frame_timed(&ctx, &mut self.timer).map_err(|e| match e {
@@ -342,13 +420,17 @@ impl Renderer {
                 }
             })?;
         self.last_frame = Some(Instant::now());
-        let ray_traced = report.pass(pass::RAY_TRACING).is_some_and(|p| p.outcome.executed());
+        let ran = |name: &str| report.pass(name).is_some_and(|p| p.outcome.executed());
+        let restart = AMORTISED.iter().any(|name| ran(name));
+        self.still = Still { key: Some(key), sample: still_sample, restart };
+        let ray_traced = ran(pass::RAY_TRACING);
         Ok(FrameStats {
             report,
             wall_ms: t0.elapsed().as_secs_f64() * 1e3,
             ray_traced,
             transfers: self.state.gpu.transfers.take(),
             needs,
+            still_sample,
         })
     }
 
@@ -368,6 +450,7 @@ impl Renderer {
         let texture = match *shown {
             Shown::Combined => &t.combined_texture,
             Shown::Lit => &t.lit_texture,
+            Shown::Accumulated => &t.accumulated_texture,
         };
         let halves: Vec<half::f16> = bytemuck::pod_collect_to_vec(&s.gpu.read_texture(texture, 8)?);
         let pixels =

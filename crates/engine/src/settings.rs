@@ -269,6 +269,14 @@ pub struct Settings {
     /// The sun mirrored by the scene's large planar reflectors (glass walls, mirrors) onto
     /// the surfaces in front of them ([`crate::mirrored_sun`]), in the full frame.
     pub mirrored_sun: bool,
+    /// Anti-aliasing of a still view ([`crate::passes::accumulate`]): while the camera, the
+    /// sun, the view shown and the switches stay the same and no amortised pass is still
+    /// filling, each frame's G-buffer is offset by a sub-pixel jitter and the lit frame is
+    /// averaged with the ones before it, up to this many frames; then the frame is reused
+    /// as it is until something changes. 1: off (every frame shades its pixels' centres). A
+    /// moving camera restarts it every frame, so it costs a moving frame one full-screen
+    /// copy and buys it nothing.
+    pub still_samples: u32,
     /// Reinhard key (middle grey) and eye adaptation rate per second (thesis 3.7).
     pub key: f32,
     pub adaptation_per_s: f32,
@@ -333,6 +341,7 @@ impl Settings {
             // The city's ledger (320x180, 16 spp): the east facade across from the glass
             // tower 0.14 -> 1.01 of the reference, the whole frame 0.449 -> 0.429.
             mirrored_sun: true,
+            still_samples: 16,
             key: 0.18,
             adaptation_per_s: 1.5,
         }
@@ -367,6 +376,7 @@ impl Settings {
             },
             cache_frames: 4,
             ssao_samples: 0,
+            still_samples: 4,
             ..self
         }
     }
@@ -400,6 +410,7 @@ impl Settings {
             radiance_cache: radiance_cache::Settings::HIGH,
             cache_frames: 16,
             ssao_samples: 16,
+            still_samples: 32,
             trace_depth: 2,
             osm: shadows::OsmSettings::high(),
             ..self
@@ -425,6 +436,9 @@ impl Settings {
         }
         if self.sky_samples == 0 || self.sky_layers_per_frame == 0 {
             return bad("sky volume needs samples and at least one layer per frame".into());
+        }
+        if !(1..=256).contains(&self.still_samples) {
+            return bad(format!("{} still-view samples (1..256)", self.still_samples));
         }
         if self.lpv_glossy > 16 {
             return bad(format!("{} glossy LPV steps (0..16)", self.lpv_glossy));

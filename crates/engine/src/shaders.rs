@@ -10,6 +10,7 @@ const SKY_VPLS: &str = include_str!("../../../shaders/engine/sky_vpls.wgsl");
 const SHADING: &str = include_str!("../../../shaders/engine/shading.inc.wgsl");
 const TRACED: &str = include_str!("../../../shaders/engine/traced.wgsl");
 const TONEMAP: &str = include_str!("../../../shaders/engine/tonemap.wgsl");
+const ACCUMULATE: &str = include_str!("../../../shaders/engine/accumulate.wgsl");
 const MIRRORED_SUN: &str = include_str!("../../../shaders/engine/mirrored_sun.inc.wgsl");
 
 /// Every complete shader as `(name, source)`, for the pipelines and the naga test.
@@ -23,6 +24,7 @@ pub fn all() -> Vec<(&'static str, String)> {
         ("combine", combine()),
         ("traced", traced()),
         ("tonemap", tonemap()),
+        ("accumulate", accumulate()),
     ]
 }
 
@@ -58,6 +60,10 @@ pub fn raycast() -> String {
 
 pub fn combine() -> String {
     format!("{COMMON}\n{COMBINE}")
+}
+
+pub fn accumulate() -> String {
+    format!("{COMMON}\n{ACCUMULATE}")
 }
 
 pub fn tonemap() -> String {

@@ -3,6 +3,7 @@
 
 use crate::gpu::{GBufferTargets, Gpu, SceneBuffers, storage_buffer, uniform_buffer};
 use crate::passes::{
+    accumulate::AccumulatePass,
     combine::CombinePass,
     display::DisplayPass,
     gbuffer::GBufferPass,
@@ -36,6 +37,7 @@ pub struct State {
     pub lighting: LightingPass,
     pub raycast: RayCastPass,
     pub combine: CombinePass,
+    pub accumulate: AccumulatePass,
     pub display: DisplayPass,
     /// The atmosphere and where the sky volume goes; `None` when the scene shows no sky.
     pub sky: Option<SkySetup>,
@@ -74,6 +76,32 @@ pub struct FrameCtx {
     pub effects: crate::effects::Effects,
     /// The one-bounce technique of this frame.
     pub indirect: crate::settings::Indirect,
+    /// The still view's sample this frame renders (`crate::passes::accumulate`; 0: a first
+    /// frame, unjittered).
+    pub still_sample: u32,
+}
+
+impl FrameCtx {
+    /// The share of a pixel's area this frame's sample stands for: 1 for a first sample (it
+    /// is shown alone), `1 / n` for the jittered samples of a still view averaging `n`
+    /// (`crate::passes::accumulate`), whose mean covers the rest of the pixel.
+    pub fn footprint(&self) -> f32 {
+        match self.still_sample {
+            0 => 1.0,
+            _ => 1.0 / self.state.settings.still_samples as f32,
+        }
+    }
+
+    /// The camera's view-projection moved by this frame's sub-pixel jitter: what the
+    /// G-buffer is rasterised with and every pass that projects into the view uses.
+    pub fn view_projection(&self) -> glam::Mat4 {
+        let j = crate::passes::accumulate::jitter(self.still_sample);
+        let set = &self.state.settings;
+        // Clip-space x + 2 j.x / W w: the image moves by j pixels (y up in clip space).
+        let ndc =
+            glam::Vec3::new(2.0 * j.x / set.width as f32, -2.0 * j.y / set.height as f32, 0.0);
+        glam::Mat4::from_translation(ndc) * self.camera.view_projection()
+    }
 }
 
 impl State {
@@ -102,6 +130,7 @@ impl State {
             lighting: LightingPass::new(device, &targets)?,
             raycast: RayCastPass::new(device, &targets)?,
             combine: CombinePass::new(device, &targets)?,
+            accumulate: AccumulatePass::new(device, &targets)?,
             display: DisplayPass::new(device, &targets)?,
             trace: TraceScene::new(scene)?,
             frame,

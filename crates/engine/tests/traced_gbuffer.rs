@@ -50,6 +50,8 @@ fn reflections_with(
     let settings = Settings {
         traced_shading: shading,
         mirrored_sun,
+        // One sample: the second frame reuses the first (no jittered still samples).
+        still_samples: 1,
         ..Settings::preset(Preset::Default, W, H)
     };
     let mut r = common::renderer(scene(awning), settings)?;

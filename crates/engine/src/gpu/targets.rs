@@ -1,5 +1,6 @@
 //! The render targets of one view size: the G-buffer (thesis Table 3.1, formats for wgpu),
-//! the depth buffer, the lit HDR image and the combined HDR image.
+//! the depth buffer, the lit HDR image, the combined HDR image and the still view's
+//! accumulated HDR image.
 
 /// HDR accumulation format (thesis 3.7).
 pub const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
@@ -28,6 +29,9 @@ pub struct GBufferTargets {
     pub lit: wgpu::TextureView,
     pub combined_texture: wgpu::Texture,
     pub combined: wgpu::TextureView,
+    /// The mean of a still view's jittered frames (`crate::passes::accumulate`).
+    pub accumulated_texture: wgpu::Texture,
+    pub accumulated: wgpu::TextureView,
 }
 
 fn target(
@@ -48,6 +52,7 @@ impl GBufferTargets {
             |label, f| target(device, label, width, height, f).create_view(&Default::default());
         let combined_texture = target(device, "combined", width, height, HDR_FORMAT);
         let lit_texture = target(device, "lit", width, height, HDR_FORMAT);
+        let accumulated_texture = target(device, "accumulated", width, height, HDR_FORMAT);
         Self {
             width,
             height,
@@ -68,6 +73,8 @@ impl GBufferTargets {
             lit_texture,
             combined: combined_texture.create_view(&Default::default()),
             combined_texture,
+            accumulated: accumulated_texture.create_view(&Default::default()),
+            accumulated_texture,
         }
     }
 

@@ -4,8 +4,8 @@
 
 use crate::EngineError;
 pub(crate) use gpu_harness::{
-    bind_entries, dispatch, draw_fullscreen, empty_storage, init_buffer, storage_buffer,
-    texture_2d, uniform_buffer,
+    bind_entries, color_pass, dispatch, draw_fullscreen, empty_storage, init_buffer,
+    storage_buffer, texture_2d, uniform_buffer,
 };
 
 fn shader_error(label: &str, e: gpu_harness::GpuError) -> EngineError {
@@ -48,14 +48,24 @@ pub(crate) fn fullscreen_pipeline(
     source: &str,
     fs_entry: &str,
 ) -> Result<wgpu::RenderPipeline, EngineError> {
+    blended_fullscreen_pipeline(device, label, source, fs_entry, None)
+}
+
+/// The same, its output blended into the target with `blend`.
+pub(crate) fn blended_fullscreen_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    source: &str,
+    fs_entry: &str,
+    blend: Option<wgpu::BlendState>,
+) -> Result<wgpu::RenderPipeline, EngineError> {
+    let target = wgpu::ColorTargetState {
+        format: super::HDR_FORMAT,
+        blend,
+        write_mask: wgpu::ColorWrites::ALL,
+    };
     gpu_harness::validated(device, || {
-        gpu_harness::fullscreen_pipeline(
-            device,
-            label,
-            source,
-            ("vs_fullscreen", fs_entry),
-            super::HDR_FORMAT,
-        )
+        gpu_harness::fullscreen_pipeline(device, label, source, ("vs_fullscreen", fs_entry), target)
     })
     .map_err(|e| shader_error(label, e))
 }

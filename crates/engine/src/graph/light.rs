@@ -84,7 +84,8 @@ pub(super) fn shadow_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
 
 /// The G-buffer of the camera.
 pub(super) fn gbuffer_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
-    g.gpu_pass(pass::GBUFFER).writes(r.gbuf).key("camera", camera_key).run(
+    let gbuffer = g.gpu_pass(pass::GBUFFER).writes(r.gbuf).key("camera", camera_key);
+    gbuffer.key("still-view sample (sub-pixel jitter)", |c: &FrameCtx| c.still_sample).run(
         move |io| -> PassResult {
             let c = io.ctx();
             let s = &c.state;
@@ -193,7 +194,7 @@ pub(super) fn indirect_source<'a>(
         Indirect::Rsm => io
             .try_read(r.sun_rsm)
             .filter(|g| g.ready)
-            .map(|g| IndirectSource::Rsm(g, c.camera.view_projection())),
+            .map(|g| IndirectSource::Rsm(g, c.view_projection())),
         Indirect::Cache => io.try_read(r.cache).filter(|k| k.ready()).map(IndirectSource::Cache),
         Indirect::None => None,
     };
@@ -248,29 +249,61 @@ pub(super) fn lighting_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
         });
 }
 
+/// The frame's HDR image before anti-aliasing: the combined view when traced rays were
+/// combined with it, else the lit view.
+fn frame_image(io: &PassIo<'_, FrameCtx>, r: Resources) -> Shown {
+    let combined = io.try_read(r.combined).is_some() && io.ctx().needs.ray_tracing();
+    if combined { Shown::Combined } else { Shown::Lit }
+}
+
+/// The still view's anti-aliasing: the frame's image averaged with the still view's earlier
+/// samples (`crate::passes::accumulate`).
+pub(super) fn accumulate_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
+    g.gpu_pass(pass::ACCUMULATE)
+        .reads(r.lit)
+        .reads(r.combined)
+        .writes(r.accumulated)
+        .run_if("still views are anti-aliased (more than one still sample)", |c: &FrameCtx| {
+            c.state.settings.still_samples > 1
+        })
+        .cached()
+        .key("still-view sample", |c: &FrameCtx| c.still_sample)
+        .run(move |io| -> PassResult {
+            let c = io.ctx();
+            let s = &c.state;
+            let mut enc = s.gpu.device.create_command_encoder(&Default::default());
+            s.accumulate.record(&mut enc, &s.targets, frame_image(io, r), c.still_sample);
+            s.gpu.queue.submit([enc.finish()]);
+            s.gpu.take_error()?;
+            io.put(r.accumulated, super::Accumulated(c.still_sample + 1))?;
+            Ok(())
+        });
+}
+
 /// Tone mapping and eye adaptation, every frame.
 pub(super) fn tone_mapping_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
     // Every frame: eye adaptation moves on even when the view is unchanged.
-    g.gpu_pass(pass::TONE_MAPPING).reads(r.lit).reads(r.combined).writes(r.shown).run(
-        move |io| -> PassResult {
-            let c = io.ctx();
-            let s = &c.state;
-            let combined = io.try_read(r.combined).is_some() && c.needs.ray_tracing();
-            let which = if combined { Shown::Combined } else { Shown::Lit };
-            let set = &s.settings;
-            let mut enc = s.gpu.device.create_command_encoder(&Default::default());
-            let exposure = Exposure {
-                dt: c.dt,
-                rate: set.adaptation_per_s,
-                key: set.key,
-                reset: c.reset_exposure,
-                raw: crate::views::View::of_code(c.component).is_some_and(|v| v.is_raw()),
-            };
-            s.display.record(&s.gpu, &mut enc, which, exposure);
-            s.gpu.queue.submit([enc.finish()]);
-            s.gpu.take_error()?;
-            io.put(r.shown, which)?;
-            Ok(())
-        },
-    );
+    let reads = g.gpu_pass(pass::TONE_MAPPING).reads(r.lit).reads(r.combined);
+    reads.reads(r.accumulated).writes(r.shown).run(move |io| -> PassResult {
+        let c = io.ctx();
+        let s = &c.state;
+        let which = match io.try_read(r.accumulated) {
+            Some(_) => Shown::Accumulated,
+            None => frame_image(io, r),
+        };
+        let set = &s.settings;
+        let mut enc = s.gpu.device.create_command_encoder(&Default::default());
+        let exposure = Exposure {
+            dt: c.dt,
+            rate: set.adaptation_per_s,
+            key: set.key,
+            reset: c.reset_exposure,
+            raw: crate::views::View::of_code(c.component).is_some_and(|v| v.is_raw()),
+        };
+        s.display.record(&s.gpu, &mut enc, which, exposure);
+        s.gpu.queue.submit([enc.finish()]);
+        s.gpu.take_error()?;
+        io.put(r.shown, which)?;
+        Ok(())
+    });
 }

@@ -34,8 +34,8 @@ mod light;
 mod traced;
 
 use light::{
-    bounce_passes, cache_pass, gbuffer_pass, lighting_pass, shadow_passes, sky_passes,
-    tone_mapping_pass,
+    accumulate_pass, bounce_passes, cache_pass, gbuffer_pass, lighting_pass, shadow_passes,
+    sky_passes, tone_mapping_pass,
 };
 use traced::{combine_pass, trace_passes, traced_gbuffer_passes};
 
@@ -56,6 +56,9 @@ pub struct CubeShadows;
 /// The lit (combined) HDR target holds the view of this lighting component code.
 pub struct LitView(pub u32);
 pub struct CombinedView(pub u32);
+
+/// The accumulated HDR target holds the mean of this many still-view samples.
+pub struct Accumulated(pub u32);
 
 /// Handles to the graph's resources the renderer reads.
 pub struct Outputs {
@@ -81,6 +84,7 @@ pub mod pass {
     pub const OSM: &str = "overlapped shadow maps";
     pub const TRACED_LIGHTING: &str = "traced g-buffer lighting";
     pub const COMBINE: &str = "traced upload + combine";
+    pub const ACCUMULATE: &str = "still-view accumulation";
     pub const TONE_MAPPING: &str = "tone mapping";
 }
 
@@ -107,7 +111,7 @@ struct Bound {
 fn write_frame_uniform(c: &FrameCtx, bound: Bound) {
     let s = &c.state;
     let set = &s.settings;
-    let mut u = FrameUniform::new(&c.camera, set.width, set.height);
+    let mut u = FrameUniform::new(&c.camera, c.view_projection(), set.width, set.height);
     if let Some(sun) = c.sun.filter(|_| c.needs.sun_lighting.needed) {
         u.sun_dir = sun.dir.extend(1.0).to_array();
         u.sun_irradiance = sun.irradiance.extend(sun.angular_radius).to_array();
@@ -145,7 +149,7 @@ fn write_frame_uniform(c: &FrameCtx, bound: Bound) {
     }
     u.size = [set.width, set.height, s.scene_lights(), flags];
     let ao = if c.effects.is_on(Effect::AmbientOcclusion) { set.ssao_samples } else { 0 };
-    u.params = [set.ssao_radius, ao as f32, bound.sky_map_size as f32, c.frame as f32];
+    u.params = [set.ssao_radius, ao as f32, bound.sky_map_size as f32, c.footprint()];
     u.csm[3] = c.component;
     s.gpu.write(&s.frame, 0, bytemuck::bytes_of(&u));
 }
@@ -193,6 +197,7 @@ struct Resources {
     traced_lit: Res<TracedLightingPass>,
     lit: Res<LitView>,
     combined: Res<CombinedView>,
+    accumulated: Res<Accumulated>,
     shown: Res<Shown>,
 }
 
@@ -213,6 +218,7 @@ impl Resources {
             traced_lit: g.resource("traced g-buffer, lit"),
             lit: g.resource("lit view"),
             combined: g.resource("combined view"),
+            accumulated: g.resource("accumulated still view"),
             shown: g.resource("display image"),
         }
     }
@@ -260,6 +266,7 @@ pub fn build(set: &crate::Settings, sky_layers: u32) -> (FrameGraph<FrameCtx>, O
     traced_gbuffer_passes(&mut g, r);
     lighting_pass(&mut g, r);
     combine_pass(&mut g, r);
+    accumulate_pass(&mut g, r);
     tone_mapping_pass(&mut g, r);
     (g, Outputs { shown: r.shown, sky_volume, cache: r.cache })
 }

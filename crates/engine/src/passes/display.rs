@@ -46,6 +46,19 @@ pub enum Shown {
     Lit,
     /// The lit view combined with the traced radiance.
     Combined,
+    /// The still view's accumulated frames ([`super::accumulate`]).
+    Accumulated,
+}
+
+impl Shown {
+    /// Index of the source in the per-source bind groups.
+    fn index(self) -> usize {
+        match self {
+            Shown::Lit => 0,
+            Shown::Combined => 1,
+            Shown::Accumulated => 2,
+        }
+    }
 }
 
 pub struct DisplayPass {
@@ -53,8 +66,8 @@ pub struct DisplayPass {
     adapt: wgpu::ComputePipeline,
     map: wgpu::ComputePipeline,
     params: wgpu::Buffer,
-    /// Bind groups of reduce, adapt, map: per source (lit, combined) where it matters.
-    groups: [[wgpu::BindGroup; 2]; 3],
+    /// Bind groups of reduce, adapt, map: per source ([`Shown::index`]) where it matters.
+    groups: [[wgpu::BindGroup; 3]; 3],
     pub ldr_texture: wgpu::Texture,
     size: (u32, u32),
 }
@@ -118,8 +131,9 @@ impl DisplayPass {
             let layout = pipeline.get_bind_group_layout(0);
             gpu_harness::bind_entries(device, "tone mapping", &layout, &chosen)
         };
-        let groups =
-            [&reduce, &adapt, &map].map(|p| [group(p, &targets.lit), group(p, &targets.combined)]);
+        let groups = [&reduce, &adapt, &map].map(|p| {
+            [&targets.lit, &targets.combined, &targets.accumulated].map(|hdr| group(p, hdr))
+        });
         Ok(Self {
             reduce,
             adapt,
@@ -145,7 +159,7 @@ impl DisplayPass {
             _pad: 0,
         };
         gpu.write(&self.params, 0, bytemuck::bytes_of(&p));
-        let source = usize::from(shown == Shown::Combined);
+        let source = shown.index();
         let steps = [
             (&self.reduce, [REDUCE_GROUPS, 1, 1]),
             (&self.adapt, [1, 1, 1]),

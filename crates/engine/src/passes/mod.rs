@@ -1,6 +1,7 @@
 //! One file per pass; each pass is a struct of its pipelines and a plain function that
 //! records or runs it.
 
+pub mod accumulate;
 pub mod combine;
 pub mod display;
 pub mod gbuffer;
