@@ -201,13 +201,14 @@ fn render(r: &mut Renderer) -> Frame {
     r.render_frame().expect("the engine renders a frame")
 }
 
-/// Renders until the sky volume is complete (`sky_volume_frames() + 1` frames, more if it is
-/// still filling, at most twice that); returns the last frame and the frames rendered.
+/// Renders until the view has settled (`Renderer::settled`: the sky volume complete, the
+/// still view's samples averaged; at most `frames_to_settle()` frames); returns the last
+/// frame and the frames rendered.
 fn warm_up(r: &mut Renderer) -> (Frame, u32) {
-    let planned = r.sky_volume_frames() + 1;
+    let limit = r.frames_to_settle();
     let mut frame = render(r);
     let mut n = 1;
-    while n < planned || (!r.sky_volume_complete() && n < 2 * planned) {
+    while !r.settled() && n < limit {
         frame = render(r);
         n += 1;
     }
@@ -344,13 +345,17 @@ fn preset_entry(sweep: &mut Sweep, view: &View, preset: Preset, timed: usize) {
 /// times the size on each side and box-filtered down (`engine::HdrFrame::box_downsample`),
 /// against the same reference: what the engine's one sample per pixel costs against the
 /// reference's integral over each pixel's area (aliasing of sub-pixel mullions, highlights
-/// and lamp heads). Time = mean ms of `timed` frames at the larger size, camera nudged.
+/// and lamp heads). One point per pixel of the larger image (`still_samples` 1: no
+/// still-view anti-aliasing on top). Time = mean ms of `timed` frames at the larger size,
+/// camera nudged.
 fn supersampled_entries(sweep: &mut Sweep, view: &View, timed: usize) {
     let (w, h) = (view.width, view.height);
     for k in [2, 4] {
         let tag = format!("{}_{w}x{h}_default_{k}x", view.name);
         sweep.stage(&format!("supersampled {tag}"));
-        let mut r = renderer(&view.scene, Settings::preset(Preset::Default, w * k, h * k));
+        let settings =
+            Settings { still_samples: 1, ..Settings::preset(Preset::Default, w * k, h * k) };
+        let mut r = renderer(&view.scene, settings);
         r.set_camera(view.camera).expect("camera");
         let (frame, _) = warm_up(&mut r);
         let e = view.errors(&app::image_of(&frame.hdr.box_downsample(k)));
@@ -365,6 +370,7 @@ fn supersampled_entries(sweep: &mut Sweep, view: &View, timed: usize) {
                 .setting("scene", view.name)
                 .setting("preset", Preset::Default)
                 .setting("supersample", k)
+                .setting("still_samples", 1)
                 .setting("rendered_size", format!("{}x{}", w * k, h * k))
                 .setting("luminance_ratio", e.luminance_ratio)
                 .setting("rel_rms_clamped", e.rel_rms_clamped)

@@ -42,6 +42,9 @@ pub struct RenderJob {
     /// rendered at `supersample` times the size and box-filtered down before it is compared
     /// with the reference, which integrates every pixel's area (the ledger's aliasing share).
     pub supersample: u32,
+    /// Still-view anti-aliasing samples (`engine::Settings::still_samples`; `None`: the
+    /// preset's).
+    pub still_samples: Option<u32>,
     pub seed: u64,
     pub progress: bool,
 }
@@ -67,6 +70,7 @@ impl Default for RenderJob {
             reference_spp: None,
             components: false,
             supersample: 1,
+            still_samples: None,
             seed: 1,
             progress: true,
         }
@@ -203,14 +207,16 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
     let scene = load_scene(job)?;
     let name = scene.name.clone();
     let ss = job.supersample.clamp(1, MAX_SUPERSAMPLE);
+    let preset = Settings::preset(job.preset, job.width * ss, job.height * ss);
     let settings = Settings {
+        still_samples: job.still_samples.unwrap_or(preset.still_samples),
         indirect: job.indirect,
         sun_glints: job.sun_glints,
         mirrored_sun: job.mirrored_sun,
         sky_bounce: job.sky_bounce,
         lpv_glossy: job.lpv_glossy,
         traced_shading: job.traced_shading,
-        ..Settings::preset(job.preset, job.width * ss, job.height * ss)
+        ..preset
     };
     let mut renderer = Renderer::new(scene, settings)?;
     std::fs::create_dir_all(&job.out).map_err(|e| crate::io_err(&job.out, e))?;
@@ -234,11 +240,14 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
     traced += usize::from(frame.ray_traced);
     frame_ms.push(frame.wall_ms);
     transfers.push(frame.transfers);
-    frame.write_exr(job.out.join("frame.exr"))?;
-    frame.write_png(job.out.join("frame.png"))?;
+    // The images: that view once it has settled (its still samples averaged).
+    let settle = renderer.settle()?;
+    let still = renderer.render_frame()?;
+    still.write_exr(job.out.join("frame.exr"))?;
+    still.write_png(job.out.join("frame.png"))?;
     let errors = match job.reference_spp {
         Some(spp) => {
-            let hdr = frame.hdr.box_downsample(ss);
+            let hdr = still.hdr.box_downsample(ss);
             let (r, out, progress) = (&renderer, &job.out, job.progress);
             Some(crate::compare::against_reference(r, &hdr, spp, out, progress)?)
         }
@@ -264,6 +273,12 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
         })
         .collect();
     notes.push(format!("sky volume complete: {}", renderer.sky_volume_complete()));
+    notes.push(format!(
+        "the images (and the comparison with a reference) are of that view once settled: \
+         still-view sample {} of {} (sub-pixel jitter averaged; `engine::Settings::still_samples`)",
+        settle.still_sample + 1,
+        renderer.settings().still_samples
+    ));
     notes.push(format!("one-bounce technique: {}", job.indirect));
     if ss > 1 {
         notes.push(format!(

@@ -90,8 +90,9 @@ pub fn reference_component(
 }
 
 /// The engine's image of one component (`None`: the full frame) of `scene` from `camera`,
-/// once the sky volume is complete (filled 64 layers a frame, whatever
-/// `settings.sky_layers_per_frame` says), rendered at `supersample` times the settings' size
+/// once the view has settled (`Renderer::settle`: the sky volume complete, filled 64 layers
+/// a frame whatever `settings.sky_layers_per_frame` says, and the still view's samples
+/// averaged), rendered at `supersample` times the settings' size
 /// on each side and box-filtered down to it (1: as is): what the ledger's examples put
 /// beside a reference.
 pub fn engine_component(
@@ -111,11 +112,8 @@ pub fn engine_component(
     let mut r = Renderer::new(scene.clone(), settings)?;
     r.set_camera(*camera)?;
     r.set_component(component);
-    let mut frame = r.render_frame()?;
-    while !r.sky_volume_complete() {
-        frame = r.render_frame()?;
-    }
-    Ok(crate::image_of(&frame.hdr.box_downsample(k)))
+    r.settle()?;
+    Ok(crate::image_of(&r.read_frame()?.0.box_downsample(k)))
 }
 
 fn luminance(p: glam::Vec3) -> f32 {

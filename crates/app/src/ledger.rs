@@ -16,26 +16,31 @@
 //! `rel_rms` is `abs_rms / lit mean`, with the lit mean the component's mean reference
 //! luminance over the whole image (`normaliser`; 1 when the whole component is black).
 //!
-//! **Aliasing.** The engine shades one point per pixel (its centre); the reference integrates
-//! each pixel's area. Where geometry or highlights are narrower than a pixel (the glass
-//! tower's 10 cm mullions, the statue's highlights, a lamp's head) the two disagree even
-//! when every light term is exact. `--supersample N` ([`run_ledger`]'s `supersample`)
-//! renders the engine at N times the size and box-filters it down first, which separates
-//! that share. City, default preset, 320x180 (2 cores, lavapipe):
+//! **Aliasing.** One point per pixel (its centre) against the reference's integral over each
+//! pixel's area: where geometry or highlights are narrower than a pixel (the glass tower's
+//! 10 cm mullions, the statue's highlights, a lamp's head) the two disagree even when every
+//! light term is exact. `--supersample N` ([`run_ledger`]'s `supersample`) renders the
+//! engine at N times the size and box-filters it down first, which separates that share.
+//! The presets now average jittered samples of a still view (`engine::Settings::
+//! still_samples`, 16 in the default preset; the ledger's images are of the settled view),
+//! which buys most of it. City, default preset, 320x180, rel RMS (2 cores, lavapipe):
 //!
-//! | component | 1x1, 16 spp | 4x4, 16 spp | 4x4, 64 spp |
-//! |---|---|---|---|
-//! | sun_direct | 0.478 | 0.138 | 0.069 |
-//! | sky_irradiance | 0.364 | 0.344 | 0.213 |
-//! | sun_indirect_diffuse | 0.681 | 0.669 | 0.592 |
-//! | reflections | 0.807 | 0.707 | 0.994 |
-//! | full (unclamped) | 0.449 | 0.262 | 0.703 |
-//! | full, with the mirrored sun (the presets' since) | 0.429 | 0.224 | 0.697 (clamped 0.202) |
+//! | component | 1x1, 16 spp | 16 still samples, 16 spp | 4x4, 16 spp | 4x4, 64 spp |
+//! |---|---|---|---|---|
+//! | sun_direct | 0.478 | 0.200 | 0.138 | 0.069 |
+//! | sky_irradiance | 0.364 | 0.344 | 0.344 | 0.213 |
+//! | sun_indirect_diffuse | 0.681 | 0.673 | 0.669 | 0.592 |
+//! | reflections | 0.807 | 0.781 | 0.707 | 0.994 |
+//! | full (unclamped), no mirrored sun | 0.449 | 0.305 | 0.262 | 0.703 |
+//! | full, with the mirrored sun (the presets') | 0.429 | 0.272 (clamped 0.232) | 0.224 | 0.697 (clamped 0.202) |
 //!
-//! Two thirds of the full frame's squared error at 16 spp is aliasing; the direct sun's PCSS
+//! Two thirds of the full frame's squared error at 16 spp was aliasing; the direct sun's PCSS
 //! meets the area-light truth within 0.069 once it is gone (`plane_box`: 0.051 at 1x1, 0.035
-//! at 4x4). Against 64 spp the reflections and the full frame get worse: the better
-//! reference resolves the statue's sun glints, which the engine does not draw.
+//! at 4x4). Sixteen still samples leave the reflections where they were: the traced rays are
+//! cast from a quarter-resolution buffer (thesis 6.3), two pixels per texel each way, and the
+//! jitter moves them by less than one. Against 64 spp the reflections and the full frame get
+//! worse: the better reference resolves the statue's sun glints, which the engine does not
+//! draw.
 //!
 //! The city's `point_lights` ratio (1.3-2.3 whole-image, rel RMS 1.7-2.4, depending on
 //! where the last frame's 1 cm step puts the lamp's head) is a handful of pixels: the

@@ -61,6 +61,10 @@ struct Args {
     /// with --reference, what anti-aliasing would buy (the timings are of the larger frame).
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=app::cli::MAX_SUPERSAMPLE as i64))]
     supersample: u32,
+    /// Still-view anti-aliasing: frames of jittered samples averaged once the view stands
+    /// still (`engine::Settings::still_samples`; 1: off). Default: the preset's.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=256))]
+    still_samples: Option<u32>,
     /// No progress bars.
     #[arg(long)]
     quiet: bool,
@@ -84,6 +88,7 @@ fn main() -> anyhow::Result<()> {
         reference_spp: a.reference,
         components: a.components,
         supersample: a.supersample,
+        still_samples: a.still_samples,
         progress: !a.quiet,
         ..a.scene.job()
     };
