@@ -16,6 +16,8 @@ pub struct OverlayInfo<'a> {
     /// and the overlay's draw, and the present (which waits for the surface).
     pub overlay_ms: f32,
     pub last: Option<&'a FrameStats>,
+    /// The still-view samples the renderer averages (`engine::Settings::still_samples`).
+    pub still_samples: u32,
     pub message: Option<&'a str>,
     /// The radiance cache's last update, while it is the indirect technique.
     pub cache: Option<engine::CacheSummary>,
@@ -70,6 +72,14 @@ pub fn draw(
             info.overlay_ms
         ));
         frame_graph(ui, info.frame_ms);
+        if let Some(s) = info.last.filter(|_| info.still_samples > 1) {
+            let k = s.still_sample + 1;
+            let n = info.still_samples;
+            ui.label(match k {
+                1 => format!("first sample of the view (it moved or changed; {n} when still)"),
+                _ => format!("still view: {k} of {n} jittered samples averaged"),
+            });
+        }
         if let Some(m) = info.message {
             ui.label(m);
         }

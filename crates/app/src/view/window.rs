@@ -229,6 +229,7 @@ impl Viewer {
             frame_ms: &self.frame_ms,
             overlay_ms: self.overlay_ms,
             last: Some(&stats),
+            still_samples: renderer.settings().still_samples,
             message: self.message.as_deref(),
             cache: renderer.radiance_cache().filter(|_| renderer.indirect() == Indirect::Cache),
         };
