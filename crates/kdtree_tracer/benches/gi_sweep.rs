@@ -12,7 +12,7 @@ use gi_report::{Comparison, Entry, Sweep, interleaved, time_ms};
 use kdtree_tracer::test_util::{self, Camera};
 use kdtree_tracer::{
     BvhAccel, BvhKind, BvhPreset, DEFAULT_TILE, KdTree, Mesh, PACKET, Ray, RayQuery, Settings,
-    map_tiles, trace_tiles,
+    map_tiles, trace_tiles, trace_tiles_into,
 };
 use rayon::prelude::*;
 
@@ -253,15 +253,16 @@ fn main() -> std::io::Result<()> {
             &mirror,
             "whole buffer of mirror-reflection rays (each visible pixel's camera ray reflected \
              about the hit triangle's normal: the thesis's case, 78 ms on 4 cores when \
-             reflections fill the screen; spatially coherent), trace_tiles with 4x4-pixel \
-             packets",
+             reflections fill the screen; spatially coherent), trace_tiles_into (a kept \
+             output buffer) with 4x4-pixel packets",
         ),
         (
             "kdtree_tracer/reflections_800x450_incoherent_2t",
             &screen,
             "whole buffer of incoherent rays (a random hemisphere direction from every visible \
              pixel: a worst case, the entry reflections_800x450_2t measured before it traced \
-             mirror reflections), trace_tiles with 4x4-pixel packets",
+             mirror reflections), trace_tiles_into (a kept output buffer) with 4x4-pixel \
+             packets",
         ),
     ];
     let reps = sweep.reps(10);
@@ -269,8 +270,12 @@ fn main() -> std::io::Result<()> {
         sweep.stage(name);
         let filled = rays.iter().filter(|r| r.is_some()).count();
         let cpu0 = cpu_seconds();
+        // Into a buffer kept from one trace to the next, as a renderer keeps it.
+        let mut hits = vec![None; rays.len()];
         let (ms, _) = pool(2).install(|| {
-            time_ms(reps, || trace_tiles(&kd, w, h, rays, f32::INFINITY, DEFAULT_TILE))
+            time_ms(reps, || {
+                trace_tiles_into(&kd, w, h, rays, f32::INFINITY, DEFAULT_TILE, &mut hits)
+            })
         });
         let cpu_ms =
             cpu_seconds().zip(cpu0).map_or(-1.0, |(b, a)| (b - a) * 1e3 / (reps + 1) as f64);

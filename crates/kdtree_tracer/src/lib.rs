@@ -250,5 +250,5 @@ pub use ray::{Hit, Ray, RayQuery};
 pub use scene::SceneAccel;
 pub use settings::{MAX_DEPTH_LIMIT, Settings};
 pub use surfaces::{SurfaceHit, Surfaces};
-pub use tiles::{DEFAULT_TILE, map_tiles, trace_tiles};
+pub use tiles::{DEFAULT_TILE, map_tiles, trace_tiles, trace_tiles_into};
 pub use tree::{KdTree, MAX_TRIANGLES, TreeStats};

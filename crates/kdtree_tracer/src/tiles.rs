@@ -12,50 +12,22 @@ use crate::ray::{Hit, Ray, RayQuery};
 pub const DEFAULT_TILE: u32 = 40;
 
 /// Evaluates `f(x, y)` for every pixel of a `width x height` image, one rayon task per
-/// `tile x tile` block, and returns the results row by row. The result does not depend on
-/// the number of threads (each pixel is computed independently).
+/// `tile x tile` block (handed out along the Z-order curve), and returns the results row by
+/// row. The result does not depend on the number of threads (each pixel is computed
+/// independently).
 pub fn map_tiles<T, F>(width: u32, height: u32, tile: u32, f: F) -> Vec<T>
 where
     T: Send,
     F: Fn(u32, u32) -> T + Sync,
-{
-    run_tiles(
-        width,
-        height,
-        tile,
-        || (),
-        |_, x0, y0, x1, y1, out| {
-            for y in y0..y1 {
-                for x in x0..x1 {
-                    out.push(f(x, y));
-                }
-            }
-        },
-    )
-}
-
-/// Runs `fill(scratch, x0, y0, x1, y1, out)` once per tile (it pushes the tile's pixels row
-/// by row into `out`; `scratch` comes from `init`, once per rayon job rather than per tile),
-/// tiles handed to rayon along the Z-order curve, and stitches the tiles into one row-major
-/// image.
-fn run_tiles<S, T, I, F>(width: u32, height: u32, tile: u32, init: I, fill: F) -> Vec<T>
-where
-    T: Send,
-    I: Fn() -> S + Sync + Send,
-    F: Fn(&mut S, u32, u32, u32, u32, &mut Vec<T>) + Sync + Send,
 {
     let tile = tile.max(1);
     let (tx, ty) = (width.div_ceil(tile), height.div_ceil(tile));
     let order = z_order(tx, ty);
     let done: Vec<Vec<T>> = order
         .par_iter()
-        .map_init(init, |scratch, &i| {
-            let (x0, y0) = ((i % tx) * tile, (i / tx) * tile);
-            let (x1, y1) = ((x0 + tile).min(width), (y0 + tile).min(height));
-            let mut out = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
-            fill(scratch, x0, y0, x1, y1, &mut out);
-            debug_assert_eq!(out.len(), ((x1 - x0) * (y1 - y0)) as usize);
-            out
+        .map(|&i| {
+            let [x0, y0, x1, y1] = tile_rect(i, width, height, tile);
+            (y0..y1).flat_map(|y| (x0..x1).map(move |x| (x, y))).map(|(x, y)| f(x, y)).collect()
         })
         .collect();
     // Back to row-major tile order, then stitch tiles into rows.
@@ -73,6 +45,14 @@ where
         }
     }
     out
+}
+
+/// Tile `i` (row-major) of a `width x height` image in `tile x tile` blocks (`tile >= 1`) as
+/// `[x0, y0, x1, y1]`, `x1` and `y1` exclusive.
+fn tile_rect(i: u32, width: u32, height: u32, tile: u32) -> [u32; 4] {
+    let tx = width.div_ceil(tile);
+    let (x0, y0) = ((i % tx) * tile, (i / tx) * tile);
+    [x0, y0, (x0 + tile).min(width), (y0 + tile).min(height)]
 }
 
 /// Row-major indices of a `tx x ty` grid of tiles, sorted along the Z-order curve.
@@ -100,7 +80,8 @@ const BLOCK: (u32, u32) = (4, 4);
 /// hit per pixel, row by row. Each tile goes to [`RayQuery::intersect_many`] in blocks of
 /// 4 x 4 neighbouring pixels (the kd-tree traces each block as a packet; every answer is the
 /// one [`RayQuery::intersect`] gives for that ray alone). Errors when
-/// `rays.len() != width * height`.
+/// `rays.len() != width * height`. A renderer tracing a buffer every frame keeps its output
+/// and calls [`trace_tiles_into`].
 pub fn trace_tiles<A: RayQuery + ?Sized>(
     accel: &A,
     width: u32,
@@ -109,43 +90,92 @@ pub fn trace_tiles<A: RayQuery + ?Sized>(
     t_max: f32,
     tile: u32,
 ) -> Result<Vec<Option<Hit>>, Error> {
+    let mut out = vec![None; rays.len()];
+    trace_tiles_into(accel, width, height, rays, t_max, tile, &mut out)?;
+    Ok(out)
+}
+
+/// [`trace_tiles`] into the caller's buffer (`width * height` hits, row by row; every pixel
+/// is written), which a renderer keeps from frame to frame: nothing of the image's size is
+/// allocated (each tile writes its hits into place). Errors when `rays` or `out` does not
+/// hold `width * height` pixels.
+pub fn trace_tiles_into<A: RayQuery + ?Sized>(
+    accel: &A,
+    width: u32,
+    height: u32,
+    rays: &[Option<Ray>],
+    t_max: f32,
+    tile: u32,
+    out: &mut [Option<Hit>],
+) -> Result<(), Error> {
     let expected = width as usize * height as usize;
-    if rays.len() != expected {
-        return Err(Error::BufferSize { len: rays.len(), width, height, expected });
+    for len in [rays.len(), out.len()] {
+        if len != expected {
+            return Err(Error::BufferSize { len, width, height, expected });
+        }
     }
+    let tile = tile.max(1);
+    let image = Pixels(out.as_mut_ptr());
     let init = || (Vec::new(), Vec::new());
-    Ok(run_tiles(width, height, tile, init, |(order, hits), x0, y0, x1, y1, out| {
-        // The tile's rays block by block (partial blocks padded with `None`), then back.
-        order.clear();
-        for by in (y0..y1).step_by(BLOCK.1 as usize) {
-            for bx in (x0..x1).step_by(BLOCK.0 as usize) {
-                for y in by..by + BLOCK.1 {
-                    for x in bx..bx + BLOCK.0 {
-                        let inside = x < x1 && y < y1;
-                        order.push(if inside { rays[(y * width + x) as usize] } else { None });
-                    }
+    z_order(width.div_ceil(tile), height.div_ceil(tile)).par_iter().for_each_init(
+        init,
+        |(order, hits), &i| {
+            let [x0, y0, x1, y1] = tile_rect(i, width, height, tile);
+            // The tile's rays block by block (partial blocks padded with `None`).
+            order.clear();
+            for_blocks(x0, y0, x1, y1, |x, y| {
+                let inside = x < x1 && y < y1;
+                order.push(if inside { rays[(y * width + x) as usize] } else { None });
+            });
+            hits.clear();
+            hits.resize(order.len(), None);
+            accel.intersect_many(order, t_max, hits);
+            let mut k = 0;
+            for_blocks(x0, y0, x1, y1, |x, y| {
+                if x < x1 && y < y1 {
+                    // SAFETY: `(x, y)` is inside the image (`x < x1 <= width`, `y < y1 <=
+                    // height`, so below `out.len()`) and inside this tile; the tiles are
+                    // disjoint, so no other task writes this pixel, and `out` is borrowed
+                    // mutably for the whole call.
+                    unsafe { image.write((y * width + x) as usize, hits[k]) };
+                }
+                k += 1;
+            });
+        },
+    );
+    Ok(())
+}
+
+/// Calls `f(x, y)` for the pixels of the tile `[x0, x1) x [y0, y1)` in [`BLOCK`]s (row by
+/// row within a block), partial blocks at the tile's right and bottom edges padded to whole
+/// ones.
+#[inline(always)]
+fn for_blocks(x0: u32, y0: u32, x1: u32, y1: u32, mut f: impl FnMut(u32, u32)) {
+    for by in (y0..y1).step_by(BLOCK.1 as usize) {
+        for bx in (x0..x1).step_by(BLOCK.0 as usize) {
+            for y in by..by + BLOCK.1 {
+                for x in bx..bx + BLOCK.0 {
+                    f(x, y);
                 }
             }
         }
-        hits.clear();
-        hits.resize(order.len(), None);
-        accel.intersect_many(order, t_max, hits);
-        let w = (x1 - x0) as usize;
-        out.resize(w * (y1 - y0) as usize, None);
-        let mut k = 0;
-        for by in (y0..y1).step_by(BLOCK.1 as usize) {
-            for bx in (x0..x1).step_by(BLOCK.0 as usize) {
-                for y in by..by + BLOCK.1 {
-                    for x in bx..bx + BLOCK.0 {
-                        if x < x1 && y < y1 {
-                            out[(y - y0) as usize * w + (x - x0) as usize] = hits[k];
-                        }
-                        k += 1;
-                    }
-                }
-            }
-        }
-    }))
+    }
+}
+
+/// The output image shared by the tile tasks, each writing only its own pixels.
+struct Pixels(*mut Option<Hit>);
+
+// SAFETY: the tasks write disjoint pixels (see `trace_tiles_into`); `Option<Hit>` is `Send`.
+unsafe impl Sync for Pixels {}
+
+impl Pixels {
+    /// # Safety
+    /// `i` is inside the image and no other thread reads or writes pixel `i` meanwhile.
+    #[inline(always)]
+    unsafe fn write(&self, i: usize, hit: Option<Hit>) {
+        // SAFETY: the caller's contract.
+        unsafe { self.0.add(i).write(hit) }
+    }
 }
 
 #[cfg(test)]

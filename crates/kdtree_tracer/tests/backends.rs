@@ -7,7 +7,7 @@ use glam::{Vec2, Vec3};
 use kdtree_tracer::test_util::{self, Camera, Rng};
 use kdtree_tracer::{
     BruteForce, BvhAccel, BvhKind, BvhPreset, DEFAULT_TILE, KdTree, Mesh, Ray, RayDifferential,
-    RayQuery, SceneAccel, Settings, texture_footprint, trace_tiles,
+    RayQuery, SceneAccel, Settings, texture_footprint, trace_tiles, trace_tiles_into,
 };
 use proptest::prelude::*;
 
@@ -119,6 +119,36 @@ fn tiles_match_per_ray_queries_for_any_thread_count() {
     assert!(trace_tiles(&tree, w, h, &rays[1..], 1.0, 40).is_err());
     let odd = trace_tiles(&tree, w, h, &rays, f32::INFINITY, 7).unwrap();
     assert_eq!(odd, one, "tile size does not change the result");
+}
+
+/// `trace_tiles_into` writes every pixel of the caller's buffer (whatever it held before,
+/// and in a buffer reused for another view), the answers `trace_tiles` gives, and rejects
+/// buffers of the wrong size with a typed error.
+#[test]
+fn tiles_into_a_kept_buffer_overwrite_every_pixel() {
+    let mesh = test_util::city_block(2, 2000);
+    let tree = KdTree::build(&mesh, &Settings::DEFAULT).unwrap();
+    let cam = Camera::over_city(&mesh);
+    let (w, h) = (83, 45);
+    let stale = Some(kdtree_tracer::Hit {
+        t: -1.0,
+        triangle: u32::MAX,
+        mesh: 7,
+        barycentrics: glam::Vec2::splat(0.5),
+    });
+    let mut out = vec![stale; (w * h) as usize];
+    for (seed, tile) in [(5, DEFAULT_TILE), (6, 16), (7, 3)] {
+        let rays = test_util::screen_incoherent_rays(&tree, &mesh, &cam, w, h, seed);
+        trace_tiles_into(&tree, w, h, &rays, f32::INFINITY, tile, &mut out).unwrap();
+        assert_eq!(out, trace_tiles(&tree, w, h, &rays, f32::INFINITY, tile).unwrap());
+        assert!(out.iter().all(|h| *h != stale), "a pixel kept the buffer's old value");
+        assert!(out.iter().filter(|h| h.is_some()).count() > 100);
+    }
+    let rays = test_util::screen_incoherent_rays(&tree, &mesh, &cam, w, h, 5);
+    let short = trace_tiles_into(&tree, w, h, &rays, 1.0, 40, &mut out[1..]);
+    assert!(
+        matches!(short, Err(kdtree_tracer::Error::BufferSize { len, .. }) if len == out.len() - 1)
+    );
 }
 
 #[test]
