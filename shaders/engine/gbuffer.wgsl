@@ -67,9 +67,10 @@ fn gbuffer(v: VOut) -> GBuffer {
     // angular variance of about 1/p; the reflected direction's variance over a box pixel is
     // 4 s2 (s2 = the normal's, |dn/dx|^2 / 12 + |dn/dy|^2 / 12). The widened lobe of power
     // p / (1 + 4 p s2), still normalised, spreads a highlight's energy over the pixels it
-    // covers instead of point-sampling it. A still view's jittered samples each stand for
-    // 1/n of the pixel (the frame's footprint scale, frame.params.w), their average for the
-    // rest: widening every sample by the whole pixel's variance would count it twice.
+    // covers instead of point-sampling it. A still view's jittered samples average to the
+    // pixel's area themselves, so they widen by a small share of the variance (the frame's
+    // footprint scale, frame.params.w; jittered_footprint in crates/engine/src/state.rs has
+    // the figures): widening every sample by the whole pixel's variance would count it twice.
     let shading = normalize(v.normal);
     let dnx = dpdx(shading);
     let dny = dpdy(shading);

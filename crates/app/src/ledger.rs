@@ -36,8 +36,10 @@
 //!
 //! Two thirds of the full frame's squared error at 16 spp was aliasing; the direct sun's PCSS
 //! meets the area-light truth within 0.069 once it is gone (`plane_box`: 0.051 at 1x1, 0.035
-//! at 4x4). Against 64 spp the still samples' direct sun is 0.152 with 16, 0.122 with 32
-//! and 0.057 with 64 (the high preset's): the statue's highlights, a few pixels, converge
+//! at 4x4). Against 64 spp the still samples' direct sun is 0.123 with 16, 0.110 with 32
+//! and 0.044 with 64 (the high preset's; 0.152, 0.122 and 0.057 while every jittered sample
+//! widened its specular lobes by `1/n` of the pixel's normal variance, see
+//! `jittered_footprint` in `crates/engine/src/state.rs`): the statue's highlights, a few pixels, converge
 //! slowly. Sixteen still samples leave the reflections where they were: the traced rays are
 //! cast from a quarter-resolution buffer (thesis 6.3), two pixels per texel each way, and the
 //! jitter moves them by less than one. Against 64 spp the reflections and the full frame get

@@ -410,8 +410,8 @@ impl Settings {
             radiance_cache: radiance_cache::Settings::HIGH,
             cache_frames: 16,
             ssao_samples: 16,
-            // The city's direct sun against a 64-spp reference (320x180): 0.152 with the
-            // default's 16 samples, 0.122 with 32, 0.057 with 64 (the statue's highlights,
+            // The city's direct sun against a 64-spp reference (320x180): 0.123 with the
+            // default's 16 samples, 0.110 with 32, 0.044 with 64 (the statue's highlights,
             // a few pixels, converge slowly; 4x4 supersampling: 0.069).
             still_samples: 64,
             trace_depth: 2,

@@ -33,7 +33,11 @@ fn settled(still_samples: u32, k: u32) -> Option<HdrFrame> {
 /// is far from it: the mullions, trees and the statue's highlights are sub-pixel. Fails with
 /// no jitter (the average of one image), and when every sample keeps the G-buffer's
 /// one-sample specular widening (the highlights' peaks come out less than half as high:
-/// measured 0.92 of the single sample's distance instead of 0.33).
+/// measured 0.92 of the single sample's distance). The supersampled image widens every
+/// sub-pixel's lobes by its whole variance, which the truth does not (`jittered_footprint`
+/// in `src/state.rs`), so the samples do not come nearer than 0.54 of the single sample's
+/// distance (0.33 while they widened by `1/n`); `app/tests/specular_aa.rs` checks them
+/// against the path-traced truth.
 #[test]
 fn still_samples_average_to_the_pixel_area() {
     let Some(single) = settled(1, 1) else { return };
@@ -42,7 +46,7 @@ fn still_samples_average_to_the_pixel_area() {
     let (one, many) = (rel_rms(&single, &supersampled), rel_rms(&accumulated, &supersampled));
     eprintln!("against 4x4 supersampling: one sample {one:.4}, 16 still samples {many:.4}");
     assert!(one > 0.1, "the view has sub-pixel detail to test with ({one})");
-    assert!(many < 0.5 * one, "16 samples {many} against one sample {one}");
+    assert!(many < 0.65 * one, "16 samples {many} against one sample {one}");
 }
 
 /// With the camera moving every frame, each frame is a first sample: the images are bit for
