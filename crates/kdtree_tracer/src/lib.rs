@@ -28,7 +28,8 @@
 //!   Intersection", JCGT 2013): the sheared, permuted edge functions are evaluated identically
 //!   for triangles sharing an edge, so rays through edges and vertices cannot slip between
 //!   them (Moller-Trumbore can); exact zeros are recomputed in f64.
-//! - **Batches**: [`trace_tiles`] over image-shaped ray buffers in 40x40 tiles on rayon,
+//! - **Batches**: [`trace_tiles`] (or [`trace_tiles_into`], into a kept buffer) over
+//!   image-shaped ray buffers in 40x40 tiles on rayon,
 //!   handed out along a Z-order curve (each thread's share is a compact block of the image),
 //!   each tile traced in packets of 4x4 pixels.
 //! - **Mip selection**: [`texture_footprint`] intersects a pixel's ray differentials
@@ -127,6 +128,26 @@
 //! triangles (its leaf blocks are 6.3 MB; the city's 1 MB fit in L2). The cable's lower
 //! ratio than before is not a loss: the code before these steps gave 1.39-1.44 on it in this
 //! session's alternating runs (the table's last row).
+//!
+//! [`trace_tiles_into`] writes each tile's hits straight into a buffer the caller keeps
+//! (before, every call allocated a vector per tile and the image-sized result, stitched the
+//! tiles into it, and the kernel spent 7% of the mirror buffer's time zeroing the pages):
+//! mirror buffer on two threads 30.2 -> 28.7 ms, one thread 57.9 -> 52.0 ms, hemisphere
+//! buffer 61.1 -> 58.6 ms (median of 30-40 buffers, three alternating runs of the old and
+//! new builds, idle machine, load below 1). The bench's reflection entries trace into a kept
+//! buffer, as a renderer would.
+//!
+//! **On another CPU.** The figures above were taken on shared machines. On an idle one
+//! (AMD EPYC with AVX-512, 2 MB L2 per core, 32 MB L3; load below 1.5, nothing else
+//! running) the same code races obvhs less well: `kdrace --rays 100000`, one / two threads,
+//! city 1.06 / 1.05, blob 0.85 / 0.83, cable 1.32 / 1.18, atrium 1.50 / 1.43; the full
+//! sweep's (obvhs's slower, better builds) blob 0.81-0.86 / 0.87-0.90; mirror buffer
+//! 30.1-30.6 ms in the full sweep (two runs). There, bigger leaves pay on incoherent rays and
+//! cost on coherent ones: intersection cost 0.2 instead of 0.4 (`KD_KI`, empty bonus 0 or 0.1
+//! for both, 60k rays, two runs each) gives city 1.18 against 1.11-1.14, blob 0.93-1.06 against 0.86-0.90, atrium the
+//! same, but single mirror rays 1.34-1.36 against 1.47-1.50 (and the packets' mirror buffer
+//! within run-to-run scatter of 30-50%); 0.1 and 0.15 were no better, and no setting brings
+//! the blob to 1.2. The default stays 0.4.
 //!
 //! Before them (`kdrace --rays 100000`, medians of three runs of 15 rounds,
 //! load 3.9-5.0): city 1.14 / 1.10 (one / two threads), blob 1.03 / 0.99, cable 1.57 / 1.63,
