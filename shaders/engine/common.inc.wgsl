@@ -60,6 +60,7 @@ const FLAG_REFRACTIONS: u32 = 64u;
 const FLAG_SUN_GLINTS: u32 = 128u;
 const FLAG_LPV_GLOSSY: u32 = 256u;
 const FLAG_MIRRORED_SUN: u32 = 512u;
+const FLAG_VOLUME_QUERIES: u32 = 1024u;
 const PI: f32 = 3.14159265;
 // The lighting component a frame shows (engine::components::code): the full frame, or one
 // term alone, in the units of the reference path tracer's matching component.

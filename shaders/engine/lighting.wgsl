@@ -4,13 +4,16 @@
 // include: shadows/cube.inc.wgsl
 // include: ssao/ssao.inc.wgsl
 // include: atmosphere/skymap_sample.inc.wgsl
+// include: sh_math/sh.inc.wgsl
+// include: sky_volume/lookup.inc.wgsl
 // include: engine/shading.inc.wgsl
 // include: engine/mirrored_sun.inc.wgsl
 // Deferred lighting of the main view (thesis 3.3, 4.2, 5.3.6-5.3.8): the sun with Phong (or
 // Blinn-Phong) and stabilised-CSM PCSS shadows, point lights, sky light from the sky volume
 // and one diffuse bounce of sunlight (the LPV's lookup or the RSM gather, per pixel by the
-// crates' own kernels into `sky` and `bounce`, irradiance), SSAO on the indirect light only, emission, and the sky map where no
-// geometry was drawn. The base BRDF is the reference's:
+// crates' own kernels into `bounce`, irradiance; the sky volume's lookup here, by its crate's
+// snippet), SSAO on the indirect light only, emission, and the sky map where no geometry was
+// drawn. The base BRDF is the reference's:
 // w_b ((1 - g) albedo / pi + g (n + 2) / (2 pi) cos^n), w_b = 1 - reflectivity - transparency;
 // the mirror and glass parts come from the ray tracer in the combine pass.
 
@@ -22,7 +25,8 @@
 @group(0) @binding(5) var shadow_t: texture_depth_2d_array;
 @group(0) @binding(6) var<storage, read> cascades: array<CsmCascade>;
 @group(0) @binding(7) var<storage, read> taps: array<vec2<f32>>;
-@group(0) @binding(8) var<storage, read> sky: array<vec4<f32>>;
+// The sky volume's probes (sky_volume::gpu::ResidentSkyVolume::probes).
+@group(0) @binding(8) var<storage, read> sky_probes: array<vec4<f32>>;
 @group(0) @binding(9) var<storage, read> bounce: array<vec4<f32>>;
 @group(0) @binding(10) var<storage, read> materials: array<Material>;
 @group(0) @binding(11) var<storage, read> skymap: array<vec4<f32>>;
@@ -33,6 +37,8 @@
 @group(0) @binding(15) var<storage, read> glossy: array<vec4<f32>>;
 // The scene's planar reflectors (engine::mirrored_sun).
 @group(0) @binding(16) var<uniform> reflectors: Reflectors;
+// The sky volume's lookup uniform (no points: no sky volume bound).
+@group(0) @binding(17) var<uniform> sky_lookup: SkyVolumeLookup;
 
 fn csm_count() -> i32 {
     return i32(frame.csm.x);
@@ -56,6 +62,14 @@ fn sun_visibility(p: vec3<f32>, gn: vec3<f32>, view_depth: f32) -> f32 {
         return 1.0;
     }
     return csm_visibility(p, gn, view_depth);
+}
+
+fn sky_volume_params() -> SkyVolumeLookup {
+    return sky_lookup;
+}
+
+fn sky_volume_probe(i: u32) -> vec4<f32> {
+    return sky_probes[i];
 }
 
 // The sky map's texels for atmosphere's sample snippet.
@@ -179,10 +193,9 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
         mirrored = mirrored_sunlight(a.rgb, g, power, n, v, p);
     }
     let i = u32(px.y) * frame.size.x + u32(px.x);
-    // The sky volume's lookup is albedo E / pi with albedo 1 (queries.wgsl): E / pi.
     var sky_e_over_pi = vec3<f32>(0.0);
     if (frame.size.w & FLAG_SKY_VOLUME) != 0u {
-        sky_e_over_pi = sky[i].xyz;
+        sky_e_over_pi = sky_volume_irradiance(p, n) / PI;
     }
     var bounce_e = vec3<f32>(0.0);
     if (frame.size.w & FLAG_INDIRECT) != 0u {

@@ -1,10 +1,11 @@
 // include: engine/common.inc.wgsl
-// One lookup query per pixel for the sky-volume and LPV lookup kernels of their crates
-// (`shaders/sky_volume/lookup.wgsl`, `shaders/lpv/lookup.wgsl`): world position and shading
-// normal from the G-buffer; background pixels get a zero normal and albedo (zero light).
+// One lookup query per pixel for the LPV's or radiance cache's lookup kernel
+// (`shaders/lpv/lookup.wgsl`, `shaders/radiance_cache/lookup.wgsl`): world position and
+// shading normal from the G-buffer; background pixels get a zero normal.
 // The world positions also go to a texture (w 1, 0 for the background) for the RSM gather,
 // and each glossy pixel's mirror direction of the view ray to the LPV's glossy lookup queries
-// (a zero direction elsewhere, which the lookup skips).
+// (a zero direction elsewhere, which the lookup skips). Each query buffer is written only
+// when the frame's flags say its lookup runs.
 
 struct LpvQuery {
     position: vec4<f32>,
@@ -14,11 +15,10 @@ struct LpvQuery {
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var normal_t: texture_2d<f32>;
 @group(0) @binding(2) var depth_t: texture_2d<f32>;
-@group(0) @binding(3) var<storage, read_write> sky_q: array<SkyQuery>;
-@group(0) @binding(4) var<storage, read_write> lpv_q: array<LpvQuery>;
-@group(0) @binding(5) var positions: texture_storage_2d<rgba32float, write>;
-@group(0) @binding(6) var<storage, read_write> glossy_q: array<LpvQuery>;
-@group(0) @binding(7) var albedo_t: texture_2d<f32>;
+@group(0) @binding(3) var<storage, read_write> lpv_q: array<LpvQuery>;
+@group(0) @binding(4) var positions: texture_storage_2d<rgba32float, write>;
+@group(0) @binding(5) var<storage, read_write> glossy_q: array<LpvQuery>;
+@group(0) @binding(6) var albedo_t: texture_2d<f32>;
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -39,8 +39,13 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             r = reflect(view_ray(frame, vec2<f32>(id.xy)), n);
         }
     }
-    sky_q[i] = SkyQuery(vec4<f32>(p, 1.0), vec4<f32>(n, 0.0), vec4<f32>(albedo));
-    lpv_q[i] = LpvQuery(vec4<f32>(p, 1.0), vec4<f32>(n, 0.0));
-    glossy_q[i] = LpvQuery(vec4<f32>(p, 1.0), vec4<f32>(r, 0.0));
+    // Only the queries this frame's lookups read: each is a full-screen buffer.
+    let flags = frame.size.w;
+    if (flags & FLAG_VOLUME_QUERIES) != 0u {
+        lpv_q[i] = LpvQuery(vec4<f32>(p, 1.0), vec4<f32>(n, 0.0));
+    }
+    if (flags & FLAG_LPV_GLOSSY) != 0u {
+        glossy_q[i] = LpvQuery(vec4<f32>(p, 1.0), vec4<f32>(r, 0.0));
+    }
     textureStore(positions, vec2<i32>(id.xy), vec4<f32>(p, albedo));
 }

@@ -18,6 +18,9 @@ pub(crate) const FLAG_SUN_GLINTS: u32 = 128;
 pub(crate) const FLAG_LPV_GLOSSY: u32 = 256;
 /// The lighting adds the sun mirrored by planar reflectors (`Settings::mirrored_sun`).
 pub(crate) const FLAG_MIRRORED_SUN: u32 = 512;
+/// The one-bounce irradiance is a volume's per-pixel lookup (the LPV or the radiance cache),
+/// so the queries pass writes its position and normal queries.
+pub(crate) const FLAG_VOLUME_QUERIES: u32 = 1024;
 
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
@@ -70,6 +73,7 @@ mod tests {
             ("FLAG_SUN_GLINTS", FLAG_SUN_GLINTS),
             ("FLAG_LPV_GLOSSY", FLAG_LPV_GLOSSY),
             ("FLAG_MIRRORED_SUN", FLAG_MIRRORED_SUN),
+            ("FLAG_VOLUME_QUERIES", FLAG_VOLUME_QUERIES),
         ] {
             assert_eq!(crate::shaders::u32_constant(&src, name), Some(value), "{name}");
         }

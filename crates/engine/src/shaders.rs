@@ -35,8 +35,9 @@ pub fn gbuffer() -> String {
 pub fn lighting() -> String {
     use shadows::gpu::{CSM_INC_WGSL, CUBE_INC_WGSL, PCSS_INC_WGSL};
     let (ssao, sky) = (ssao::SSAO_INC_WGSL, atmosphere::gpu::SKYMAP_SAMPLE_INC_WGSL);
+    let volume = format!("{}\n{}", sh_math::WGSL, sky_volume::gpu::LOOKUP_INC_WGSL);
     format!(
-        "{COMMON}\n{PCSS_INC_WGSL}\n{CSM_INC_WGSL}\n{CUBE_INC_WGSL}\n{ssao}\n{sky}\n{SHADING}\n{MIRRORED_SUN}\n{LIGHTING}"
+        "{COMMON}\n{PCSS_INC_WGSL}\n{CSM_INC_WGSL}\n{CUBE_INC_WGSL}\n{ssao}\n{sky}\n{volume}\n{SHADING}\n{MIRRORED_SUN}\n{LIGHTING}"
     )
 }
 
@@ -107,7 +108,8 @@ mod tests {
             (&lighting, "CsmCascade", size_of::<shadows::CsmCascade>()),
             (&lighting, "Reflector", size_of::<crate::mirrored_sun::Reflector>()),
             (&lighting, "Reflectors", size_of::<crate::mirrored_sun::ReflectorSet>()),
-            (&lighting, "SkyQuery", size_of::<sky_volume::gpu::Query>()),
+            (&lighting, "SkyVolumeLookup", size_of::<sky_volume::gpu::LookupParams>()),
+            (&traced, "SkyQuery", size_of::<sky_volume::gpu::Query>()),
             (&raycast, "RayCast", size_of::<crate::passes::raycast::RayCast>()),
             (&traced, "TracedHit", size_of::<crate::trace::TracedHit>()),
         ];

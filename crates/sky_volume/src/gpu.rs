@@ -15,15 +15,20 @@ use bytemuck::{Pod, Zeroable};
 /// `vec4<f32>` per point in the shaders' probe buffer: 27 coefficients and one zero.
 pub const PROBE_VEC4S: usize = 7;
 
-/// WGSL of the lookup (entry point `lookup`, plus `sky_volume_irradiance` for other passes);
-/// needs the `sh_math` snippet: use [`lookup_shader`].
+/// WGSL snippet of the lookup, `sky_volume_irradiance(pos, normal)`, for a renderer's own
+/// shaders (after the `sh_math` snippet): the includer provides `sky_volume_params()` (the
+/// [`LookupParams`] uniform, [`ResidentSkyVolume::lookup_params`]) and `sky_volume_probe(i)`
+/// (the probe buffer, [`ResidentSkyVolume::probes`]).
+pub const LOOKUP_INC_WGSL: &str = include_str!("../../../shaders/sky_volume/lookup.inc.wgsl");
+/// WGSL of the lookup kernel (entry point `lookup`) over [`LOOKUP_INC_WGSL`]; use
+/// [`lookup_shader`].
 pub const LOOKUP_WGSL: &str = include_str!("../../../shaders/sky_volume/lookup.wgsl");
 /// WGSL of the brute-force fill (entry point `fill`); use [`fill_shader`].
 pub const FILL_WGSL: &str = include_str!("../../../shaders/sky_volume/fill.wgsl");
 
-/// The complete lookup shader (sh_math snippet + [`LOOKUP_WGSL`]).
+/// The complete lookup shader (sh_math snippet + [`LOOKUP_INC_WGSL`] + [`LOOKUP_WGSL`]).
 pub fn lookup_shader() -> String {
-    format!("{}\n{}", sh_math::WGSL, LOOKUP_WGSL)
+    format!("{}\n{}\n{}", sh_math::WGSL, LOOKUP_INC_WGSL, LOOKUP_WGSL)
 }
 
 /// The complete fill shader (sh_math snippet + [`FILL_WGSL`]).

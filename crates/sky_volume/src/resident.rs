@@ -201,6 +201,12 @@ impl ResidentSkyVolume {
         &self.probes
     }
 
+    /// The lookup's uniform ([`crate::gpu::LookupParams`]), for a renderer's shader that
+    /// includes [`crate::gpu::LOOKUP_INC_WGSL`] with [`Self::probes`].
+    pub fn lookup_params(&self) -> &wgpu::Buffer {
+        &self.lookup_params
+    }
+
     /// Binds the lookup once to `queries` (`gpu::Query` per pixel) and `out` (`vec4` per
     /// pixel: `albedo / pi * E`), for `count` queries.
     pub fn bind_lookup(

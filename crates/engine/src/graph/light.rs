@@ -36,7 +36,7 @@ pub(super) fn sky_passes(
             let layer = io.unit().map_or(0, |u| u.index);
             let mut volume = previous_or(io, r.sky_vol, |c| {
                 let s = &c.state;
-                SkyVolumeState::new(&s.gpu, sky_setup(c)?, &s.settings, s.lighting.sky_io())
+                SkyVolumeState::new(&s.gpu, sky_setup(c)?, &s.settings)
             })?;
             let s = &io.ctx().state;
             volume.fill_layer(&s.gpu, io.read(r.sky_map)?, layer)?;

@@ -7,7 +7,8 @@ use crate::EngineError;
 use crate::effects::Effect;
 use crate::frame::{
     FLAG_BLINN, FLAG_INDIRECT, FLAG_LPV_GLOSSY, FLAG_MIRRORED_SUN, FLAG_REFLECTIONS,
-    FLAG_REFRACTIONS, FLAG_SHADOWS, FLAG_SKY, FLAG_SKY_VOLUME, FLAG_SUN_GLINTS, FrameUniform,
+    FLAG_REFRACTIONS, FLAG_SHADOWS, FLAG_SKY, FLAG_SKY_VOLUME, FLAG_SUN_GLINTS,
+    FLAG_VOLUME_QUERIES, FrameUniform,
 };
 use crate::mirrored_sun::ReflectorSet;
 use crate::passes::display::{Exposure, Shown};
@@ -122,6 +123,9 @@ fn write_frame_uniform(c: &FrameCtx, bound: Bound) {
     }
     if c.needs.indirect_lpv.needed && c.indirect != Indirect::None {
         flags |= FLAG_INDIRECT;
+        if matches!(c.indirect, Indirect::Lpv | Indirect::Cache) {
+            flags |= FLAG_VOLUME_QUERIES;
+        }
     }
     if c.needs.reflections.needed {
         flags |= FLAG_REFLECTIONS;

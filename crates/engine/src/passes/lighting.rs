@@ -1,7 +1,7 @@
-//! Deferred lighting of the main view (thesis 3.3 and 5.3.6-5.3.8): per-pixel lookup queries
-//! from the G-buffer, the sky-volume lookup and the one-bounce irradiance (the LPV's lookup
-//! or the RSM gather) by their crates' kernels, then one full-screen pass
-//! (`shaders/engine/lighting.wgsl`) into the HDR target.
+//! Deferred lighting of the main view (thesis 3.3 and 5.3.6-5.3.8): the one-bounce
+//! irradiance (the LPV's lookup over per-pixel queries from the G-buffer, or the RSM gather)
+//! by its crate's kernels, then one full-screen pass (`shaders/engine/lighting.wgsl`) into the
+//! HDR target, which looks the sky volume up itself through `sky_volume`'s WGSL snippet.
 
 use super::{lpv::LpvState, radiance_cache::CacheState, rsm_gather::RsmGatherState, sky::SkyLight};
 use crate::EngineError;
@@ -16,13 +16,13 @@ pub struct LightingPass {
     /// Made once, again only when what it binds changes.
     queries_group: gpu_harness::BindGroupCache,
     lighting_group: gpu_harness::BindGroupCache,
-    sky_q: wgpu::Buffer,
     lpv_q: wgpu::Buffer,
     /// The LPV's glossy lookup: per pixel (position, mirror direction), and the radiance.
     glossy_q: wgpu::Buffer,
     glossy_out: wgpu::Buffer,
-    pub sky_out: wgpu::Buffer,
     pub lpv_out: wgpu::Buffer,
+    /// The sky-volume lookup's uniform when no volume is bound: no points, no light.
+    no_sky: wgpu::Buffer,
     /// The frame's reflectors (`LightingInputs::reflectors`), a uniform.
     reflectors: wgpu::Buffer,
     pixels: u32,
@@ -34,7 +34,7 @@ pub struct LightingInputs<'a> {
     /// The sun's cascades (`count` 0: no sun shadows this frame).
     pub shadows: shadows::gpu::CascadeMaps<'a>,
     pub sky: Option<SkyLight<'a>>,
-    /// Run the sky-volume lookup this frame.
+    /// Light the view from the sky volume this frame.
     pub sky_volume: bool,
     pub indirect: IndirectSource<'a>,
     pub materials: &'a wgpu::Buffer,
@@ -72,12 +72,15 @@ impl LightingPass {
                 "main",
             )?,
             pipeline,
-            sky_q: empty_storage(device, "sky queries", n * 48),
             lpv_q: empty_storage(device, "lpv queries", n * 32),
             glossy_q: empty_storage(device, "lpv glossy queries", n * 32),
             glossy_out: empty_storage(device, "lpv glossy light", n * 16),
-            sky_out: empty_storage(device, "sky light", n * 16),
             lpv_out: empty_storage(device, "lpv light", n * 16),
+            no_sky: uniform_buffer(
+                device,
+                "no sky volume",
+                bytemuck::bytes_of(&<sky_volume::gpu::LookupParams as bytemuck::Zeroable>::zeroed()),
+            ),
             reflectors: uniform_buffer(
                 device,
                 "view reflectors",
@@ -87,12 +90,6 @@ impl LightingPass {
         })
     }
 
-    /// The sky volume's per-pixel queries (position, normal, albedo), the buffer the lighting
-    /// shader reads its light from, and the pixel count.
-    pub fn sky_io(&self) -> (&wgpu::Buffer, &wgpu::Buffer, u32) {
-        (&self.sky_q, &self.sky_out, self.pixels)
-    }
-
     /// The per-pixel lookup queries (position, normal; what the queries pass writes for the
     /// LPV), the buffer the lighting shader reads the bounce from, and the pixel count: what a
     /// lookup kernel of a one-bounce technique binds to.
@@ -100,7 +97,7 @@ impl LightingPass {
         (&self.lpv_q, &self.lpv_out, self.pixels)
     }
 
-    /// Records the queries, the lookups that are needed, and the lighting.
+    /// Records the queries and lookups the frame's one bounce needs, and the lighting.
     pub fn record(
         &self,
         gpu: &Gpu,
@@ -110,7 +107,7 @@ impl LightingPass {
     ) -> Result<(), EngineError> {
         let (device, tv) = (&gpu.device, wgpu::BindingResource::TextureView);
         let indirect = !matches!(inputs.indirect, IndirectSource::None);
-        if inputs.sky_volume || indirect {
+        if indirect {
             let bg = self.queries_group.get_in_order(
                 device,
                 "lookup queries",
@@ -119,7 +116,6 @@ impl LightingPass {
                     inputs.frame.as_entire_binding(),
                     tv(&targets.normal),
                     tv(&targets.depth),
-                    self.sky_q.as_entire_binding(),
                     self.lpv_q.as_entire_binding(),
                     tv(&targets.positions),
                     self.glossy_q.as_entire_binding(),
@@ -132,9 +128,6 @@ impl LightingPass {
                 &bg,
                 [targets.width.div_ceil(8), targets.height.div_ceil(8), 1],
             );
-        }
-        if let (true, Some(sky)) = (inputs.sky_volume, inputs.sky) {
-            sky.record_view_lookup(enc);
         }
         let indirect = match inputs.indirect {
             IndirectSource::Lpv(lpv) => {
@@ -151,6 +144,9 @@ impl LightingPass {
         };
         gpu.write(&self.reflectors, 0, bytemuck::bytes_of(inputs.reflectors));
         let skymap = inputs.sky.map(|s| &s.map.buffer).unwrap_or(inputs.lights);
+        let volume = inputs.sky.filter(|_| inputs.sky_volume).map(|s| s.volume.resident());
+        let (sky_probes, sky_lookup) =
+            volume.map_or((inputs.lights, &self.no_sky), |v| (v.probes(), v.lookup_params()));
         let bg = self.lighting_group.get_in_order(
             device,
             "lighting",
@@ -164,7 +160,7 @@ impl LightingPass {
                 tv(inputs.shadows.depth),
                 inputs.shadows.cascades.as_entire_binding(),
                 inputs.shadows.taps.as_entire_binding(),
-                self.sky_out.as_entire_binding(),
+                sky_probes.as_entire_binding(),
                 indirect.as_entire_binding(),
                 inputs.materials.as_entire_binding(),
                 skymap.as_entire_binding(),
@@ -173,6 +169,7 @@ impl LightingPass {
                 wgpu::BindingResource::Sampler(inputs.cubes.1),
                 self.glossy_out.as_entire_binding(),
                 self.reflectors.as_entire_binding(),
+                sky_lookup.as_entire_binding(),
             ],
         );
         draw_fullscreen(enc, "lighting", &self.pipeline, &bg, &targets.lit);

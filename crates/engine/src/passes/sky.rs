@@ -94,19 +94,18 @@ impl sky_volume::SkyRadiance for MapSky<'_> {
     }
 }
 
-/// The sky-light volume, filled on the CPU (the traced rays' lookups read it there) and
-/// uploaded into the crate's resident pass, whose lookup is bound once to the lighting
-/// pass's per-pixel queries.
 /// Which queries and output a lookup binding binds (for all the queries they hold).
 type LookupKey = (wgpu::Buffer, wgpu::Buffer);
 
 /// Bytes of one sky-volume query (`sky_volume::gpu::Query`).
 const QUERY_BYTES: u64 = std::mem::size_of::<sky_volume::gpu::Query>() as u64;
 
+/// The sky-light volume, filled on the CPU (the traced rays' lookups read it there) and
+/// uploaded into the crate's resident pass, whose probes the lighting shader reads through
+/// the crate's lookup snippet.
 pub struct SkyVolumeState {
     pub volume: SkyVolume,
     resident: ResidentSkyVolume,
-    view: LookupBinding,
     /// The lookups bound to other queries (the sky-bounce VPLs', the traced hits'): made once
     /// per pair of query and output buffers, the most recent few kept.
     other_lookups: Mutex<Vec<(LookupKey, LookupBinding)>>,
@@ -119,20 +118,18 @@ fn tech(e: sky_volume::SkyVolumeError) -> EngineError {
 }
 
 impl SkyVolumeState {
-    /// The volume, its resident passes, and its lookup bound to `view` (the lighting pass's
-    /// queries, its output and their count).
-    pub fn new(
-        gpu: &Gpu,
-        setup: &SkySetup,
-        settings: &Settings,
-        (queries, out, count): (&wgpu::Buffer, &wgpu::Buffer, u32),
-    ) -> Result<Self, EngineError> {
+    /// The volume and its resident passes.
+    pub fn new(gpu: &Gpu, setup: &SkySetup, settings: &Settings) -> Result<Self, EngineError> {
         let vs =
             sky_volume::Settings { samples: settings.sky_samples, ..sky_volume::Settings::DEFAULT };
         let volume = SkyVolume::with_quads(setup.grid, vs, &setup.quads).map_err(tech)?;
         let resident = ResidentSkyVolume::new(&gpu.device, &volume).map_err(tech)?;
-        let view = resident.bind_lookup(&gpu.device, queries, out, count);
-        Ok(Self { volume, resident, view, other_lookups: Mutex::default(), lit_from: None })
+        Ok(Self { volume, resident, other_lookups: Mutex::default(), lit_from: None })
+    }
+
+    /// The volume's resident passes (its probes and lookup uniform, for the lighting shader).
+    pub fn resident(&self) -> &ResidentSkyVolume {
+        &self.resident
     }
 
     /// Records the lookup of the first `count` of `queries` into `out`, bound once per pair
@@ -200,11 +197,6 @@ impl SkyLight<'_> {
     pub fn max_irradiance(&self) -> f32 {
         let brightest = self.map.map.texels().iter().fold(0.0f32, |m, t| m.max(t.max_element()));
         1.5 * std::f32::consts::PI * brightest
-    }
-
-    /// Records the lookup of the view's queries (bound when the volume was made).
-    pub fn record_view_lookup(&self, enc: &mut wgpu::CommandEncoder) {
-        self.volume.resident.record_lookup(enc, &self.volume.view);
     }
 
     /// Records the lookup of other `queries` (position, normal, albedo) to `out`
