@@ -634,6 +634,7 @@ fn components(
                     .setting("passes", passes(c))
                     .setting("luminance_ratio", f.luminance_ratio)
                     .setting("reference_rel_std_error", f.reference_rel_std_error)
+                    .setting("worst_pixel_share", f.worst_pixel_share)
                     .setting("software_adapter", software)
                     .error("rel_rms", f.rel_rms, rname)
                     .threads(rayon::current_num_threads())
