@@ -3,6 +3,8 @@
 // include: shadows/csm.inc.wgsl
 // include: shadows/osm.inc.wgsl
 // include: shadows/cube.inc.wgsl
+// include: sh_math/sh.inc.wgsl
+// include: sky_volume/lookup.inc.wgsl
 // include: engine/shading.inc.wgsl
 // include: engine/mirrored_sun.inc.wgsl
 // The traced G-buffer lit on the GPU (thesis 6.3): the CPU ray tracer hands over each
@@ -42,13 +44,13 @@ struct TracedParams {
 @group(0) @binding(1) var<uniform> params: TracedParams;
 @group(0) @binding(2) var<storage, read> hits: array<TracedHit>;
 // traced_queries
-@group(0) @binding(3) var<storage, read_write> sky_q: array<SkyQuery>;
 @group(0) @binding(4) var<storage, read_write> lpv_q: array<LpvQuery>;
 // traced_lighting
 @group(0) @binding(5) var osm_t: texture_depth_2d_array;
 @group(0) @binding(6) var<storage, read> osm_maps: array<CsmCascade>;
 @group(0) @binding(7) var<storage, read> taps: array<vec2<f32>>;
-@group(0) @binding(8) var<storage, read> sky: array<vec4<f32>>;
+// The sky volume's probes (sky_volume::gpu::ResidentSkyVolume::probes).
+@group(0) @binding(8) var<storage, read> sky_probes: array<vec4<f32>>;
 @group(0) @binding(9) var<storage, read> bounce: array<vec4<f32>>;
 @group(0) @binding(10) var<storage, read> lights: array<PointLight>;
 @group(0) @binding(11) var cubes: texture_depth_cube_array;
@@ -56,6 +58,16 @@ struct TracedParams {
 @group(0) @binding(13) var<storage, read_write> out: array<vec4<f32>>;
 // The scene's planar reflectors (engine::mirrored_sun).
 @group(0) @binding(14) var<uniform> reflectors: Reflectors;
+// The sky volume's lookup uniform (no points: no sky volume bound).
+@group(0) @binding(15) var<uniform> sky_lookup: SkyVolumeLookup;
+
+fn sky_volume_params() -> SkyVolumeLookup {
+    return sky_lookup;
+}
+
+fn sky_volume_probe(i: u32) -> vec4<f32> {
+    return sky_probes[i];
+}
 
 // The sun's visibility where a reflector sends it on (mirrored_sun.inc.wgsl): the
 // overlapped maps, as for the hits themselves.
@@ -79,8 +91,7 @@ fn pcss_tap(i: u32) -> vec2<f32> {
     return taps[i];
 }
 
-// The lookup kernels' queries for every hit: the sky volume's with the base part's diffuse
-// albedo (its lookup returns albedo / pi * E), the LPV's position and normal.
+// The LPV lookup kernel's query for every hit: its position and normal.
 @compute @workgroup_size(64)
 fn traced_queries(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = id.x;
@@ -90,8 +101,6 @@ fn traced_queries(@builtin(global_invocation_id) id: vec3<u32>) {
     let h = hits[i];
     let lit = h.normal.w > 0.0;
     let n = select(vec3<f32>(0.0), h.normal.xyz, lit);
-    let diffuse = select(vec3<f32>(0.0), (1.0 - h.geometric.w) * h.albedo.rgb, lit);
-    sky_q[i] = SkyQuery(vec4<f32>(h.position.xyz, 1.0), vec4<f32>(n, 0.0), vec4<f32>(diffuse, 1.0));
     lpv_q[i] = LpvQuery(vec4<f32>(h.position.xyz, 1.0), vec4<f32>(n, 0.0));
 }
 
@@ -122,7 +131,7 @@ fn traced_lighting(@builtin(global_invocation_id) id: vec3<u32>) {
             }
         }
         if (frame.size.w & FLAG_SKY_VOLUME) != 0u {
-            light += sky[i].xyz;
+            light += (1.0 - g) * h.albedo.rgb / PI * sky_volume_irradiance(p, n);
         }
         if params.counts.z != 0u {
             light += (1.0 - g) * h.albedo.rgb / PI * bounce[i].xyz;

@@ -35,7 +35,7 @@ pub fn gbuffer() -> String {
 pub fn lighting() -> String {
     use shadows::gpu::{CSM_INC_WGSL, CUBE_INC_WGSL, PCSS_INC_WGSL};
     let (ssao, sky) = (ssao::SSAO_INC_WGSL, atmosphere::gpu::SKYMAP_SAMPLE_INC_WGSL);
-    let volume = format!("{}\n{}", sh_math::WGSL, sky_volume::gpu::LOOKUP_INC_WGSL);
+    let volume = sky_volume_lookup();
     format!(
         "{COMMON}\n{PCSS_INC_WGSL}\n{CSM_INC_WGSL}\n{CUBE_INC_WGSL}\n{ssao}\n{sky}\n{volume}\n{SHADING}\n{MIRRORED_SUN}\n{LIGHTING}"
     )
@@ -44,7 +44,13 @@ pub fn lighting() -> String {
 pub fn traced() -> String {
     use shadows::gpu::{CSM_INC_WGSL, CUBE_INC_WGSL, OSM_INC_WGSL, PCSS_INC_WGSL};
     let shadows = format!("{PCSS_INC_WGSL}\n{CSM_INC_WGSL}\n{OSM_INC_WGSL}\n{CUBE_INC_WGSL}");
-    format!("{COMMON}\n{shadows}\n{SHADING}\n{MIRRORED_SUN}\n{TRACED}")
+    let volume = sky_volume_lookup();
+    format!("{COMMON}\n{shadows}\n{volume}\n{SHADING}\n{MIRRORED_SUN}\n{TRACED}")
+}
+
+/// `sky_volume`'s lookup snippet with the `sh_math` snippet it needs.
+fn sky_volume_lookup() -> String {
+    format!("{}\n{}", sh_math::WGSL, sky_volume::gpu::LOOKUP_INC_WGSL)
 }
 
 pub fn queries() -> String {
@@ -101,6 +107,7 @@ mod tests {
     fn rust_structs_match_their_wgsl_twins() {
         use std::mem::size_of;
         let (lighting, traced, raycast) = (super::lighting(), super::traced(), super::raycast());
+        let sky_vpls = super::sky_vpls();
         let pairs = [
             (&lighting, "Frame", size_of::<crate::frame::FrameUniform>()),
             (&lighting, "Material", size_of::<crate::gpu::scene::GpuMaterial>()),
@@ -109,7 +116,8 @@ mod tests {
             (&lighting, "Reflector", size_of::<crate::mirrored_sun::Reflector>()),
             (&lighting, "Reflectors", size_of::<crate::mirrored_sun::ReflectorSet>()),
             (&lighting, "SkyVolumeLookup", size_of::<sky_volume::gpu::LookupParams>()),
-            (&traced, "SkyQuery", size_of::<sky_volume::gpu::Query>()),
+            (&traced, "SkyVolumeLookup", size_of::<sky_volume::gpu::LookupParams>()),
+            (&sky_vpls, "SkyQuery", size_of::<sky_volume::gpu::Query>()),
             (&raycast, "RayCast", size_of::<crate::passes::raycast::RayCast>()),
             (&traced, "TracedHit", size_of::<crate::trace::TracedHit>()),
         ];

@@ -3,7 +3,10 @@
 //! by its crate's kernels, then one full-screen pass (`shaders/engine/lighting.wgsl`) into the
 //! HDR target, which looks the sky volume up itself through `sky_volume`'s WGSL snippet.
 
-use super::{lpv::LpvState, radiance_cache::CacheState, rsm_gather::RsmGatherState, sky::SkyLight};
+use super::lpv::LpvState;
+use super::radiance_cache::CacheState;
+use super::rsm_gather::RsmGatherState;
+use super::sky::{SkyLight, SkyVolumeBinding};
 use crate::EngineError;
 use crate::gpu::{
     GBufferTargets, Gpu, compute_pipeline, dispatch, draw_fullscreen, empty_storage,
@@ -21,8 +24,8 @@ pub struct LightingPass {
     glossy_q: wgpu::Buffer,
     glossy_out: wgpu::Buffer,
     pub lpv_out: wgpu::Buffer,
-    /// The sky-volume lookup's uniform when no volume is bound: no points, no light.
-    no_sky: wgpu::Buffer,
+    /// The sky volume the shader's lookup snippet reads.
+    sky_volume: SkyVolumeBinding,
     /// The frame's reflectors (`LightingInputs::reflectors`), a uniform.
     reflectors: wgpu::Buffer,
     pixels: u32,
@@ -76,11 +79,7 @@ impl LightingPass {
             glossy_q: empty_storage(device, "lpv glossy queries", n * 32),
             glossy_out: empty_storage(device, "lpv glossy light", n * 16),
             lpv_out: empty_storage(device, "lpv light", n * 16),
-            no_sky: uniform_buffer(
-                device,
-                "no sky volume",
-                bytemuck::bytes_of(&<sky_volume::gpu::LookupParams as bytemuck::Zeroable>::zeroed()),
-            ),
+            sky_volume: SkyVolumeBinding::new(device),
             reflectors: uniform_buffer(
                 device,
                 "view reflectors",
@@ -144,9 +143,8 @@ impl LightingPass {
         };
         gpu.write(&self.reflectors, 0, bytemuck::bytes_of(inputs.reflectors));
         let skymap = inputs.sky.map(|s| &s.map.buffer).unwrap_or(inputs.lights);
-        let volume = inputs.sky.filter(|_| inputs.sky_volume).map(|s| s.volume.resident());
-        let (sky_probes, sky_lookup) =
-            volume.map_or((inputs.lights, &self.no_sky), |v| (v.probes(), v.lookup_params()));
+        let volume = inputs.sky.as_ref().filter(|_| inputs.sky_volume);
+        let (sky_probes, sky_lookup) = self.sky_volume.buffers(volume, inputs.lights);
         let bg = self.lighting_group.get_in_order(
             device,
             "lighting",

@@ -4,7 +4,7 @@
 //! graph's resources ([`SkyMapState`], [`SkyVolumeState`]), made by their passes on first
 //! use and read by the passes after them through [`SkyLight`].
 
-use crate::gpu::{Gpu, empty_storage};
+use crate::gpu::{Gpu, empty_storage, uniform_buffer};
 use crate::{EngineError, Settings};
 use atmosphere::{Sky, SkyMap, SkyMapSettings, SkyRadiance as _};
 use glam::Vec3;
@@ -127,11 +127,6 @@ impl SkyVolumeState {
         Ok(Self { volume, resident, other_lookups: Mutex::default(), lit_from: None })
     }
 
-    /// The volume's resident passes (its probes and lookup uniform, for the lighting shader).
-    pub fn resident(&self) -> &ResidentSkyVolume {
-        &self.resident
-    }
-
     /// Records the lookup of the first `count` of `queries` into `out`, bound once per pair
     /// of buffers (for as many queries as `queries` holds).
     fn record_other_lookup(
@@ -171,6 +166,32 @@ impl SkyVolumeState {
         let (offset, bytes) = self.volume.gpu_layer_bytes(layer..layer + 1);
         gpu.write(self.resident.probes(), offset, &bytes);
         Ok(())
+    }
+}
+
+/// What a shader that includes `sky_volume`'s lookup snippet binds: the volume's probes and
+/// lookup uniform, or without a volume a uniform of no points (the snippet returns no light)
+/// and any storage buffer in the probes' place.
+pub struct SkyVolumeBinding {
+    no_volume: wgpu::Buffer,
+}
+
+impl SkyVolumeBinding {
+    pub fn new(device: &wgpu::Device) -> Self {
+        let none = <sky_volume::gpu::LookupParams as bytemuck::Zeroable>::zeroed();
+        Self { no_volume: uniform_buffer(device, "no sky volume", bytemuck::bytes_of(&none)) }
+    }
+
+    /// (probes, lookup uniform) of `sky`'s volume, or of none (`any_storage` as the probes).
+    pub fn buffers<'a>(
+        &'a self,
+        sky: Option<&'a SkyLight<'_>>,
+        any_storage: &'a wgpu::Buffer,
+    ) -> (&'a wgpu::Buffer, &'a wgpu::Buffer) {
+        match sky {
+            Some(s) => (s.volume.resident.probes(), s.volume.resident.lookup_params()),
+            None => (any_storage, &self.no_volume),
+        }
     }
 }
 

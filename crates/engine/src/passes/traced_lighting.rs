@@ -1,14 +1,15 @@
 //! The traced G-buffer lit on the GPU (thesis 6.3, `Settings::traced_shading` =
 //! `TracedShading::Gpu`): the sun's overlapped shadow maps (6.3.1, `shadows::osm`, rendered
 //! by the crate's resident cascade pass), and the lighting of the first surfaces the CPU ray
-//! tracer found (`trace::TracedHit`) by `shaders/engine/traced.wgsl`: their queries, the sky
-//! volume's and the LPV's lookup kernels over them, then the base BRDF with the sun, the
-//! point lights and that irradiance, into the combine pass's traced radiance.
+//! tracer found (`trace::TracedHit`) by `shaders/engine/traced.wgsl`: their LPV queries and
+//! the LPV's lookup kernel over them, then the base BRDF with the sun, the point lights, the
+//! sky volume (its crate's lookup snippet) and the LPV's irradiance, into the combine pass's
+//! traced radiance.
 
 use super::lpv::LpvState;
 use super::raycast::RayBatch;
 use super::shadow::render_sun_maps;
-use super::sky::SkyLight;
+use super::sky::{SkyLight, SkyVolumeBinding};
 use crate::gpu::{Gpu, SceneBuffers, compute_pipeline, dispatch, empty_storage, uniform_buffer};
 use crate::state::SunLight;
 use crate::trace::TracedHit;
@@ -84,8 +85,6 @@ pub struct TracedInputs<'a> {
 /// The traced G-buffer's per-hit buffers, for `capacity` hits.
 struct HitBuffers {
     hits: wgpu::Buffer,
-    sky_q: wgpu::Buffer,
-    sky_out: wgpu::Buffer,
     lpv_q: wgpu::Buffer,
     lpv_out: wgpu::Buffer,
     capacity: usize,
@@ -96,8 +95,6 @@ impl HitBuffers {
         let n = capacity as u64;
         Self {
             hits: empty_storage(device, "traced g-buffer", n * 96),
-            sky_q: empty_storage(device, "traced sky queries", n * 48),
-            sky_out: empty_storage(device, "traced sky light", n * 16),
             lpv_q: empty_storage(device, "traced lpv queries", n * 32),
             lpv_out: empty_storage(device, "traced lpv light", n * 16),
             capacity,
@@ -115,6 +112,7 @@ pub struct TracedLightingPass {
     lighting_groups: gpu_harness::BindGroupCache,
     params: wgpu::Buffer,
     buffers: HitBuffers,
+    sky_volume: SkyVolumeBinding,
 }
 
 impl TracedLightingPass {
@@ -127,11 +125,12 @@ impl TracedLightingPass {
             lighting: compute_pipeline(device, "traced lighting", &source, "traced_lighting")?,
             params: uniform_buffer(device, "traced params", &[0u8; 16]),
             buffers: HitBuffers::new(device, 1024),
+            sky_volume: SkyVolumeBinding::new(device),
         })
     }
 
-    /// Uploads the hits traced for `batch` (their slots set here), records their queries,
-    /// the lookups and the lighting into `inputs.out` (cleared first), and submits.
+    /// Uploads the hits traced for `batch` (their slots set here), records their LPV queries
+    /// and lookup and the lighting into `inputs.out` (cleared first), and submits.
     pub fn run(
         &mut self,
         gpu: &Gpu,
@@ -162,24 +161,21 @@ impl TracedLightingPass {
         let mut enc = device.create_command_encoder(&Default::default());
         enc.clear_buffer(inputs.out, 0, None);
         let groups = [count.div_ceil(64).max(1), 1, 1];
-        let queries = self.queries_groups.get(
-            device,
-            "traced queries",
-            &self.queries.get_bind_group_layout(0),
-            &[
-                (1, self.params.as_entire_binding()),
-                (2, b.hits.as_entire_binding()),
-                (3, b.sky_q.as_entire_binding()),
-                (4, b.lpv_q.as_entire_binding()),
-            ],
-        );
-        dispatch(&mut enc, &self.queries, &queries, groups);
-        if let Some(sky) = &inputs.sky {
-            sky.record_lookup(gpu, &mut enc, &b.sky_q, &b.sky_out, count);
-        }
         if let Some(lpv) = inputs.lpv {
+            let queries = self.queries_groups.get(
+                device,
+                "traced queries",
+                &self.queries.get_bind_group_layout(0),
+                &[
+                    (1, self.params.as_entire_binding()),
+                    (2, b.hits.as_entire_binding()),
+                    (4, b.lpv_q.as_entire_binding()),
+                ],
+            );
+            dispatch(&mut enc, &self.queries, &queries, groups);
             lpv.record_lookup(gpu, &mut enc, &b.lpv_q, &b.lpv_out, count);
         }
+        let (sky_probes, sky_lookup) = self.sky_volume.buffers(inputs.sky.as_ref(), &b.hits);
         let tv = wgpu::BindingResource::TextureView;
         let lighting = self.lighting_groups.get(
             device,
@@ -192,13 +188,14 @@ impl TracedLightingPass {
                 (5, tv(inputs.osm.depth)),
                 (6, inputs.osm.cascades.as_entire_binding()),
                 (7, inputs.osm.taps.as_entire_binding()),
-                (8, b.sky_out.as_entire_binding()),
+                (8, sky_probes.as_entire_binding()),
                 (9, b.lpv_out.as_entire_binding()),
                 (10, inputs.lights.as_entire_binding()),
                 (11, tv(inputs.cubes.0)),
                 (12, wgpu::BindingResource::Sampler(inputs.cubes.1)),
                 (13, inputs.out.as_entire_binding()),
                 (14, inputs.reflectors.as_entire_binding()),
+                (15, sky_lookup.as_entire_binding()),
             ],
         );
         dispatch(&mut enc, &self.lighting, &lighting, groups);
