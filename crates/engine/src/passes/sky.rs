@@ -106,7 +106,7 @@ const QUERY_BYTES: u64 = std::mem::size_of::<sky_volume::gpu::Query>() as u64;
 pub struct SkyVolumeState {
     pub volume: SkyVolume,
     resident: ResidentSkyVolume,
-    /// The lookups bound to other queries (the sky-bounce VPLs', the traced hits'): made once
+    /// The lookups bound to other queries (the sky-bounce VPLs'): made once
     /// per pair of query and output buffers, the most recent few kept.
     other_lookups: Mutex<Vec<(LookupKey, LookupBinding)>>,
     /// The map generation the volume is being lit from.
