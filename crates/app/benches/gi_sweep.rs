@@ -635,6 +635,7 @@ fn components(
                     .setting("luminance_ratio", f.luminance_ratio)
                     .setting("reference_rel_std_error", f.reference_rel_std_error)
                     .setting("worst_pixel_share", f.worst_pixel_share)
+                    .setting("reference_noise_rms", f.reference_noise_rms)
                     .setting("software_adapter", software)
                     .error("rel_rms", f.rel_rms, rname)
                     .threads(rayon::current_num_threads())
