@@ -31,7 +31,9 @@
 //! Updates are amortised ([`SkyVolume::update`] traces at most a budget of layers per call)
 //! and dirty-tracked ([`Dirty`]): moving a quad invalidates only the layers below its top; a
 //! new sky re-lights from the cache without rays. With feature `gpu`, [`gpu`] has the WGSL
-//! lookup and brute-force fill.
+//! lookup and brute-force fill as resident passes, and the lookup as a snippet
+//! (`gpu::LOOKUP_INC_WGSL`) that a renderer's own lighting shader includes to light its
+//! pixels from the volume's probes without a query buffer.
 //!
 //! Conventions: world frame +Y up; SH from `sh_math` (real, orthonormal, no Condon-Shortley
 //! phase); coefficients are **radiance** SH (the clamped cosine is applied at lookup).
