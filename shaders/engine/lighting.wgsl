@@ -193,9 +193,9 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
         mirrored = mirrored_sunlight(a.rgb, g, power, n, v, p);
     }
     let i = u32(px.y) * frame.size.x + u32(px.x);
-    var sky_e_over_pi = vec3<f32>(0.0);
+    var sky_e = vec3<f32>(0.0);
     if (frame.size.w & FLAG_SKY_VOLUME) != 0u {
-        sky_e_over_pi = sky_volume_irradiance(p, n) / PI;
+        sky_e = sky_volume_irradiance(p, n);
     }
     var bounce_e = vec3<f32>(0.0);
     if (frame.size.w & FLAG_INDIRECT) != 0u {
@@ -214,13 +214,13 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
         case COMPONENT_SUN_DIRECT: { c = base * sun; }
         case COMPONENT_POINT_LIGHTS: { c = base * points; }
         // Irradiance at the surface, as the reference's SkyIrradiance image.
-        case COMPONENT_SKY_IRRADIANCE: { c = PI * sky_e_over_pi * ao; }
+        case COMPONENT_SKY_IRRADIANCE: { c = sky_e * ao; }
         case COMPONENT_SUN_INDIRECT: { c = diffuse / PI * bounce_e * ao; }
         case COMPONENT_EMISSION: { c = m.emission.rgb; }
         // The sun seen in the mirror and glass parts; the combine pass adds the traced rays.
         case COMPONENT_REFLECTIONS: { c = glint; }
         default: {
-            c = base * (sun + points + mirrored) + (diffuse * (sky_e_over_pi + bounce_e / PI) + glossy_l) * ao + m.emission.rgb + glint;
+            c = base * (sun + points + mirrored) + (diffuse / PI * (sky_e + bounce_e) + glossy_l) * ao + m.emission.rgb + glint;
         }
     }
     return vec4<f32>(max(c, vec3<f32>(0.0)), 1.0);

@@ -130,11 +130,13 @@ fn traced_lighting(@builtin(global_invocation_id) id: vec3<u32>) {
                 light += mirrored_sunlight(h.albedo.rgb, g, power, n, v, p);
             }
         }
+        // Sky light and the bounce reach the base part's diffuse lobe.
+        let diffuse = (1.0 - g) * h.albedo.rgb / PI;
         if (frame.size.w & FLAG_SKY_VOLUME) != 0u {
-            light += (1.0 - g) * h.albedo.rgb / PI * sky_volume_irradiance(p, n);
+            light += diffuse * sky_volume_irradiance(p, n);
         }
         if params.counts.z != 0u {
-            light += (1.0 - g) * h.albedo.rgb / PI * bounce[i].xyz;
+            light += diffuse * bounce[i].xyz;
         }
         c += base * light;
     }
