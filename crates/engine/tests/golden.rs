@@ -18,6 +18,10 @@
 //! The lighting components of the scenes (`engine::components`) have goldens of their own,
 //! `<scene>_<component>.png`, at the full frame's exposure.
 //!
+//! `cornell_area` has none: it is lit only by an emissive area light, which the engine does
+//! not model (its frame is black); it is the reference path tracer's validation scene
+//! (`crates/reference/tests/scene.rs`), not the engine's.
+//!
 //! `SEREIN_BLESS=1 cargo test -p engine --test golden` rewrites the goldens. On a failure the
 //! rendered image is written as `tests/golden/<scene>.actual.png` and the absolute difference
 //! (x4) as `tests/golden/<scene>.diff.png` (both gitignored), and the message names the files
@@ -262,6 +266,11 @@ fn golden_components_two_rooms() {
 #[test]
 fn golden_components_plane_box() {
     check_components(Generated::PlaneBox);
+}
+
+#[test]
+fn golden_components_furnace() {
+    check_components(Generated::Furnace);
 }
 
 /// The comparison itself: identical images pass, a black image and a shifted exposure fail.
