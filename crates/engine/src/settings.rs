@@ -283,7 +283,11 @@ pub struct Settings {
 }
 
 /// The LPV lookup offset, in cells along the normal, of the default and high presets (their
-/// cells are half a metre; the low preset's metre cells keep the crate's half cell).
+/// cells are half a metre; the low preset's metre cells keep the crate's half cell): a
+/// surface sees less of the bounce it injected itself. `cornell_window`, default preset, LPV
+/// one-bounce rel RMS against the reference 4.08 -> 3.08 at 320x180 (16 spp), 5.53 -> 4.15 at
+/// 160x90 (64 spp; `crates/app/tests/indirect_choice.rs`); its whole frame 0.374 -> 0.311;
+/// the city's street under the LPV 77x -> 52x the truth.
 pub const ENGINE_LPV_LOOKUP_OFFSET: f32 = 1.5;
 
 impl Settings {
