@@ -179,7 +179,11 @@ pub fn two_rooms(seed: u64) -> Scene {
     parts.get("ceiling", white).cube(roof.min, roof.max, 1.0);
     let c = roof.center();
     let half = 0.5 * roof.size();
-    quads.push(OcclusionQuad::new(Vec3::new(c.x, h, c.z), Vec3::X, -Vec3::Z, half.x, half.z));
+    // The ceiling and the roof's top: with the ceiling's alone, the probes inside the roof slab
+    // saw the whole sky and lit the walls' top rows of both rooms, the closed one too.
+    for y in [h, roof.max.y] {
+        quads.push(OcclusionQuad::new(Vec3::new(c.x, y, c.z), Vec3::X, -Vec3::Z, half.x, half.z));
+    }
     let (meshes, cleanup) = parts.finish();
     scene.meshes = meshes;
     scene.cleanup = cleanup;
