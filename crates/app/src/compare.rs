@@ -21,7 +21,9 @@ pub struct ReferenceErrors {
     pub rel_rms_clamped: f64,
     /// Mean of per-pixel relative luminance differences (gi_report's metric).
     pub mean_rel_luminance: f64,
-    /// Mean luminance of the engine's image over the reference's.
+    /// Mean luminance of the engine's image over the reference's; NaN (`null` in JSON, as
+    /// the relative figures) when the reference is black (a view of a closed room): the
+    /// component ledger's black-truth figures say what such a view leaks.
     pub luminance_ratio: f64,
     /// The reference's mean relative standard error (its own noise).
     pub reference_rel_std_error: f64,
@@ -144,15 +146,19 @@ pub fn errors(
 ) -> Result<ReferenceErrors, EngineError> {
     let tech = |e| EngineError::technique("reference", e);
     let e = reference::compare(approx, reference, None).map_err(tech)?;
-    let mean_r = luminance(reference.mean()).max(1e-12);
-    let cap = FIREFLY_CLAMP * mean_r;
+    let mean_r = luminance(reference.mean());
+    let cap = FIREFLY_CLAMP * mean_r.max(1e-12);
     let c =
         reference::compare(&clamped(approx, cap), &clamped(reference, cap), None).map_err(tech)?;
     Ok(ReferenceErrors {
         rel_rms: e.rel_rms,
         rel_rms_clamped: c.rel_rms,
         mean_rel_luminance: e.mean_rel_luminance,
-        luminance_ratio: (luminance(approx.mean()) / mean_r) as f64,
+        luminance_ratio: if mean_r > 0.0 {
+            (luminance(approx.mean()) / mean_r) as f64
+        } else {
+            f64::NAN
+        },
         reference_rel_std_error: rel_std_error,
         reference_spp: spp,
         reference_ms: ms,
@@ -192,4 +198,25 @@ pub fn against_reference(
     let p = out.join("difference.png");
     diff.write_png(&p, exposure).map_err(|e| io_err(&p, e))?;
     errors(&approx, &reference, rse, spp, ms)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn image(value: f32) -> Image {
+        let mut im = Image::new(4, 2);
+        im.pixels.iter_mut().for_each(|p| *p = glam::Vec3::splat(value));
+        im
+    }
+
+    /// A black reference has no ratio (the whole-frame figures of a closed room's view read
+    /// 1.8e8 before); a lit one has the plain ratio.
+    #[test]
+    fn the_luminance_ratio_is_undefined_against_a_black_reference() {
+        let e = errors(&image(0.25), &image(0.0), 0.0, 1, 0.0).expect("same size");
+        assert!(e.luminance_ratio.is_nan(), "{}", e.luminance_ratio);
+        let e = errors(&image(0.25), &image(0.5), 0.0, 1, 0.0).expect("same size");
+        assert!((e.luminance_ratio - 0.5).abs() < 1e-6, "{}", e.luminance_ratio);
+    }
 }
