@@ -53,7 +53,7 @@
 use app::compare::{
     ReferenceErrors, ReferenceRender, errors, reference_component, reference_image,
 };
-use engine::components::{COMPONENTS, passes, passes_ms, render_components};
+use engine::components::{COMPONENTS, passes_ms, render_components};
 use engine::{Component, Frame, Preset, Renderer, Settings};
 use gi_report::{Entry, Sweep};
 use glam::Vec3;
@@ -631,7 +631,7 @@ fn components(
                     .setting("scene", name)
                     .setting("preset", preset)
                     .setting("component", c.name())
-                    .setting("passes", passes(c))
+                    .setting("passes", engine::components::passes_used_names(&frame.report, c))
                     .setting("luminance_ratio", f.luminance_ratio)
                     .setting("reference_rel_std_error", f.reference_rel_std_error)
                     .setting("worst_pixel_share", f.worst_pixel_share)

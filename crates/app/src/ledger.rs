@@ -83,7 +83,7 @@ use crate::contact_sheet::{Tile, write_contact_sheet};
 use crate::io_err;
 use crate::regions::{RegionMap, region_map};
 use engine::Component;
-use engine::components::{ComponentImage, passes, passes_ms, render_components};
+use engine::components::{ComponentImage, passes_ms, passes_used_names, render_components};
 use engine::{EngineError, Renderer};
 use frame_scheduler::FrameReport;
 use reference::{Image, luminance};
@@ -221,7 +221,7 @@ pub fn component_ledger(
 ) -> ComponentLedger {
     ComponentLedger {
         component: c.name().to_string(),
-        passes: passes(c).iter().map(|p| p.to_string()).collect(),
+        passes: passes_used_names(report, c),
         passes_ms: passes_ms(report, c),
         reference_ms: reference.ms,
         regions: region_rows(engine, reference, regions),

@@ -82,6 +82,16 @@ fn plane_box_region_ratios() {
     assert!((0.93..1.07).contains(&r), "sun_direct on the ground: ratio {r}");
     let c = l.components.iter().find(|c| c.component == "sun_direct").unwrap();
     assert!(c.passes_ms > 0.0, "the shadow maps, g-buffer and lighting ran: {}", c.passes_ms);
+    // The one bounce names the technique the presets chose, not the others it could have.
+    let bounce = l.components.iter().find(|c| c.component == "sun_indirect_diffuse").unwrap();
+    assert!(
+        bounce.passes.iter().any(|p| p.starts_with(engine::pass::SUN_RSM)),
+        "{:?}",
+        bounce.passes
+    );
+    for other in [engine::pass::LPV, engine::pass::RADIANCE_CACHE] {
+        assert!(!bounce.passes.iter().any(|p| p.starts_with(other)), "{:?}", bounce.passes);
+    }
     for empty in ["reflections", "point_lights", "emission"] {
         let c = l.components.iter().find(|c| c.component == empty).unwrap();
         assert_eq!(c.regions[0].engine_luminance, 0.0, "{empty}");

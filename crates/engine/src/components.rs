@@ -22,7 +22,7 @@
 use crate::graph::pass;
 use crate::renderer::HdrFrame;
 use crate::{EngineError, Renderer};
-use frame_scheduler::FrameReport;
+use frame_scheduler::{FrameReport, Outcome, PassRecord};
 
 /// A lighting term the frame can show on its own.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -122,15 +122,35 @@ pub fn passes(component: Component) -> &'static [&'static str] {
     }
 }
 
-/// Milliseconds of a component's passes in `report`: per pass the larger of its CPU and GPU
-/// time (a GPU pass's CPU time is its recording), summed; passes that did not run count 0.
-pub fn passes_ms(report: &FrameReport, component: Component) -> f64 {
+/// The passes of a component that `report`'s frame used: ran, amortised or reused (of the
+/// one-bounce techniques the one the settings chose; of the traced passes the traced
+/// shading's), in [`passes`]'s order.
+pub fn passes_used(report: &FrameReport, component: Component) -> Vec<&PassRecord> {
     passes(component)
         .iter()
         .filter_map(|name| report.pass(name))
+        .filter(|p| p.outcome != Outcome::Skipped)
+        .collect()
+}
+
+/// Milliseconds of a component's passes in `report`: per pass the larger of its CPU and GPU
+/// time (a GPU pass's CPU time is its recording), summed; passes that did not run (reused,
+/// skipped) count 0.
+pub fn passes_ms(report: &FrameReport, component: Component) -> f64 {
+    passes_used(report, component)
+        .iter()
         .filter(|p| p.outcome.executed())
         .map(|p| p.cpu_ms.unwrap_or(0.0).max(p.gpu_ms.unwrap_or(0.0)))
         .fold(0.0, |a, b| a + b)
+}
+
+/// [`passes_used`]'s names, a reused pass's with " (reused)".
+pub fn passes_used_names(report: &FrameReport, component: Component) -> Vec<String> {
+    let name = |p: &PassRecord| match p.outcome {
+        Outcome::Reused => format!("{} (reused)", p.name),
+        _ => p.name.clone(),
+    };
+    passes_used(report, component).into_iter().map(name).collect()
 }
 
 /// One component of the renderer's current view as the engine shows it.
