@@ -45,6 +45,9 @@ pub struct RenderJob {
     /// Still-view anti-aliasing samples (`engine::Settings::still_samples`; `None`: the
     /// preset's).
     pub still_samples: Option<u32>,
+    /// Mirror and glass parts followed per traced ray (`engine::Settings::trace_depth`;
+    /// `None`: the preset's).
+    pub trace_depth: Option<u32>,
     pub seed: u64,
     pub progress: bool,
 }
@@ -71,6 +74,7 @@ impl Default for RenderJob {
             components: false,
             supersample: 1,
             still_samples: None,
+            trace_depth: None,
             seed: 1,
             progress: true,
         }
@@ -210,6 +214,7 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
     let preset = Settings::preset(job.preset, job.width * ss, job.height * ss);
     let settings = Settings {
         still_samples: job.still_samples.unwrap_or(preset.still_samples),
+        trace_depth: job.trace_depth.unwrap_or(preset.trace_depth),
         indirect: job.indirect,
         sun_glints: job.sun_glints,
         mirrored_sun: job.mirrored_sun,

@@ -65,6 +65,10 @@ struct Args {
     /// still (`engine::Settings::still_samples`; 1: off). Default: the preset's.
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=256))]
     still_samples: Option<u32>,
+    /// Traced rays: mirror and glass parts followed per ray, 1 (the thesis's, no recursion)
+    /// to 3 (`engine::Settings::trace_depth`). Default: the preset's.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=3))]
+    trace_depth: Option<u32>,
     /// No progress bars.
     #[arg(long)]
     quiet: bool,
@@ -89,6 +93,7 @@ fn main() -> anyhow::Result<()> {
         components: a.components,
         supersample: a.supersample,
         still_samples: a.still_samples,
+        trace_depth: a.trace_depth,
         progress: !a.quiet,
         ..a.scene.job()
     };
