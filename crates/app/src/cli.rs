@@ -281,7 +281,7 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
     notes.push(format!(
         "the images (and the comparison with a reference) are of that view once settled: \
          still-view sample {} of {} (sub-pixel jitter averaged; `engine::Settings::still_samples`)",
-        settle.still_sample + 1,
+        settle.still_sample.max(1),
         renderer.settings().still_samples
     ));
     notes.push(format!("one-bounce technique: {}", job.indirect));

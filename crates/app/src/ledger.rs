@@ -42,10 +42,11 @@
 //!
 //! Two thirds of the full frame's squared error at 16 spp was aliasing; the direct sun's PCSS
 //! meets the area-light truth within 0.069 once it is gone (`plane_box`: 0.051 at 1x1, 0.035
-//! at 4x4). Against 64 spp the still samples' direct sun is 0.123 with 16, 0.110 with 32
-//! and 0.044 with 64 (the high preset's; 0.152, 0.122 and 0.057 while every jittered sample
-//! widened its specular lobes by `1/n` of the pixel's normal variance, see
-//! `jittered_footprint` in `crates/engine/src/state.rs`): the statue's highlights, a few pixels, converge
+//! at 4x4). Against 64 spp the still samples' direct sun is 0.099 with 16 and 0.035 with
+//! 64 (the high preset's; 0.123 and 0.044 while the view's first frame, widened over the whole
+//! pixel, was one of the samples, 0.152 and 0.057 while every jittered sample widened its
+//! specular lobes by `1/n` of the pixel's normal variance as well; see `jittered_footprint`
+//! in `crates/engine/src/state.rs`): the statue's highlights, a few pixels, converge
 //! slowly. Sixteen still samples leave the reflections where they were: the traced rays are
 //! cast from a quarter-resolution buffer (thesis 6.3), two pixels per texel each way, and the
 //! jitter moves them by less than one. Against 64 spp the reflections and the full frame get
@@ -57,8 +58,8 @@
 //! `reference_noise_rms` is 0.237 there, above the engine's 0.168 (default) and 0.119 (high),
 //! so the quick report's `components_city_320x180_*_sun_direct` entries are below what their
 //! reference resolves (43% of their squared error is one pixel of the statue's west face,
-//! where the engine is within one standard error). Against 64 spp the floor is 0.043: the
-//! high preset's 0.046 is at it, the default's 0.121 (30% in one pixel) is the engine's.
+//! where the engine is within one standard error). Against 64 spp the floor is 0.042: the
+//! high preset's 0.035 is below it, the default's 0.099 (27% in one pixel) is the engine's.
 //!
 //! The city's `point_lights` ratio (1.3-2.3 whole-image, rel RMS 1.7-2.4, depending on
 //! where the last frame's 1 cm step puts the lamp's head) is a handful of pixels: the

@@ -4,11 +4,14 @@
 //!
 //! Each jittered sample used to widen its Phong lobes by `1/n` of the pixel's normal
 //! variance (what its share of the pixel would suggest); the truth prefers much less once
-//! the samples are many (`jittered_footprint` in `crates/engine/src/state.rs`). At 320x180:
-//! 0.124 with today's widening, 0.150 with `1/n`; the test's bound lies between. (Not at
-//! every size: at 640x360 0.073 against 0.078, but at 160x90, where the statue is a few
-//! pixels across, 0.231 against 0.220.) And the direct sun where there are no highlights
-//! to alias: `plane_box`'s soft shadow, the PCSS against the area-light sun.
+//! the samples are many (`jittered_footprint` in `crates/engine/src/state.rs`), and the
+//! view's first frame, widened by the whole pixel's variance because it is shown alone, is
+//! no longer one of the samples (`engine::passes::accumulate`). At 320x180: 0.099 today,
+//! 0.124 with the first frame among the samples, 0.150 with `1/n` as well; the bound lies
+//! between. (With the first frame among the samples, `1/n` was worse at 640x360, 0.078
+//! against 0.073, but better at 160x90, where the statue is a few pixels across, 0.220
+//! against 0.231.) And the direct sun where there are no highlights to alias: `plane_box`'s
+//! soft shadow, the PCSS against the area-light sun.
 
 mod common;
 
@@ -50,7 +53,7 @@ fn direct_sun_error(g: scene::Generated) -> Option<f64> {
 #[test]
 fn sixteen_still_samples_meet_the_truth_on_the_statues_highlights() {
     let Some(rms) = direct_sun_error(scene::Generated::City) else { return };
-    assert!(rms < 0.135, "direct sun rel RMS {rms}");
+    assert!(rms < 0.11, "direct sun rel RMS {rms}");
 }
 
 /// The target for the PCSS shadows against the area-light sun: on `plane_box` (a box's

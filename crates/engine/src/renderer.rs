@@ -5,6 +5,7 @@
 use crate::effects::{Effect, Effects};
 use crate::gpu::{TimestampTimer, TransferCounts};
 use crate::graph::{self, pass};
+use crate::passes::accumulate;
 use crate::passes::display::Shown;
 use crate::state::{FrameCtx, State, SunLight};
 use crate::views::View;
@@ -70,8 +71,9 @@ pub struct FrameStats {
     /// Bytes uploaded and read back and CPU waits on the GPU during the frame.
     pub transfers: TransferCounts,
     pub needs: scene::SceneNeeds,
-    /// The still view's sample the frame rendered (`Settings::still_samples`; 0: a first
-    /// frame, its pixels' centres).
+    /// The still view's frame the frame rendered: 0 a first frame (its pixels' centres, shown
+    /// alone), `k` in `1..=Settings::still_samples` (when more than one) the `k`-th jittered
+    /// sample, after which the view shows the mean of `k` (`crate::passes::accumulate`).
     pub still_sample: u32,
 }
 
@@ -313,15 +315,15 @@ impl Renderer {
     /// amortised pass (sky volume, radiance cache) ran in it, and the still view's average
     /// holds all `Settings::still_samples` samples.
     pub fn settled(&self) -> bool {
-        let n = self.state.settings.still_samples;
-        self.still.key.is_some() && !self.still.restart && self.still.sample + 1 >= n
+        let last = accumulate::last_sample(self.state.settings.still_samples);
+        self.still.key.is_some() && !self.still.restart && self.still.sample >= last
     }
 
     /// Most frames [`Self::settle`] renders: a sky volume fill, the radiance cache's frames,
-    /// the still samples, and two frames for the passes' first runs.
+    /// the still view's first frame and samples, and two frames for the passes' first runs.
     pub fn frames_to_settle(&self) -> u32 {
         let set = &self.state.settings;
-        self.sky_volume_frames() + set.cache_frames + set.still_samples + 2
+        self.sky_volume_frames() + set.cache_frames + set.still_samples + 3
     }
 
     /// Renders frames until [`Self::settled`] (at most [`Self::frames_to_settle`]) and returns
@@ -340,9 +342,9 @@ impl Renderer {
     /// The still view's sample of the next frame: the next one after the last frame's when
     /// nothing changed, up to the last; else 0.
     fn next_still_sample(&self, key: &StillKey) -> u32 {
-        let n = self.state.settings.still_samples;
+        let last = accumulate::last_sample(self.state.settings.still_samples);
         match self.still.key {
-            Some(k) if k == *key && !self.still.restart => (self.still.sample + 1).min(n - 1),
+            Some(k) if k == *key && !self.still.restart => (self.still.sample + 1).min(last),
             _ => 0,
         }
     }

@@ -414,9 +414,9 @@ impl Settings {
             radiance_cache: radiance_cache::Settings::HIGH,
             cache_frames: 16,
             ssao_samples: 16,
-            // The city's direct sun against a 64-spp reference (320x180): 0.123 with the
-            // default's 16 samples, 0.110 with 32, 0.044 with 64 (the statue's highlights,
-            // a few pixels, converge slowly; 4x4 supersampling: 0.069).
+            // The city's direct sun against a 64-spp reference (320x180): 0.099 with the
+            // default's 16 samples, 0.035 with 64 (the statue's highlights, a few pixels,
+            // converge slowly; 4x4 supersampling: 0.069).
             still_samples: 64,
             trace_depth: 2,
             osm: shadows::OsmSettings::high(),

@@ -96,6 +96,10 @@ pub struct FrameCtx {
 /// | 64 (high) | - | - | - | 0.056 | - | **0.044** (16/n³) |
 ///
 /// `1 / n` (what each sample's share of the pixel would suggest) was best at 4 samples only.
+/// The table was measured while the view's first frame, widened by the whole pixel's
+/// variance, was one of the `n` samples; since it is shown alone and left out of the average
+/// (`crate::passes::accumulate`) the same rule gives 0.344 / 0.099 / 0.035 (low / default /
+/// high; at low a widening of 1/2 gives 0.342, 1/8 0.420).
 /// Checked at other sizes (default preset, 16 samples, `16 / n³` against `1 / n`): 640x360
 /// 0.073 against 0.078, but 160x90, where the statue is a few pixels across, 0.231 against
 /// 0.220. `plane_box` and `cornell_window`, with no curved glossy surfaces, do not move
@@ -121,7 +125,7 @@ impl FrameCtx {
     /// The camera's view-projection moved by this frame's sub-pixel jitter: what the
     /// G-buffer is rasterised with and every pass that projects into the view uses.
     pub fn view_projection(&self) -> glam::Mat4 {
-        let j = crate::passes::accumulate::jitter(self.still_sample);
+        let j = crate::passes::accumulate::frame_jitter(self.still_sample);
         let set = &self.state.settings;
         // Clip-space x + 2 j.x / W w: the image moves by j pixels (y up in clip space).
         let ndc =

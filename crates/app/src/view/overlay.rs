@@ -73,10 +73,10 @@ pub fn draw(
         ));
         frame_graph(ui, info.frame_ms);
         if let Some(s) = info.last.filter(|_| info.still_samples > 1) {
-            let k = s.still_sample + 1;
+            let k = s.still_sample;
             let n = info.still_samples;
             ui.label(match k {
-                1 => format!("first sample of the view (it moved or changed; {n} when still)"),
+                0 => format!("first frame of the view (it moved or changed; {n} when still)"),
                 _ => format!("still view: {k} of {n} jittered samples averaged"),
             });
         }

@@ -275,7 +275,7 @@ pub(super) fn accumulate_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
             s.accumulate.record(&mut enc, &s.targets, frame_image(io, r), c.still_sample);
             s.gpu.queue.submit([enc.finish()]);
             s.gpu.take_error()?;
-            io.put(r.accumulated, super::Accumulated(c.still_sample + 1))?;
+            io.put(r.accumulated, super::Accumulated(c.still_sample.max(1)))?;
             Ok(())
         });
 }

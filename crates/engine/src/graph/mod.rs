@@ -58,7 +58,8 @@ pub struct CubeShadows;
 pub struct LitView(pub u32);
 pub struct CombinedView(pub u32);
 
-/// The accumulated HDR target holds the mean of this many still-view samples.
+/// The accumulated HDR target holds the mean of this many still-view samples (1: the first
+/// frame alone, or the first sample).
 pub struct Accumulated(pub u32);
 
 /// Handles to the graph's resources the renderer reads.
