@@ -33,8 +33,10 @@ fn rooms(strip: bool) -> Option<(f64, f64)> {
 /// under 5% of the sky irradiance the windowed west room gets, and the west room gets what
 /// the authored quads give it within a factor of 1.5. (Without any quads both rooms see the
 /// whole sky: the closed room got 95% of the west room's irradiance, the west room 34x what
-/// the authored quads give.) With the authored quads the closed room is dark too: 3.9% of the
-/// windowed room's sky irradiance (2.7% at the default preset). The first wave's engine lit
+/// the authored quads give.) With the authored quads the closed room is dark too: 0.8% of the
+/// windowed room's sky irradiance (0.9% at the default preset; 3.9% and 2.7% with the
+/// thesis's 32x16x32 probes, whose layers in a room are twice as far apart as their
+/// columns, before `scene::SkyVolumePlacement::fit` spaced them evenly). The first wave's engine lit
 /// it at 46%, before the volume's lookup left out the probes behind a surface
 /// (`sky_volume::Settings::oriented_lookup`); after that 28.5% (21% at the default preset),
 /// until the scene's roof got a quad on its top as well as on the ceiling (the probes inside
