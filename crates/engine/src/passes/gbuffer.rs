@@ -9,6 +9,10 @@ pub struct GBufferPass {
     opaque: wgpu::RenderPipeline,
     /// Alpha-tested materials (the draws after the opaque ones).
     alpha_tested: wgpu::RenderPipeline,
+    /// The opaque draws' depth alone, before the G-buffer: the opaque pipeline then shades
+    /// each pixel once (its depth test `Equal`), where drawing in material order shaded every
+    /// surface a pixel's ray crosses.
+    depth_only: wgpu::RenderPipeline,
     /// Made once, again only when what it binds changes.
     frame_group: gpu_harness::BindGroupCache,
 }
@@ -48,7 +52,7 @@ impl GBufferPass {
         });
         let targets: Vec<Option<wgpu::ColorTargetState>> =
             GBUFFER_FORMATS.iter().map(|&f| Some(f.into())).collect();
-        let pipeline = |entry: &str| {
+        let pipeline = |entry: &str, depth: wgpu::DepthStencilState| {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(entry),
                 layout: Some(&layout),
@@ -59,9 +63,9 @@ impl GBufferPass {
                     buffers: &[Some(SceneBuffers::vertex_layout(false))],
                 },
                 primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
-                depth_stencil: Some(depth_write_state()),
+                depth_stencil: Some(depth),
                 multisample: Default::default(),
-                fragment: Some(wgpu::FragmentState {
+                fragment: (!entry.is_empty()).then_some(wgpu::FragmentState {
                     module: &module,
                     entry_point: Some(entry),
                     compilation_options: Default::default(),
@@ -71,9 +75,15 @@ impl GBufferPass {
                 cache: None,
             })
         };
+        let equal = wgpu::DepthStencilState {
+            depth_write_enabled: Some(false),
+            depth_compare: Some(wgpu::CompareFunction::Equal),
+            ..depth_write_state()
+        };
         Ok(Self {
-            opaque: pipeline("fs_opaque"),
-            alpha_tested: pipeline("fs_alpha_tested"),
+            opaque: pipeline("fs_opaque", equal),
+            alpha_tested: pipeline("fs_alpha_tested", depth_write_state()),
+            depth_only: pipeline("", depth_write_state()),
             frame_group: Default::default(),
         })
     }
@@ -104,6 +114,33 @@ impl GBufferPass {
                 },
             })
         };
+        let opaque = || scene.draws.iter().filter(|d| !scene.alpha_tested(d));
+        let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("gbuffer depth"),
+            color_attachments: &[],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &targets.zbuffer,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&self.depth_only);
+        pass.set_bind_group(0, &frame_group, &[]);
+        if let Some(group) = scene.material_groups.first() {
+            pass.set_bind_group(1, group, &[]);
+        }
+        pass.set_vertex_buffer(0, scene.vertices.slice(..));
+        pass.set_index_buffer(scene.indices.slice(..), wgpu::IndexFormat::Uint32);
+        for d in opaque() {
+            pass.draw_indexed(d.first_index..d.first_index + d.index_count, 0, 0..1);
+        }
+        drop(pass);
         let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("gbuffer"),
             color_attachments: &[
@@ -115,7 +152,7 @@ impl GBufferPass {
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                 view: &targets.zbuffer,
                 depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(1.0),
+                    load: wgpu::LoadOp::Load,
                     store: wgpu::StoreOp::Store,
                 }),
                 stencil_ops: None,
