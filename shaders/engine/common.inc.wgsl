@@ -82,6 +82,14 @@ fn vs_fullscreen(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> 
     return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
 }
 
+// The same on the far plane, for passes depth-tested against the G-buffer's z-buffer
+// (cleared to 1): `Greater` passes where geometry was drawn, `Equal` the background.
+@vertex
+fn vs_fullscreen_far(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4<f32>(uv * 2.0 - 1.0, 1.0, 1.0);
+}
+
 // Unit view ray through the centre of pixel `px`.
 fn view_ray(f: Frame, px: vec2<f32>) -> vec3<f32> {
     let size = vec2<f32>(f32(f.size.x), f32(f.size.y));

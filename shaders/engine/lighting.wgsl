@@ -29,16 +29,17 @@
 @group(0) @binding(8) var<storage, read> sky_probes: array<vec4<f32>>;
 @group(0) @binding(9) var<storage, read> bounce: array<vec4<f32>>;
 @group(0) @binding(10) var<storage, read> materials: array<Material>;
-@group(0) @binding(11) var<storage, read> skymap: array<vec4<f32>>;
-@group(0) @binding(12) var<storage, read> lights: array<PointLight>;
-@group(0) @binding(13) var cubes: texture_depth_cube_array;
-@group(0) @binding(14) var cube_cmp: sampler_comparison;
+@group(0) @binding(11) var<storage, read> lights: array<PointLight>;
+@group(0) @binding(12) var cubes: texture_depth_cube_array;
+@group(0) @binding(13) var cube_cmp: sampler_comparison;
 // The LPV's glossy lookup: radiance arriving from the pixel's mirror direction.
-@group(0) @binding(15) var<storage, read> glossy: array<vec4<f32>>;
+@group(0) @binding(14) var<storage, read> glossy: array<vec4<f32>>;
 // The scene's planar reflectors (engine::mirrored_sun).
-@group(0) @binding(16) var<uniform> reflectors: Reflectors;
+@group(0) @binding(15) var<uniform> reflectors: Reflectors;
 // The sky volume's lookup uniform (no points: no sky volume bound).
-@group(0) @binding(17) var<uniform> sky_lookup: SkyVolumeLookup;
+@group(0) @binding(16) var<uniform> sky_lookup: SkyVolumeLookup;
+// The sky map (the background's draw alone reads it).
+@group(0) @binding(17) var<storage, read> skymap: array<vec4<f32>>;
 
 fn csm_count() -> i32 {
     return i32(frame.csm.x);
@@ -143,18 +144,24 @@ fn mirrored_sun_visibility(q: vec3<f32>, nr: vec3<f32>) -> f32 {
     return csm_visibility_hard(q, nr, dot(q - frame.camera_pos.xyz, frame.camera_fwd.xyz));
 }
 
+// The background, where no geometry was drawn (the sky pipeline's depth test): the sky map
+// in the full view, black in a component's.
+@fragment
+fn fs_sky(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
+    if frame.csm.w != COMPONENT_FULL {
+        return vec4<f32>(0.0, 0.0, 0.0, 1.0);
+    }
+    return vec4<f32>(sky_radiance(view_ray(frame, vec2<f32>(vec2<i32>(frag.xy)))), 1.0);
+}
+
+// The pixels geometry covers (the lighting pipeline's depth test), which the G-buffer gives
+// a positive view depth.
 @fragment
 fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     let px = vec2<i32>(frag.xy);
     let depth = textureLoad(depth_t, px, 0).x;
     let pxf = vec2<f32>(px);
     let component = frame.csm.w;
-    if depth <= 0.0 {
-        if component != COMPONENT_FULL {
-            return vec4<f32>(0.0, 0.0, 0.0, 1.0);
-        }
-        return vec4<f32>(sky_radiance(view_ray(frame, pxf)), 1.0);
-    }
     let a = textureLoad(albedo_t, px, 0);
     let ns = textureLoad(normal_t, px, 0);
     let gm = textureLoad(geometry_t, px, 0);

@@ -47,8 +47,24 @@ pub fn fullscreen_pipeline(
     device: &wgpu::Device,
     label: &str,
     source: &str,
+    entries: (&str, &str),
+    target: impl Into<wgpu::ColorTargetState>,
+) -> wgpu::RenderPipeline {
+    depth_tested_fullscreen_pipeline(device, label, source, entries, target, None)
+}
+
+/// The same, depth-tested against the pass's depth attachment with `depth` (`None`: no
+/// depth attachment). A triangle on the far plane tested against a depth buffer the scene
+/// was drawn into runs its fragment shader only where the test passes (`Greater`: where
+/// geometry was drawn; `Equal`: the background), which a software rasteriser, running every
+/// branch of a shader for every pixel, needs more than a GPU.
+pub fn depth_tested_fullscreen_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    source: &str,
     (vs_entry, fs_entry): (&str, &str),
     target: impl Into<wgpu::ColorTargetState>,
+    depth: Option<wgpu::DepthStencilState>,
 ) -> wgpu::RenderPipeline {
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(label),
@@ -64,7 +80,7 @@ pub fn fullscreen_pipeline(
             buffers: &[],
         },
         primitive: Default::default(),
-        depth_stencil: None,
+        depth_stencil: depth,
         multisample: Default::default(),
         fragment: Some(wgpu::FragmentState {
             module: &module,
@@ -108,6 +124,18 @@ pub fn color_pass<'e>(
     target: &wgpu::TextureView,
     load: wgpu::LoadOp<wgpu::Color>,
 ) -> wgpu::RenderPass<'e> {
+    depth_tested_pass(encoder, label, target, load, None)
+}
+
+/// The same with `depth` as the depth attachment, kept as it is (for the pipelines of
+/// [`depth_tested_fullscreen_pipeline`], which test against it without writing).
+pub fn depth_tested_pass<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    label: &str,
+    target: &wgpu::TextureView,
+    load: wgpu::LoadOp<wgpu::Color>,
+    depth: Option<&wgpu::TextureView>,
+) -> wgpu::RenderPass<'e> {
     encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: Some(label),
         color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -116,7 +144,14 @@ pub fn color_pass<'e>(
             resolve_target: None,
             ops: wgpu::Operations { load, store: wgpu::StoreOp::Store },
         })],
-        depth_stencil_attachment: None,
+        depth_stencil_attachment: depth.map(|view| wgpu::RenderPassDepthStencilAttachment {
+            view,
+            depth_ops: Some(wgpu::Operations {
+                load: wgpu::LoadOp::Load,
+                store: wgpu::StoreOp::Store,
+            }),
+            stencil_ops: None,
+        }),
         timestamp_writes: None,
         occlusion_query_set: None,
         multiview_mask: None,

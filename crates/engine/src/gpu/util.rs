@@ -70,6 +70,35 @@ pub(crate) fn blended_fullscreen_pipeline(
     .map_err(|e| shader_error(label, e))
 }
 
+/// A full-screen triangle on the far plane (`vs_fullscreen_far`) writing one HDR target,
+/// depth-tested without writing against the G-buffer's z-buffer with `compare`: `Greater`
+/// shades the pixels geometry covers, `Equal` the background.
+pub(crate) fn depth_tested_fullscreen_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    source: &str,
+    fs_entry: &str,
+    compare: wgpu::CompareFunction,
+) -> Result<wgpu::RenderPipeline, EngineError> {
+    let depth = wgpu::DepthStencilState {
+        depth_write_enabled: Some(false),
+        depth_compare: Some(compare),
+        ..depth_write_state()
+    };
+    gpu_harness::validated(device, || {
+        let entries = ("vs_fullscreen_far", fs_entry);
+        gpu_harness::depth_tested_fullscreen_pipeline(
+            device,
+            label,
+            source,
+            entries,
+            super::HDR_FORMAT,
+            Some(depth),
+        )
+    })
+    .map_err(|e| shader_error(label, e))
+}
+
 /// Depth test and write into a `Depth32Float` target (the G-buffer and shadow passes).
 pub(crate) fn depth_write_state() -> wgpu::DepthStencilState {
     wgpu::DepthStencilState {

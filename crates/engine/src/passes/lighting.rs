@@ -9,13 +9,17 @@ use super::rsm_gather::RsmGatherState;
 use super::sky::{SkyLight, SkyVolumeBinding};
 use crate::EngineError;
 use crate::gpu::{
-    GBufferTargets, Gpu, compute_pipeline, dispatch, draw_fullscreen, empty_storage,
-    fullscreen_pipeline, uniform_buffer,
+    GBufferTargets, Gpu, compute_pipeline, depth_tested_fullscreen_pipeline, dispatch,
+    empty_storage, uniform_buffer,
 };
 
 pub struct LightingPass {
     queries: wgpu::ComputePipeline,
+    /// The pixels geometry covers, and the background (`fs_sky`): two draws depth-tested
+    /// against the G-buffer's z-buffer, so that each pixel runs only its own shader.
     pipeline: wgpu::RenderPipeline,
+    sky: wgpu::RenderPipeline,
+    sky_group: gpu_harness::BindGroupCache,
     /// Made once, again only when what it binds changes.
     queries_group: gpu_harness::BindGroupCache,
     lighting_group: gpu_harness::BindGroupCache,
@@ -62,12 +66,17 @@ pub enum IndirectSource<'a> {
 
 impl LightingPass {
     pub fn new(device: &wgpu::Device, targets: &GBufferTargets) -> Result<Self, EngineError> {
+        let (source, compare) = (crate::shaders::lighting(), wgpu::CompareFunction::Greater);
         let pipeline =
-            fullscreen_pipeline(device, "lighting", &crate::shaders::lighting(), "fs_lighting")?;
+            depth_tested_fullscreen_pipeline(device, "lighting", &source, "fs_lighting", compare)?;
+        let compare = wgpu::CompareFunction::Equal;
+        let sky = depth_tested_fullscreen_pipeline(device, "sky", &source, "fs_sky", compare)?;
         let n = targets.pixels() as u64;
         Ok(Self {
             queries_group: Default::default(),
             lighting_group: Default::default(),
+            sky,
+            sky_group: Default::default(),
             queries: compute_pipeline(
                 device,
                 "lookup queries",
@@ -161,7 +170,6 @@ impl LightingPass {
                 sky_probes.as_entire_binding(),
                 indirect.as_entire_binding(),
                 inputs.materials.as_entire_binding(),
-                skymap.as_entire_binding(),
                 inputs.lights.as_entire_binding(),
                 tv(inputs.cubes.0),
                 wgpu::BindingResource::Sampler(inputs.cubes.1),
@@ -170,7 +178,19 @@ impl LightingPass {
                 sky_lookup.as_entire_binding(),
             ],
         );
-        draw_fullscreen(enc, "lighting", &self.pipeline, &bg, &targets.lit);
+        let sky_bg = self.sky_group.get(
+            device,
+            "sky",
+            &self.sky.get_bind_group_layout(0),
+            &[(0, inputs.frame.as_entire_binding()), (17, skymap.as_entire_binding())],
+        );
+        let (black, z) = (wgpu::LoadOp::Clear(wgpu::Color::BLACK), Some(&targets.zbuffer));
+        let mut pass = gpu_harness::depth_tested_pass(enc, "lighting", &targets.lit, black, z);
+        for (pipeline, group) in [(&self.pipeline, &bg), (&self.sky, &sky_bg)] {
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, group, &[]);
+            pass.draw(0..3, 0..1);
+        }
         Ok(())
     }
 }
