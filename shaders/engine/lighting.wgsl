@@ -26,7 +26,7 @@
 @group(0) @binding(6) var<storage, read> cascades: array<CsmCascade>;
 @group(0) @binding(7) var<storage, read> taps: array<vec2<f32>>;
 // The sky volume's probes (sky_volume::gpu::ResidentSkyVolume::probes).
-@group(0) @binding(8) var<storage, read> sky_probes: array<vec4<f32>>;
+@group(0) @binding(8) var<storage, read> sky_probes: array<vec4<u32>>;
 @group(0) @binding(9) var<storage, read> bounce: array<vec4<f32>>;
 @group(0) @binding(10) var<storage, read> materials: array<Material>;
 @group(0) @binding(11) var<storage, read> lights: array<PointLight>;
@@ -69,7 +69,7 @@ fn sky_volume_params() -> SkyVolumeLookup {
     return sky_lookup;
 }
 
-fn sky_volume_probe(i: u32) -> vec4<f32> {
+fn sky_volume_probe(i: u32) -> vec4<u32> {
     return sky_probes[i];
 }
 

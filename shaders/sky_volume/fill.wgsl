@@ -29,7 +29,17 @@ struct GpuQuad {
 @group(0) @binding(2) var<storage, read> sky: array<vec4<f32>>;
 @group(0) @binding(3) var<storage, read> quads: array<GpuQuad>;
 // Seven vec4 per point, as the lookup reads them.
-@group(0) @binding(4) var<storage, read_write> probes: array<vec4<f32>>;
+// Each point's 27 coefficients as halves, two to a word (sky_volume::gpu::pack_probe).
+@group(0) @binding(4) var<storage, read_write> probes: array<vec4<u32>>;
+
+// Largest finite half (sky_volume::gpu::HALF_MAX): coefficients beyond it are clamped.
+const SKY_VOLUME_HALF_MAX: f32 = 65504.0;
+
+// Two coefficients as halves in one word, the first in the lower 16 bits.
+fn sky_volume_pack(a: f32, b: f32) -> u32 {
+    let m = vec2<f32>(SKY_VOLUME_HALF_MAX);
+    return pack2x16float(clamp(vec2<f32>(a, b), -m, m));
+}
 
 fn transmittance(p: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
     var t = vec3<f32>(1.0);
@@ -87,12 +97,9 @@ fn fill(@builtin(global_invocation_id) gid: vec3<u32>) {
             b[k] += yb[k] * l.z;
         }
     }
-    let base = i * 7u;
-    probes[base] = vec4<f32>(r[0], r[1], r[2], r[3]);
-    probes[base + 1u] = vec4<f32>(r[4], r[5], r[6], r[7]);
-    probes[base + 2u] = vec4<f32>(r[8], g[0], g[1], g[2]);
-    probes[base + 3u] = vec4<f32>(g[3], g[4], g[5], g[6]);
-    probes[base + 4u] = vec4<f32>(g[7], g[8], b[0], b[1]);
-    probes[base + 5u] = vec4<f32>(b[2], b[3], b[4], b[5]);
-    probes[base + 6u] = vec4<f32>(b[6], b[7], b[8], 0.0);
+    let base = i * 4u;
+    probes[base] = vec4<u32>(sky_volume_pack(r[0], r[1]), sky_volume_pack(r[2], r[3]), sky_volume_pack(r[4], r[5]), sky_volume_pack(r[6], r[7]));
+    probes[base + 1u] = vec4<u32>(sky_volume_pack(r[8], g[0]), sky_volume_pack(g[1], g[2]), sky_volume_pack(g[3], g[4]), sky_volume_pack(g[5], g[6]));
+    probes[base + 2u] = vec4<u32>(sky_volume_pack(g[7], g[8]), sky_volume_pack(b[0], b[1]), sky_volume_pack(b[2], b[3]), sky_volume_pack(b[4], b[5]));
+    probes[base + 3u] = vec4<u32>(sky_volume_pack(b[6], b[7]), sky_volume_pack(b[8], 0.0), 0u, 0u);
 }

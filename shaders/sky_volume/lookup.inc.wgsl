@@ -1,15 +1,18 @@
 // include: sh_math/sh.inc.wgsl
 // Sky-light irradiance volume lookup (thesis 5.3.6): trilinear interpolation of the 27 SH
 // coefficients, clamped at the borders, clamped-cosine (and window) convolution at the normal,
-// clamp at zero. A point is seven vec4 (r0..r8, g0..g8, b0..b8 and a zero; points x fastest,
-// then z, then y; sky_volume::gpu::PROBE_VEC4S): seven loads a corner where 27 scalar loads
-// took 1.8 times as long on lavapipe. The CPU twin is lookup.rs (`SkyVolume::irradiance`).
+// clamp at zero. A point is four vec4<u32>: r0..r8, g0..g8, b0..b8 as halves, two to a word,
+// the first in the lower 16 bits, then zeros (points x fastest, then z, then y;
+// sky_volume::gpu::PROBE_UVEC4S, pack_probe): four loads a corner, where seven vec4<f32>
+// made the lookup cost the city's 1600x900 frame 105 ms instead of 65 on lavapipe, and 27
+// scalar loads took 1.8 times as long again. The CPU twin is lookup.rs
+// (`SkyVolume::irradiance`).
 //
 // A snippet: the lookup kernel (lookup.wgsl) and a renderer's own lighting shader include it,
 // so a renderer can light its pixels from the volume without a query buffer in between.
 // The including shader provides
 //   fn sky_volume_params() -> SkyVolumeLookup   // the lookup's uniform (gpu::LookupParams)
-//   fn sky_volume_probe(i: u32) -> vec4<f32>     // vec4 i of the probe buffer
+//   fn sky_volume_probe(i: u32) -> vec4<u32>     // vec4 i of the probe buffer
 
 struct SkyVolumeLookup {
     origin: vec4<f32>,
@@ -60,18 +63,21 @@ fn sky_volume_irradiance(pos: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
         let z = u32(az[sz]);
         let w = select(1.0 - ax.z, ax.z, sx == 1u) * select(1.0 - ay.z, ay.z, sy == 1u)
             * select(1.0 - az.z, az.z, sz == 1u);
-        let base = ((yy * lp.dims.z + z) * lp.dims.x + x) * 7u;
-        let q0 = sky_volume_probe(base);
-        let q1 = sky_volume_probe(base + 1u);
-        let q2 = sky_volume_probe(base + 2u);
-        let q3 = sky_volume_probe(base + 3u);
-        let q4 = sky_volume_probe(base + 4u);
-        let q5 = sky_volume_probe(base + 5u);
-        let q6 = sky_volume_probe(base + 6u);
+        let base = ((yy * lp.dims.z + z) * lp.dims.x + x) * 4u;
+        let w0 = sky_volume_probe(base);
+        let w1 = sky_volume_probe(base + 1u);
+        let w2 = sky_volume_probe(base + 2u);
+        let w3 = sky_volume_probe(base + 3u);
+        // Coefficient pairs: (r0 r1) (r2 r3) (r4 r5) (r6 r7) (r8 g0) (g1 g2) ... (b8 0).
+        let r8g0 = unpack2x16float(w1.x);
+        let g78 = unpack2x16float(w2.x);
         let d = vec3<f32>(
-            dot(q0, k0) + dot(q1, k1) + q2.x * k8,
-            dot(vec4<f32>(q2.yzw, q3.x), k0) + dot(vec4<f32>(q3.yzw, q4.x), k1) + q4.y * k8,
-            dot(vec4<f32>(q4.zw, q5.xy), k0) + dot(vec4<f32>(q5.zw, q6.xy), k1) + q6.z * k8,
+            dot(vec4<f32>(unpack2x16float(w0.x), unpack2x16float(w0.y)), k0)
+                + dot(vec4<f32>(unpack2x16float(w0.z), unpack2x16float(w0.w)), k1) + r8g0.x * k8,
+            dot(vec4<f32>(r8g0.y, unpack2x16float(w1.y), unpack2x16float(w1.z).x), k0)
+                + dot(vec4<f32>(unpack2x16float(w1.z).y, unpack2x16float(w1.w), g78.x), k1) + g78.y * k8,
+            dot(vec4<f32>(unpack2x16float(w2.y), unpack2x16float(w2.z)), k0)
+                + dot(vec4<f32>(unpack2x16float(w2.w), unpack2x16float(w3.x)), k1) + unpack2x16float(w3.y).x * k8,
         );
         e += d * w;
         let probe = lp.origin.xyz + vec3<f32>(f32(x), f32(yy), f32(z)) * lp.spacing.xyz;

@@ -10,7 +10,7 @@ struct Query {
 }
 
 @group(0) @binding(0) var<uniform> params: SkyVolumeLookup;
-@group(0) @binding(1) var<storage, read> probes: array<vec4<f32>>;
+@group(0) @binding(1) var<storage, read> probes: array<vec4<u32>>;
 @group(0) @binding(2) var<storage, read> queries: array<Query>;
 @group(0) @binding(3) var<storage, read_write> out_diffuse: array<vec4<f32>>;
 
@@ -18,7 +18,7 @@ fn sky_volume_params() -> SkyVolumeLookup {
     return params;
 }
 
-fn sky_volume_probe(i: u32) -> vec4<f32> {
+fn sky_volume_probe(i: u32) -> vec4<u32> {
     return probes[i];
 }
 

@@ -10,19 +10,22 @@
 //! On lavapipe the GPU times are CPU times (Mesa's rasteriser and shaders on the CPU); run
 //! it on an idle machine.
 //!
-//! Measured at 1600x900 (2 cores, lavapipe, load 1.9-2.0, 5 rounds; one run's medians
+//! Measured at 1600x900 (2 cores, lavapipe, load 2.1-2.4, 5 rounds; one run's medians
 //! scatter by about 30 ms):
 //!
 //! | variant | lighting GPU ms | g-buffer GPU ms | frame ms |
 //! |---|---:|---:|---:|
-//! | all effects on | 661.7 | 94.8 | 912.3 |
-//! | no indirect light | 403.6 (-258.1) | 96.3 (+1.5) | 654.5 (-257.8) |
-//! | no sun shadows | 590.9 (-70.8) | 93.8 (-1.0) | 804.1 (-108.2) |
-//! | no ambient occlusion | 625.4 (-36.2) | 97.4 (+2.6) | 880.5 (-31.8) |
-//! | no sky lighting | 557.0 (-104.7) | 99.9 (+5.1) | 818.4 (-93.9) |
-//! | no point-light shadows | 648.8 (-12.9) | 96.1 (+1.3) | 902.9 (-9.4) |
-//! | no reflections or refractions | 611.1 (-50.6) | 95.3 (+0.5) | 770.0 (-142.3) |
-//! | none of these | 210.7 (-451.0) | 95.2 (+0.4) | 327.3 (-585.0) |
+//! | all effects on | 619.4 | 92.5 | 879.4 |
+//! | no indirect light | 365.8 (-253.6) | 93.0 (+0.5) | 614.4 (-265.0) |
+//! | no sun shadows | 562.5 (-56.9) | 93.9 (+1.4) | 774.7 (-104.6) |
+//! | no ambient occlusion | 595.7 (-23.8) | 95.8 (+3.3) | 840.6 (-38.8) |
+//! | no sky lighting | 554.2 (-65.2) | 92.6 (+0.1) | 796.3 (-83.1) |
+//! | no point-light shadows | 622.8 (+3.3) | 94.4 (+1.9) | 868.1 (-11.3) |
+//! | no reflections or refractions | 573.9 (-45.5) | 92.7 (+0.2) | 728.5 (-150.9) |
+//! | none of these | 202.1 (-417.3) | 101.1 (+8.6) | 324.8 (-554.6) |
+//!
+//! (Sky lighting cost 104.7 ms of lighting, all effects 661.7, before `sky_volume` stored its
+//! probes as halves: four loads a point instead of seven.)
 //!
 //! The one bounce (the RSM gather, its blur and upsampling, the lookup queries) is the
 //! largest share: of its ~250 ms, leaving out the gather's dispatch saves ~75 ms, the two

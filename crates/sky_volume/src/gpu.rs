@@ -1,9 +1,15 @@
 //! GPU path (feature `gpu`): WGSL for the lookup (the deferred sky-lighting pass, thesis
 //! 5.3.6) and the brute-force fill (thesis 5.3.4), and the `#[repr(C)]` data they read.
 //!
-//! Storage layout: [`PROBE_VEC4S`] `vec4<f32>` per point, in grid order (x fastest, then z,
-//! then y): the 27 floats of [`SkyVolume::probes`]' point (r, g, b x 9 radiance SH) and a zero
-//! ([`SkyVolume::gpu_probe_bytes`]), so that the lookup reads a point in seven loads. Bindings
+//! Storage layout: [`PROBE_UVEC4S`] `vec4<u32>` per point (64 bytes), in grid order (x
+//! fastest, then z, then y): the 27 coefficients of [`SkyVolume::probes`]' point (r, g, b x 9
+//! radiance SH) as IEEE half floats, two to a word, then zeros ([`SkyVolume::gpu_probe_bytes`],
+//! [`pack_probe`]), so that the lookup reads a point in four loads. Halves keep a coefficient
+//! to 1 part in 2048 (the lookup's result within about 1e-3 of the CPU's, which keeps `f32`);
+//! with 32-bit floats the lookup took seven loads a point, and on lavapipe a load per lane is
+//! what the lookup's time is made of: sky lighting cost `engine`'s city at 1600x900 105 ms of
+//! lighting with seven loads, 65 with four (`crates/app/examples/lighting_cost.rs`, 2 cores).
+//! Coefficients beyond a half's range are clamped to +-65504. Bindings
 //! are listed at the top of each shader. [`ResidentSkyVolume`] runs both as resident passes (the
 //! fill layer by layer, the lookup bound once to the caller's buffers).
 
@@ -12,8 +18,30 @@ use crate::sky::sanitize;
 use crate::{OcclusionQuad, SkyRadiance, SkyVolume};
 use bytemuck::{Pod, Zeroable};
 
-/// `vec4<f32>` per point in the shaders' probe buffer: 27 coefficients and one zero.
-pub const PROBE_VEC4S: usize = 7;
+/// `vec4<u32>` per point in the shaders' probe buffer: 27 coefficients as halves, two to a
+/// word, and five zero halves.
+pub const PROBE_UVEC4S: usize = 4;
+
+/// Largest finite half float: what the packing clamps a coefficient to.
+pub const HALF_MAX: f32 = 65504.0;
+
+/// One point's 27 coefficients as the probe buffer holds them (halves, two to a word: the
+/// lower 16 bits hold the even coefficient).
+pub fn pack_probe(p: &[f32; 27]) -> [u32; PROBE_UVEC4S * 4] {
+    let half = |k: usize| {
+        let x = p.get(k).copied().unwrap_or(0.0).clamp(-HALF_MAX, HALF_MAX);
+        u32::from(half::f16::from_f32(x).to_bits())
+    };
+    std::array::from_fn(|w| half(2 * w) | (half(2 * w + 1) << 16))
+}
+
+/// The inverse of [`pack_probe`].
+pub fn unpack_probe(words: &[u32; PROBE_UVEC4S * 4]) -> [f32; 27] {
+    std::array::from_fn(|k| {
+        let bits = (words[k / 2] >> (16 * (k % 2))) & 0xffff;
+        half::f16::from_bits(bits as u16).to_f32()
+    })
+}
 
 /// WGSL snippet of the lookup, `sky_volume_irradiance(pos, normal)`, for a renderer's own
 /// shaders (after the `sh_math` snippet): the includer provides `sky_volume_params()` (the
@@ -122,7 +150,8 @@ impl SkyVolume {
         }
     }
 
-    /// The probes as the shaders' buffer ([`PROBE_VEC4S`] `vec4<f32>` per point).
+    /// The probes as the shaders' buffer ([`PROBE_UVEC4S`] `vec4<u32>` per point,
+    /// [`pack_probe`]).
     pub fn gpu_probe_bytes(&self) -> Vec<u8> {
         self.gpu_layer_bytes(0..self.grid.dims.y).1
     }
@@ -135,9 +164,11 @@ impl SkyVolume {
         let end = (layers.end.min(self.grid.dims.y) as usize) * per_layer;
         let start = (layers.start as usize * per_layer).min(end);
         let floats: &[f32] = bytemuck::cast_slice(&self.probes[start..end]);
-        let padded: Vec<f32> =
-            floats.chunks_exact(27).flat_map(|p| p.iter().copied().chain([0.0])).collect();
-        ((start * PROBE_VEC4S * 16) as u64, bytemuck::cast_slice(&padded).to_vec())
+        let words: Vec<u32> = floats
+            .chunks_exact(27)
+            .flat_map(|p| pack_probe(p.try_into().expect("27 coefficients")))
+            .collect();
+        ((start * PROBE_UVEC4S * 16) as u64, bytemuck::cast_slice(&words).to_vec())
     }
 
     /// The fill shader's inputs for this volume, its quads and `sky`.

@@ -93,7 +93,7 @@ impl ResidentSkyVolume {
         );
         let probes = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("sky volume probes"),
-            size: (g.len() * crate::gpu::PROBE_VEC4S * 16) as u64,
+            size: (g.len() * crate::gpu::PROBE_UVEC4S * 16) as u64,
             usage: storage | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
@@ -195,7 +195,7 @@ impl ResidentSkyVolume {
         Ok(())
     }
 
-    /// The probe buffer ([`crate::gpu::PROBE_VEC4S`] `vec4` per point, as
+    /// The probe buffer ([`crate::gpu::PROBE_UVEC4S`] `vec4<u32>` per point, as
     /// [`SkyVolume::gpu_probe_bytes`]).
     pub fn probes(&self) -> &wgpu::Buffer {
         &self.probes
@@ -261,11 +261,10 @@ impl ResidentSkyVolume {
     ) -> Result<Vec<f32>, SkyVolumeError> {
         let bytes = gpu_harness::read_buffer(device, queue, &self.probes, self.probes.size())
             .map_err(gpu_err)?;
-        let padded: Vec<f32> = bytemuck::pod_collect_to_vec(&bytes);
-        Ok(padded
-            .chunks_exact(crate::gpu::PROBE_VEC4S * 4)
-            .flat_map(|p| &p[..27])
-            .copied()
+        let words: Vec<u32> = bytemuck::pod_collect_to_vec(&bytes);
+        Ok(words
+            .chunks_exact(crate::gpu::PROBE_UVEC4S * 4)
+            .flat_map(|p| crate::gpu::unpack_probe(p.try_into().expect("one point's words")))
             .collect())
     }
 }

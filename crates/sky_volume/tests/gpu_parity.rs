@@ -15,6 +15,31 @@ fn validate_wgsl(src: &str) {
 fn shaders_validate() {
     validate_wgsl(&lookup_shader());
     validate_wgsl(&fill_shader());
+    // The clamp before packing is one number on both sides.
+    let line = format!("const SKY_VOLUME_HALF_MAX: f32 = {HALF_MAX:?};");
+    assert!(FILL_WGSL.contains(&line), "the fill should declare `{line}`");
+}
+
+/// The coefficients in a probe buffer (`pack_probe`'s words), 27 per point.
+fn unpacked(bytes: &[u8]) -> Vec<f32> {
+    let words: Vec<u32> = cast_vec(bytes);
+    words.chunks_exact(PROBE_UVEC4S * 4).flat_map(|p| unpack_probe(p.try_into().unwrap())).collect()
+}
+
+/// Halves round a coefficient by at most 1 part in 2048 and keep its sign; beyond their
+/// range they clamp.
+#[test]
+fn probes_pack_to_halves() {
+    let p: [f32; 27] = std::array::from_fn(|k| (k as f32 - 13.0) * 0.37 + 0.011 * k as f32);
+    let back = unpack_probe(&pack_probe(&p));
+    for (a, b) in p.iter().zip(&back) {
+        assert!((a - b).abs() <= a.abs() / 2048.0, "{a} -> {b}");
+    }
+    let words = pack_probe(&[1e9; 27]);
+    assert_eq!(words[13] >> 16, 0, "the 28th half is zero");
+    assert!(words[14..].iter().all(|&w| w == 0));
+    assert!(unpack_probe(&words).iter().all(|&c| c == HALF_MAX));
+    assert!(unpack_probe(&pack_probe(&[-1e9; 27])).iter().all(|&c| c == -HALF_MAX));
 }
 
 fn volume(method: FillMethod) -> (SkyVolume, AnalyticSky) {
@@ -48,13 +73,13 @@ fn fill_matches_cpu() {
                 Binding::Read(bytemuck::cast_slice(&inputs.samples)),
                 Binding::Read(bytemuck::cast_slice(&inputs.sky)),
                 Binding::Read(bytemuck::cast_slice(&inputs.quads)),
-                Binding::Output((n * PROBE_VEC4S * 16) as u64),
+                Binding::Output((n * PROBE_UVEC4S * 16) as u64),
             ],
             [n.div_ceil(64) as u32, 1, 1],
         )
         .expect("dispatch");
-    let gpu = cast_vec::<f32>(&out[4]);
-    let cpu: Vec<f32> = cast_vec::<f32>(&v.gpu_probe_bytes());
+    let gpu = unpacked(&out[4]);
+    let cpu = unpacked(&v.gpu_probe_bytes());
     let (mut num, mut den) = (0.0f64, 0.0f64);
     for (a, b) in gpu.iter().zip(&cpu) {
         num += ((a - b) as f64).powi(2);
@@ -103,8 +128,9 @@ fn lookup_matches_cpu() {
         let n = Vec3::from_slice(&q.normal[..3]);
         let want = v.diffuse(p, n, Vec3::new(0.8, 0.5, 0.2));
         let got = Vec3::from_slice(&got[..3]);
+        // The probes are halves (1 part in 2048; here at most 8.2e-5), the CPU's lookup f32.
         assert!(
-            (got - want).abs().max_element() <= 1e-4 * (1.0 + want.max_element()),
+            (got - want).abs().max_element() <= 2.5e-4 * (1.0 + want.max_element()),
             "{p} {n}: {got} vs {want}"
         );
     }
@@ -188,7 +214,7 @@ fn resident_fill_and_lookup_match_cpu_and_allocate_nothing_per_record() {
 fn layer_bytes_tile_the_probe_buffer() {
     let (v, _) = volume(FillMethod::CachedVisibility);
     let all = v.gpu_probe_bytes();
-    assert_eq!(all.len(), v.grid().len() * PROBE_VEC4S * 16);
+    assert_eq!(all.len(), v.grid().len() * PROBE_UVEC4S * 16);
     let mut tiled = vec![0u8; all.len()];
     for y in 0..v.grid().dims.y {
         let (offset, bytes) = v.gpu_layer_bytes(y..y + 1);
@@ -196,6 +222,13 @@ fn layer_bytes_tile_the_probe_buffer() {
     }
     assert_eq!(tiled, all);
     assert!(v.gpu_layer_bytes(v.grid().dims.y..v.grid().dims.y + 3).1.is_empty());
-    let floats: Vec<f32> = cast_vec(&all);
-    assert!(floats.chunks_exact(PROBE_VEC4S * 4).all(|p| p[27] == 0.0));
+    let words: Vec<u32> = cast_vec(&all);
+    assert!(words.chunks_exact(PROBE_UVEC4S * 4).all(|p| p[13] >> 16 == 0 && p[14..] == [0, 0]));
+    let cpu: Vec<f32> = cast_vec(bytemuck::cast_slice(v.probes()));
+    let (mut num, mut den) = (0.0f64, 0.0f64);
+    for (a, b) in unpacked(&all).iter().zip(&cpu) {
+        num += ((a - b) as f64).powi(2);
+        den += (*b as f64).powi(2);
+    }
+    assert!((num / den).sqrt() < 5e-4, "halves' rel RMS {}", (num / den).sqrt());
 }
