@@ -88,7 +88,7 @@ impl GBufferPass {
         })
     }
 
-    /// Records the pass into `enc`.
+    /// Records the pass into `enc`: the opaque geometry's depth, then the G-buffer.
     pub fn record(
         &self,
         device: &wgpu::Device,
@@ -103,6 +103,7 @@ impl GBufferPass {
             &self.opaque.get_bind_group_layout(0),
             &[frame.as_entire_binding(), scene.materials.as_entire_binding()],
         );
+        self.record_depth(enc, targets, &frame_group, scene);
         let clear = |view| {
             Some(wgpu::RenderPassColorAttachment {
                 view,
@@ -114,33 +115,6 @@ impl GBufferPass {
                 },
             })
         };
-        let opaque = || scene.draws.iter().filter(|d| !scene.alpha_tested(d));
-        let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("gbuffer depth"),
-            color_attachments: &[],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &targets.zbuffer,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(1.0),
-                    store: wgpu::StoreOp::Store,
-                }),
-                stencil_ops: None,
-            }),
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        pass.set_pipeline(&self.depth_only);
-        pass.set_bind_group(0, &frame_group, &[]);
-        if let Some(group) = scene.material_groups.first() {
-            pass.set_bind_group(1, group, &[]);
-        }
-        pass.set_vertex_buffer(0, scene.vertices.slice(..));
-        pass.set_index_buffer(scene.indices.slice(..), wgpu::IndexFormat::Uint32);
-        for d in opaque() {
-            pass.draw_indexed(d.first_index..d.first_index + d.index_count, 0, 0..1);
-        }
-        drop(pass);
         let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("gbuffer"),
             color_attachments: &[
@@ -172,6 +146,41 @@ impl GBufferPass {
                 pass.set_bind_group(1, &scene.material_groups[d.material as usize], &[]);
                 pass.draw_indexed(d.first_index..d.first_index + d.index_count, 0, 0..1);
             }
+        }
+    }
+
+    /// The opaque draws' depth alone, into the cleared z-buffer.
+    fn record_depth(
+        &self,
+        enc: &mut wgpu::CommandEncoder,
+        targets: &GBufferTargets,
+        frame_group: &wgpu::BindGroup,
+        scene: &SceneBuffers,
+    ) {
+        let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("gbuffer depth"),
+            color_attachments: &[],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &targets.zbuffer,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&self.depth_only);
+        pass.set_bind_group(0, frame_group, &[]);
+        if let Some(group) = scene.material_groups.first() {
+            pass.set_bind_group(1, group, &[]);
+        }
+        pass.set_vertex_buffer(0, scene.vertices.slice(..));
+        pass.set_index_buffer(scene.indices.slice(..), wgpu::IndexFormat::Uint32);
+        for d in scene.draws.iter().filter(|d| !scene.alpha_tested(d)) {
+            pass.draw_indexed(d.first_index..d.first_index + d.index_count, 0, 0..1);
         }
     }
 }

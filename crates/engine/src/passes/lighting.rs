@@ -113,11 +113,24 @@ impl LightingPass {
         targets: &GBufferTargets,
         inputs: &LightingInputs<'_>,
     ) -> Result<(), EngineError> {
-        let (device, tv) = (&gpu.device, wgpu::BindingResource::TextureView);
-        let indirect = !matches!(inputs.indirect, IndirectSource::None);
-        if indirect {
+        let bounce = self.record_bounce(gpu, enc, targets, inputs)?;
+        self.record_draws(gpu, enc, targets, inputs, bounce);
+        Ok(())
+    }
+
+    /// The lookup queries and the one bounce's kernels; returns the buffer of its irradiance
+    /// per pixel.
+    fn record_bounce<'b>(
+        &'b self,
+        gpu: &Gpu,
+        enc: &mut wgpu::CommandEncoder,
+        targets: &GBufferTargets,
+        inputs: &LightingInputs<'b>,
+    ) -> Result<&'b wgpu::Buffer, EngineError> {
+        let tv = wgpu::BindingResource::TextureView;
+        if !matches!(inputs.indirect, IndirectSource::None) {
             let bg = self.queries_group.get_in_order(
-                device,
+                &gpu.device,
                 "lookup queries",
                 &self.queries.get_bind_group_layout(0),
                 &[
@@ -137,7 +150,7 @@ impl LightingPass {
                 [targets.width.div_ceil(8), targets.height.div_ceil(8), 1],
             );
         }
-        let indirect = match inputs.indirect {
+        Ok(match inputs.indirect {
             IndirectSource::Lpv(lpv) => {
                 lpv.record_lookup(gpu, enc, &self.lpv_q, &self.lpv_out, self.pixels);
                 lpv.record_glossy(gpu, enc, &self.glossy_q, &self.glossy_out, self.pixels);
@@ -149,7 +162,19 @@ impl LightingPass {
                 &self.lpv_out
             }
             IndirectSource::None => &self.lpv_out,
-        };
+        })
+    }
+
+    /// The lit geometry and the background sky, each pixel by one of the two draws.
+    fn record_draws(
+        &self,
+        gpu: &Gpu,
+        enc: &mut wgpu::CommandEncoder,
+        targets: &GBufferTargets,
+        inputs: &LightingInputs<'_>,
+        bounce: &wgpu::Buffer,
+    ) {
+        let (device, tv) = (&gpu.device, wgpu::BindingResource::TextureView);
         gpu.write(&self.reflectors, 0, bytemuck::bytes_of(inputs.reflectors));
         let skymap = inputs.sky.map(|s| &s.map.buffer).unwrap_or(inputs.lights);
         let volume = inputs.sky.as_ref().filter(|_| inputs.sky_volume);
@@ -168,7 +193,7 @@ impl LightingPass {
                 inputs.shadows.cascades.as_entire_binding(),
                 inputs.shadows.taps.as_entire_binding(),
                 sky_probes.as_entire_binding(),
-                indirect.as_entire_binding(),
+                bounce.as_entire_binding(),
                 inputs.materials.as_entire_binding(),
                 inputs.lights.as_entire_binding(),
                 tv(inputs.cubes.0),
@@ -191,6 +216,5 @@ impl LightingPass {
             pass.set_bind_group(0, group, &[]);
             pass.draw(0..3, 0..1);
         }
-        Ok(())
     }
 }
