@@ -75,19 +75,22 @@ const COMPONENT_EMISSION: u32 = 6u;
 // Channel::ALL (albedo, glossiness, shading normal, geometry normal, depth, AO).
 const CHANNEL_BASE: u32 = 16u;
 
+// Corner `i` of the full-screen triangle in clip space.
+fn fullscreen_corner(i: u32) -> vec2<f32> {
+    return vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u)) * 2.0 - 1.0;
+}
+
 // The full-screen triangle of the lighting and combine passes.
 @vertex
 fn vs_fullscreen(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
+    return vec4<f32>(fullscreen_corner(i), 0.0, 1.0);
 }
 
 // The same on the far plane, for passes depth-tested against the G-buffer's z-buffer
 // (cleared to 1): `Greater` passes where geometry was drawn, `Equal` the background.
 @vertex
 fn vs_fullscreen_far(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(uv * 2.0 - 1.0, 1.0, 1.0);
+    return vec4<f32>(fullscreen_corner(i), 1.0, 1.0);
 }
 
 // Unit view ray through the centre of pixel `px`.
