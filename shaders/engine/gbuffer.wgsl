@@ -12,7 +12,9 @@
 @group(1) @binding(2) var material_sampler: sampler;
 
 struct VOut {
-    @builtin(position) clip: vec4<f32>,
+    // Invariant: the depth pre-pass and the shading draws (depth test Equal) must compute the
+    // same depth for the same vertex, in every pipeline that uses this stage.
+    @builtin(position) @invariant clip: vec4<f32>,
     @location(0) world: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
