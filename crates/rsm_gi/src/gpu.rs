@@ -14,7 +14,10 @@
 //! [`GpuGBuffer::upload`] turn non-finite texels and pixels into non-emitting texels and
 //! background pixels, as the CPU path skips them. With `low_res` f > 1 the gather and the
 //! blur run on the `1/f` grid and a geometry-aware upsampling (with a full-resolution gather
-//! where no coarse pixel fits) fills the full image, as the CPU path does.
+//! where no coarse pixel fits) fills the full image, as the CPU path does. The upsampling
+//! lists the pixels no coarse pixel fits and a second, indirect dispatch gathers them, 64 to
+//! a workgroup: gathered in place, each held its SIMD group of neighbours for the whole
+//! pattern (on lavapipe, a third of the upsampling's time on the city).
 
 use crate::error::RsmGiError;
 use crate::input::{GBuffer, RsmInput};
@@ -208,9 +211,64 @@ fn pipeline(
 ) -> (wgpu::ComputePipeline, wgpu::BindGroupLayout) {
     let layout = device
         .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries });
-    let pl = gpu_harness::pipeline_layout(device, label, &layout);
-    let p = gpu_harness::compute_pipeline(device, label, source, entry, Some(&pl));
-    (p, layout)
+    (pipeline_over(device, label, source, entry, &layout), layout)
+}
+
+/// A compute pipeline over an existing bind group layout.
+fn pipeline_over(
+    device: &wgpu::Device,
+    label: &str,
+    source: &str,
+    entry: &str,
+    layout: &wgpu::BindGroupLayout,
+) -> wgpu::ComputePipeline {
+    let pl = gpu_harness::pipeline_layout(device, label, layout);
+    gpu_harness::compute_pipeline(device, label, source, entry, Some(&pl))
+}
+
+/// The upsampling (`low_res` > 1): its pipeline and layout, the fallback's pipeline over the
+/// same layout, the list of the pixels left to the fallback (a 16-byte header, the
+/// fallback's workgroup counts and the pixel count, then one index per pixel) and the
+/// indirect dispatch's arguments, copied from the header (a buffer cannot be written as
+/// storage and read as arguments in one dispatch).
+struct Upsample {
+    pipeline: wgpu::ComputePipeline,
+    layout: wgpu::BindGroupLayout,
+    fallback: wgpu::ComputePipeline,
+    list: wgpu::Buffer,
+    args: wgpu::Buffer,
+}
+
+/// Bytes of the fallback list's header (`RsmGiFallback` in `upsample.wgsl`).
+const FALLBACK_HEADER: u64 = 16;
+
+impl Upsample {
+    fn new(device: &wgpu::Device, width: u32, height: u32) -> Self {
+        let entries = [storage_entry(8, false), storage_entry(9, true), storage_entry(10, false)];
+        let (pipeline, layout) = pipeline(
+            device,
+            "rsm_gi upsample",
+            UPSAMPLE_WGSL,
+            "upsample",
+            &gather_layout(&entries),
+        );
+        let fallback = pipeline_over(device, "rsm_gi fallback", UPSAMPLE_WGSL, "fallback", &layout);
+        let list = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("rsm_gi fallback pixels"),
+            size: FALLBACK_HEADER + 4 * width as u64 * height as u64,
+            usage: wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::COPY_SRC
+                | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let args = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("rsm_gi fallback dispatch"),
+            size: 12,
+            usage: wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        Self { pipeline, layout, fallback, list, args }
+    }
 }
 
 /// The resident interleaved gather + blur (+ upsampling at `low_res` > 1) for one [`RsmGi`]
@@ -239,11 +297,7 @@ pub struct GpuGather {
 enum FirstInputs {
     /// The gather: the sample pattern's sub-buffers and their ranges, and at `low_res` > 1
     /// the upsampling.
-    Gather {
-        samples: wgpu::Buffer,
-        ranges: wgpu::Buffer,
-        upsample: Option<(wgpu::ComputePipeline, wgpu::BindGroupLayout)>,
-    },
+    Gather { samples: wgpu::Buffer, ranges: wgpu::Buffer, upsample: Option<Upsample> },
     /// The splat's VPLs (`vec4` position, normal, flux each) and how many fit.
     Splat { vpls: wgpu::Buffer, capacity: u32 },
 }
@@ -315,15 +369,7 @@ impl GpuGather {
                 "gather",
                 &gather_layout(&[storage_entry(8, false)]),
             );
-            let upsample = (s.low_res > 1).then(|| {
-                pipeline(
-                    device,
-                    "rsm_gi upsample",
-                    UPSAMPLE_WGSL,
-                    "upsample",
-                    &gather_layout(&[storage_entry(8, false), storage_entry(9, true)]),
-                )
-            });
+            let upsample = (s.low_res > 1).then(|| Upsample::new(device, width, height));
             let (flat, ranges) = pattern_sets(gi, s.r_max * rsm_width as f32);
             let init = |label: &str, contents: &[u8]| {
                 device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -480,9 +526,10 @@ impl GpuGather {
         gpu_call(device, || {
             let first = group(&self.first.1, &self.views[0], &[(8, &self.images[0])]);
             // Two upsampling groups: over the gathered image and over the blurred one.
-            let upsample = upsample.as_ref().map(|(_, layout)| {
+            let upsample = upsample.as_ref().map(|u| {
                 [0, 2].map(|src| {
-                    group(layout, &self.views[3], &[(8, &self.images[3]), (9, &self.images[src])])
+                    let extra = [(8, &self.images[3]), (9, &self.images[src]), (10, &u.list)];
+                    group(&u.layout, &self.views[3], &extra)
                 })
             });
             self.binding(device, g, first, upsample, (rsm.width, rsm.height))
@@ -659,13 +706,21 @@ impl GpuGather {
     }
 
     /// Records the first pass, the blur (when the pattern interleaves and `blur` is set) and
-    /// the upsampling (when bound); returns the index of the image holding the result.
+    /// the upsampling and its fallback (when bound); returns the index of the image holding
+    /// the result.
     fn dispatch(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         binding: &GatherBinding,
         blur: bool,
     ) -> usize {
+        let upsample = match (&self.inputs, &binding.upsample) {
+            (FirstInputs::Gather { upsample: Some(u), .. }, Some(groups)) => Some((u, groups)),
+            _ => None,
+        };
+        if let Some((u, _)) = upsample {
+            encoder.clear_buffer(&u.list, 0, Some(FALLBACK_HEADER));
+        }
         let mut pass = encoder.begin_compute_pass(&Default::default());
         let (gx, gy) = groups(self.low);
         pass.set_pipeline(&self.first.0);
@@ -680,15 +735,20 @@ impl GpuGather {
             }
             result = 2;
         }
-        let (FirstInputs::Gather { upsample: Some((upsample, _)), .. }, Some(groups_over)) =
-            (&self.inputs, &binding.upsample)
-        else {
+        let Some((u, groups_over)) = upsample else {
             return result;
         };
-        pass.set_pipeline(upsample);
-        pass.set_bind_group(0, &groups_over[result / 2], &[]);
+        let group = &groups_over[result / 2];
+        pass.set_pipeline(&u.pipeline);
+        pass.set_bind_group(0, group, &[]);
         let (ux, uy) = groups((self.width, self.height));
         pass.dispatch_workgroups(ux, uy, 1);
+        drop(pass);
+        encoder.copy_buffer_to_buffer(&u.list, 0, &u.args, 0, 12);
+        let mut pass = encoder.begin_compute_pass(&Default::default());
+        pass.set_pipeline(&u.fallback);
+        pass.set_bind_group(0, group, &[]);
+        pass.dispatch_workgroups_indirect(&u.args, 0);
         3
     }
 
