@@ -256,6 +256,12 @@ fn frame_image(io: &PassIo<'_, FrameCtx>, r: Resources) -> Shown {
     if combined { Shown::Combined } else { Shown::Lit }
 }
 
+/// Why a view's first frame (still sample 0, every frame of a moving camera) is not
+/// accumulated: it is shown alone, so tone mapping reads the lit image itself rather than a
+/// copy of it, and the first sample of the average clears the accumulated image anyway.
+const FIRST_FRAME_SHOWN_AS_LIT: &str =
+    "a still view's sample (a view's first frame is shown as it was lit, not copied)";
+
 /// The still view's anti-aliasing: the frame's image averaged with the still view's earlier
 /// samples (`crate::passes::accumulate`).
 pub(super) fn accumulate_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
@@ -266,6 +272,7 @@ pub(super) fn accumulate_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
         .run_if("still views are anti-aliased (more than one still sample)", |c: &FrameCtx| {
             c.state.settings.still_samples > 1
         })
+        .run_if(FIRST_FRAME_SHOWN_AS_LIT, |c: &FrameCtx| c.still_sample > 0)
         .cached()
         .key("still-view sample", |c: &FrameCtx| c.still_sample)
         .run(move |io| -> PassResult {
