@@ -3,7 +3,9 @@
 // height): for every 2x2 block the pixel with a mirror or glass material nearest the block's
 // centre writes its origin, view depth, and the reflection and refraction directions with
 // their weights (reflect: reflectivity + transparency * Fresnel; refract: transparency *
-// (1 - Fresnel)). Texels without such a pixel have zero weights and are not traced.
+// (1 - Fresnel)). Texels without such a pixel have zero weights and are not traced. The
+// texels with such a pixel are also appended to `list` (in no particular order), which is
+// all the CPU reads back.
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var normal_t: texture_2d<f32>;
@@ -11,6 +13,19 @@
 @group(0) @binding(3) var depth_t: texture_2d<f32>;
 @group(0) @binding(4) var<storage, read> materials: array<Material>;
 @group(0) @binding(5) var<storage, read_write> rays: array<RayCast>;
+
+// A texel with a ray and its index (engine::passes::raycast::ListedRay).
+struct ListedRay {
+    ray: RayCast,
+    texel: vec4<u32>,
+}
+
+// The texels with a ray: their count (the recorder clears it), then the texels.
+struct RayList {
+    count: atomic<u32>,
+    texels: array<ListedRay>,
+}
+@group(0) @binding(6) var<storage, read_write> list: RayList;
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -57,5 +72,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         out.refract = vec4<f32>(normalize(t + vec3<f32>(1e-20)), wt);
         break;
     }
-    rays[id.y * qw + id.x] = out;
+    let i = id.y * qw + id.x;
+    rays[i] = out;
+    if out.origin.w > 0.0 {
+        list.texels[atomicAdd(&list.count, 1u)] = ListedRay(out, vec4<u32>(i, 0u, 0u, 0u));
+    }
 }

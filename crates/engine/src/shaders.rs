@@ -6,6 +6,7 @@ const LIGHTING: &str = include_str!("../../../shaders/engine/lighting.wgsl");
 const QUERIES: &str = include_str!("../../../shaders/engine/queries.wgsl");
 const RAYCAST: &str = include_str!("../../../shaders/engine/raycast.wgsl");
 const COMBINE: &str = include_str!("../../../shaders/engine/combine.wgsl");
+const SCATTER: &str = include_str!("../../../shaders/engine/scatter.wgsl");
 const SKY_VPLS: &str = include_str!("../../../shaders/engine/sky_vpls.wgsl");
 const SHADING: &str = include_str!("../../../shaders/engine/shading.inc.wgsl");
 const TRACED: &str = include_str!("../../../shaders/engine/traced.wgsl");
@@ -22,6 +23,7 @@ pub fn all() -> Vec<(&'static str, String)> {
         ("sky_vpls", sky_vpls()),
         ("raycast", raycast()),
         ("combine", combine()),
+        ("scatter", scatter()),
         ("traced", traced()),
         ("tonemap", tonemap()),
         ("accumulate", accumulate()),
@@ -67,6 +69,10 @@ pub fn raycast() -> String {
 
 pub fn combine() -> String {
     format!("{COMMON}\n{COMBINE}")
+}
+
+pub fn scatter() -> String {
+    SCATTER.to_string()
 }
 
 pub fn accumulate() -> String {

@@ -48,6 +48,40 @@ fn a_frame_without_images_reads_back_only_what_its_passes_need() {
     assert_eq!((hdr.pixels.len(), ldr.len()), (96 * 64, 96 * 64 * 4));
 }
 
+/// A moving camera's frame in the city (mirrors and glass in view) reads back only the
+/// ray-casting texels that have a ray (a 16-byte count, then 64 bytes a texel), never the
+/// whole quarter-resolution buffer, and uploads the traced radiance one entry per ray, not
+/// per texel and slot.
+#[test]
+fn a_moving_frame_moves_only_the_texels_with_rays() {
+    let settings = engine::Settings::preset(engine::Preset::Default, 96, 64);
+    let Some(mut r) = common::renderer(scene::Generated::City.build(common::SEED), settings) else {
+        return;
+    };
+    let warm = r.sky_volume_frames() + 2;
+    for k in 0..warm + 3 {
+        let mut cam = *r.camera();
+        cam.position += cam.forward.cross(cam.up).normalize() * 0.02;
+        r.set_camera(cam).expect("camera");
+        let f = r.render_frame().expect("frame");
+        if k < warm {
+            continue;
+        }
+        assert!(f.ray_traced, "the city's view has mirrors and glass");
+        assert_eq!(f.transfers.cpu_waits, 1, "one wait: the list with its count");
+        let texels = 48 * 32;
+        let read = f.transfers.read_back_bytes;
+        assert!(read > 16 && (read - 16) % 64 == 0, "read back {read} bytes: not a ray list");
+        let listed = (read - 16) / 64;
+        assert!(listed < texels, "{listed} of {texels} texels listed: the view is not all glass");
+        // At most two rays a listed texel; the uniforms are well under a kilobyte a pass.
+        let up = f.transfers.uploaded_bytes;
+        assert!(up <= listed * 2 * 16 + 4096, "uploaded {up} bytes for {listed} texels");
+        assert!(up < texels * 2 * 16, "uploaded {up} bytes: as much as a slot per texel");
+        eprintln!("read back {read} B ({listed} texels), uploaded {up} B");
+    }
+}
+
 /// A caller's device (as a window makes one for its surface) renders the same frame as the
 /// engine's own.
 #[test]

@@ -162,10 +162,10 @@ pub(super) fn combine_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
         .run(move |io| -> PassResult {
             let c = io.ctx();
             let s = &c.state;
-            if let Traced::Radiance(radiance) = io.read(r.traced)? {
-                s.combine.upload(&s.gpu, io.read(r.batch)?, radiance);
-            }
             let mut enc = s.gpu.device.create_command_encoder(&Default::default());
+            if let Traced::Radiance(radiance) = io.read(r.traced)? {
+                s.combine.upload(&s.gpu, &mut enc, io.read(r.batch)?, radiance);
+            }
             let (device, targets, frame) = (&s.gpu.device, &s.targets, &s.frame);
             s.combine.record(device, &mut enc, targets, frame, &s.scene.materials, &s.raycast);
             s.gpu.queue.submit([enc.finish()]);

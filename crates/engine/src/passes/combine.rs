@@ -1,10 +1,14 @@
-//! Combine (thesis 6.3.4-6.3.5): uploads the traced radiance and adds it to the lit view with
+//! Combine (thesis 6.3.4-6.3.5): uploads the traced radiance, one entry per ray, places it
+//! per texel on the GPU (`shaders/engine/scatter.wgsl`), and adds it to the lit view with
 //! each pixel's Fresnel weights, gathering the quarter-resolution texels with a depth-aware
 //! 3x3 filter (`shaders/engine/combine.wgsl`).
 
 use super::raycast::{RayBatch, RayCastPass};
 use crate::EngineError;
-use crate::gpu::{GBufferTargets, Gpu, draw_fullscreen, empty_storage, fullscreen_pipeline};
+use crate::gpu::{
+    GBufferTargets, Gpu, compute_pipeline, dispatch, draw_fullscreen, empty_storage,
+    fullscreen_pipeline, uniform_buffer,
+};
 use glam::Vec3;
 
 pub struct CombinePass {
@@ -12,7 +16,12 @@ pub struct CombinePass {
     /// Made once, again only when what it binds changes.
     group: gpu_harness::BindGroupCache,
     traced: wgpu::Buffer,
-    texels: usize,
+    /// The traced radiance as uploaded (xyz, w = its slot in `traced`), placed by `scatter`
+    /// over `scatter_group`; `count` is the uniform holding how many entries there are.
+    uploaded: wgpu::Buffer,
+    count: wgpu::Buffer,
+    scatter: wgpu::ComputePipeline,
+    scatter_group: wgpu::BindGroup,
 }
 
 impl CombinePass {
@@ -20,12 +29,27 @@ impl CombinePass {
         let pipeline =
             fullscreen_pipeline(device, "combine", &crate::shaders::combine(), "fs_combine")?;
         let (qw, qh) = targets.quarter();
-        let texels = (qw * qh) as usize;
+        let slots = 2 * (qw * qh) as u64;
+        let traced = empty_storage(device, "traced radiance", slots * 16);
+        let uploaded = empty_storage(device, "traced radiance uploaded", slots * 16);
+        let count = uniform_buffer(device, "traced radiance count", &[0u8; 16]);
+        let scatter =
+            compute_pipeline(device, "traced scatter", &crate::shaders::scatter(), "main")?;
+        let entries = [
+            (0, count.as_entire_binding()),
+            (1, uploaded.as_entire_binding()),
+            (2, traced.as_entire_binding()),
+        ];
+        let layout = scatter.get_bind_group_layout(0);
+        let scatter_group = gpu_harness::bind_entries(device, "traced scatter", &layout, &entries);
         Ok(Self {
             group: Default::default(),
             pipeline,
-            traced: empty_storage(device, "traced radiance", texels as u64 * 32),
-            texels,
+            traced,
+            uploaded,
+            count,
+            scatter,
+            scatter_group,
         })
     }
 
@@ -35,15 +59,32 @@ impl CombinePass {
         &self.traced
     }
 
-    /// Uploads the radiance traced for `batch` (`radiance[i]` for `batch.rays[i]`).
-    pub fn upload(&self, gpu: &Gpu, batch: &RayBatch, radiance: &[Vec3]) {
-        let mut data = vec![[0.0f32; 4]; self.texels * 2];
-        for (&(texel, refract), r) in batch.slots.iter().zip(radiance) {
-            if let Some(slot) = data.get_mut(texel as usize * 2 + usize::from(refract)) {
-                *slot = r.extend(1.0).to_array();
-            }
+    /// Uploads the radiance traced for `batch` (`radiance[i]` for `batch.rays[i]`), one
+    /// entry per ray, and records its placement per texel (the texels without a ray are
+    /// cleared).
+    pub fn upload(
+        &self,
+        gpu: &Gpu,
+        enc: &mut wgpu::CommandEncoder,
+        batch: &RayBatch,
+        radiance: &[Vec3],
+    ) {
+        let capacity = (self.uploaded.size() / 16) as usize;
+        let data: Vec<[f32; 4]> = batch
+            .slots
+            .iter()
+            .zip(radiance)
+            .map(|(&(texel, refract), r)| r.extend((texel * 2 + u32::from(refract)) as f32))
+            .map(|v| v.to_array())
+            .take(capacity)
+            .collect();
+        let n = data.len() as u32;
+        enc.clear_buffer(&self.traced, 0, None);
+        if n > 0 {
+            gpu.write(&self.uploaded, 0, bytemuck::cast_slice(&data));
+            gpu.write(&self.count, 0, bytemuck::cast_slice(&[n, 0, 0, 0]));
+            dispatch(enc, &self.scatter, &self.scatter_group, [n.div_ceil(64), 1, 1]);
         }
-        gpu.write(&self.traced, 0, bytemuck::cast_slice(&data));
     }
 
     /// Records the combination of `targets.lit` and the traced radiance into

@@ -1,11 +1,13 @@
 //! The ray casting buffer (thesis 6.2.1, Table 6.1): written on the GPU at quarter
-//! resolution, read back for the CPU ray tracer.
+//! resolution, the texels that have a ray listed beside it, and the list read back for the
+//! CPU ray tracer (the whole buffer stays on the GPU for the combine pass).
 
 use crate::EngineError;
 use crate::gpu::{GBufferTargets, Gpu, compute_pipeline, dispatch, empty_storage};
 use crate::trace::TraceRay;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
+use std::sync::atomic::{AtomicU32, Ordering};
 
 /// One texel of the ray casting buffer (`RayCast` in `raycast.wgsl`).
 #[repr(C)]
@@ -19,6 +21,24 @@ pub struct RayCast {
     pub refract: [f32; 4],
 }
 const _: () = assert!(std::mem::size_of::<RayCast>() == 48);
+
+/// A texel that has a ray (`ListedRay` in `raycast.wgsl`): its `RayCast` and its index.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct ListedRay {
+    pub ray: RayCast,
+    /// The texel's index, then padding.
+    pub texel: [u32; 4],
+}
+const _: () = assert!(std::mem::size_of::<ListedRay>() == 64);
+
+/// Bytes of the list's header (the count, padded to the entries' alignment).
+const LIST_HEADER: u64 = 16;
+
+/// Bytes of a list of `count` texels with its header.
+fn list_bytes(count: u32) -> u64 {
+    LIST_HEADER + count as u64 * std::mem::size_of::<ListedRay>() as u64
+}
 
 /// The rays to trace: for every traced texel, its reflection and refraction ray.
 #[derive(Clone, Debug, Default)]
@@ -34,9 +54,14 @@ pub struct RayCastPass {
     /// Made once, again only when what it binds changes.
     group: gpu_harness::BindGroupCache,
     pub rays: wgpu::Buffer,
-    /// The rays' way to the CPU, made once.
+    /// The texels with a ray (`RayList` in `raycast.wgsl`).
+    list: wgpu::Buffer,
+    /// The list's way to the CPU, made once.
     read_back: gpu_harness::ReadBack,
     texels: u32,
+    /// The last frame's count: this frame's list is read with the count in one wait when it
+    /// has not grown by more than an eighth (else a second read fetches the rest).
+    last_count: AtomicU32,
 }
 
 impl RayCastPass {
@@ -51,16 +76,19 @@ impl RayCastPass {
                 "main",
             )?,
             rays: empty_storage(device, "ray casting buffer", (qw * qh) as u64 * 48),
+            list: empty_storage(device, "ray casting list", list_bytes(qw * qh)),
             read_back: gpu_harness::ReadBack::new(
                 device,
                 "ray casting read-back",
-                (qw * qh) as u64 * 48,
+                list_bytes(qw * qh),
             ),
             texels: qw * qh,
+            last_count: AtomicU32::new(0),
         })
     }
 
-    /// Writes the buffer on the GPU and reads it back as the rays to trace.
+    /// Writes the buffer and the list on the GPU and reads the list back as the rays to
+    /// trace.
     pub fn run(
         &self,
         gpu: &Gpu,
@@ -80,22 +108,37 @@ impl RayCastPass {
                 tv(&targets.depth),
                 materials.as_entire_binding(),
                 self.rays.as_entire_binding(),
+                self.list.as_entire_binding(),
             ],
         );
         let (qw, qh) = targets.quarter();
         let mut enc = device.create_command_encoder(&Default::default());
+        enc.clear_buffer(&self.list, 0, Some(LIST_HEADER));
         dispatch(&mut enc, &self.pipeline, &bg, [qw.div_ceil(8), qh.div_ceil(8), 1]);
-        let bytes = gpu.read_back(&self.read_back, enc, &self.rays, self.texels as u64 * 48)?;
-        let texels: Vec<RayCast> = bytemuck::pod_collect_to_vec(&bytes);
-        Ok(batch(&texels))
+        let last = self.last_count.load(Ordering::Relaxed);
+        let guess = (last + last / 8 + 256).min(self.texels);
+        let mut bytes = gpu.read_back(&self.read_back, enc, &self.list, list_bytes(guess))?;
+        let count = u32::from_le_bytes([bytes[0], bytes[1], bytes[2], bytes[3]]).min(self.texels);
+        self.last_count.store(count, Ordering::Relaxed);
+        if count > guess {
+            let enc = device.create_command_encoder(&Default::default());
+            bytes = gpu.read_back(&self.read_back, enc, &self.list, list_bytes(count))?;
+        }
+        let entries = &bytes[LIST_HEADER as usize..list_bytes(count) as usize];
+        let mut listed: Vec<ListedRay> = bytemuck::pod_collect_to_vec(entries);
+        // The GPU appends in no set order: the texels' order makes the batch deterministic
+        // and keeps neighbouring rays together for the tracer's packets.
+        listed.sort_unstable_by_key(|l| l.texel[0]);
+        Ok(batch(self.texels as usize, &listed))
     }
 }
 
-/// The rays of the texels that have any (weights above zero), offset off their surface.
-pub fn batch(texels: &[RayCast]) -> RayBatch {
-    let mut b = RayBatch { texels: texels.len(), ..Default::default() };
-    for (i, t) in texels.iter().enumerate() {
-        if t.origin[3] <= 0.0 {
+/// The rays of the `listed` texels (of `texels` in the buffer) that have any (weights above
+/// zero), offset off their surface.
+pub fn batch(texels: usize, listed: &[ListedRay]) -> RayBatch {
+    let mut b = RayBatch { texels, ..Default::default() };
+    for &ListedRay { ray: t, texel: [i, ..] } in listed {
+        if t.origin[3] <= 0.0 || i as usize >= texels {
             continue;
         }
         let o = Vec3::from_slice(&t.origin[..3]);
@@ -103,7 +146,7 @@ pub fn batch(texels: &[RayCast]) -> RayBatch {
         for (dir, refract) in [(t.reflect, false), (t.refract, true)] {
             let d = Vec3::from_slice(&dir[..3]);
             if dir[3] > 0.0 && d.is_finite() && d.length_squared() > 0.5 {
-                b.slots.push((i as u32, refract));
+                b.slots.push((i, refract));
                 b.rays.push(TraceRay { origin: o + d * eps, dir: d });
             }
         }
