@@ -16,8 +16,9 @@ pub struct CombinePass {
     /// Made once, again only when what it binds changes.
     group: gpu_harness::BindGroupCache,
     traced: wgpu::Buffer,
-    /// The traced radiance as uploaded (xyz, w = its slot in `traced`), placed by `scatter`
-    /// over `scatter_group`; `count` is the uniform holding how many entries there are.
+    /// The traced radiance as uploaded (xyz, w = the bits of its slot in `traced`), placed by
+    /// `scatter` over `scatter_group`; `count` is the uniform holding how many entries there
+    /// are.
     uploaded: wgpu::Buffer,
     count: wgpu::Buffer,
     scatter: wgpu::ComputePipeline,
@@ -74,7 +75,7 @@ impl CombinePass {
             .slots
             .iter()
             .zip(radiance)
-            .map(|(&(texel, refract), r)| r.extend((texel * 2 + u32::from(refract)) as f32))
+            .map(|(&(texel, refract), r)| r.extend(f32::from_bits(texel * 2 + u32::from(refract))))
             .map(|v| v.to_array())
             .take(capacity)
             .collect();
