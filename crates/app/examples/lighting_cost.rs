@@ -10,28 +10,36 @@
 //! On lavapipe the GPU times are CPU times (Mesa's rasteriser and shaders on the CPU); run
 //! it on an idle machine.
 //!
-//! Measured at 1600x900 (2 cores, lavapipe, load 2.1-2.4, 5 rounds; one run's medians
-//! scatter by about 30 ms):
+//! Measured at 1600x900 (2 cores of an Intel Xeon, lavapipe, load 0.4, 5 rounds; one run's
+//! medians scatter by about 30 ms), after the upsampling's fallback moved to its own
+//! dispatch, the accumulation stopped copying first frames and only the texels with rays
+//! travel between CPU and GPU:
 //!
 //! | variant | lighting GPU ms | g-buffer GPU ms | frame ms |
 //! |---|---:|---:|---:|
-//! | all effects on | 619.4 | 92.5 | 879.4 |
-//! | no indirect light | 365.8 (-253.6) | 93.0 (+0.5) | 614.4 (-265.0) |
-//! | no sun shadows | 562.5 (-56.9) | 93.9 (+1.4) | 774.7 (-104.6) |
-//! | no ambient occlusion | 595.7 (-23.8) | 95.8 (+3.3) | 840.6 (-38.8) |
-//! | no sky lighting | 554.2 (-65.2) | 92.6 (+0.1) | 796.3 (-83.1) |
-//! | no point-light shadows | 622.8 (+3.3) | 94.4 (+1.9) | 868.1 (-11.3) |
-//! | no reflections or refractions | 573.9 (-45.5) | 92.7 (+0.2) | 728.5 (-150.9) |
-//! | none of these | 202.1 (-417.3) | 101.1 (+8.6) | 324.8 (-554.6) |
+//! | all effects on | 501.1 | 76.9 | 719.6 |
+//! | no indirect light | 322.5 (-178.6) | 77.5 (+0.6) | 544.7 (-175.0) |
+//! | no sun shadows | 455.9 (-45.2) | 77.6 (+0.7) | 645.2 (-74.4) |
+//! | no ambient occlusion | 478.6 (-22.5) | 76.0 (-0.9) | 701.4 (-18.2) |
+//! | no sky lighting | 446.2 (-54.9) | 74.7 (-2.2) | 664.2 (-55.4) |
+//! | no point-light shadows | 506.8 (+5.7) | 76.2 (-0.6) | 738.9 (+19.2) |
+//! | no reflections or refractions | 469.6 (-31.5) | 75.3 (-1.6) | 596.3 (-123.3) |
+//! | none of these | 173.4 (-327.7) | 79.0 (+2.2) | 273.5 (-446.2) |
 //!
-//! (Sky lighting cost 104.7 ms of lighting, all effects 661.7, before `sky_volume` stored its
-//! probes as halves: four loads a point instead of seven.)
+//! The same code before those three changes, on this machine (3 rounds, load 1.9): all
+//! effects 540.6 / 75.2 / 771.4, no indirect light -212.8 ms of lighting. On an AMD EPYC
+//! (load 2.1-2.4) the table's first and last rows were 619.4 / 92.5 / 879.4 and 202.1 /
+//! 101.1 / 324.8.
+//!
+//! (On the AMD, sky lighting cost 104.7 ms of lighting, all effects 661.7, before
+//! `sky_volume` stored its probes as halves: four loads a point instead of seven.)
 //!
 //! The one bounce (the RSM gather, its blur and upsampling, the lookup queries) is the
-//! largest share: of its ~250 ms, leaving out the gather's dispatch saves ~75 ms, the two
-//! blur passes ~55 ms, the upsampling ~100 ms, of which ~40 ms is its full-pattern fallback
-//! for the few pixels no coarse neighbour fits (each such pixel holds its SIMD group of 8
-//! for 512 samples). Switched-off effects keep costing: llvmpipe runs both sides of every
+//! largest share: of its ~250 ms on the AMD, leaving out the gather's dispatch saved ~75 ms,
+//! the two blur passes ~55 ms, the upsampling ~100 ms, of which ~40 ms was its full-pattern
+//! fallback for the few pixels no coarse neighbour fits (each such pixel held its SIMD group
+//! of 8 for 512 samples, until `rsm_gi` listed them for a dispatch of their own: -25 to -30
+//! ms of lighting). Switched-off effects keep costing: llvmpipe runs both sides of every
 //! branch under a lane mask (only loops end early, when no lane is left), so a flag that
 //! turns an effect off in the shader skips its loops but not the rest of its code. The
 //! lighting shader returning at its first line still took 140-180 ms, against 48 ms for a
@@ -40,6 +48,12 @@
 //! per pixel, and the G-buffer shades each pixel once after a depth pre-pass (98-101 ms,
 //! was 188-191). Reflections cost the frame more than the lighting: their CPU ray tracing
 //! shares the two cores with lavapipe while the lighting runs.
+//!
+//! Not done: specialising the lighting pipeline on the frame's flags and component (WGSL
+//! `override` constants, so that Mesa removes the switched-off code). Tried by hand with the
+//! default frame's flags written into the shader as literals: lighting 497-536 -> 484-494
+//! ms, three interleaved runs on the Xeon (load 1.2-1.5), because in the default frame
+//! almost every effect is on; it would need a pipeline and bind groups per combination.
 
 use engine::{Effect, Preset, Renderer, Settings};
 
