@@ -6,9 +6,17 @@ pub enum EngineError {
     /// No wgpu adapter: neither a GPU nor Mesa's software rasterisers.
     #[error(
         "no GPU adapter found ({0}); on a machine without a GPU install Mesa's Vulkan lavapipe \
-         (apt-get install mesa-vulkan-drivers) or make sure llvmpipe (GL) is available"
+         (apt-get install mesa-vulkan-drivers)"
     )]
     NoAdapter(String),
+    /// The best adapter there is lacks capabilities the engine's passes need (a downlevel
+    /// one, such as GL's llvmpipe: no float render targets with every usage, ...).
+    #[error(
+        "the adapter {adapter} is downlevel (it lacks {missing}); the engine needs a full \
+         WebGPU adapter: a Vulkan, Metal or DX12 GPU, or on a machine without one Mesa's \
+         Vulkan lavapipe (apt-get install mesa-vulkan-drivers)"
+    )]
+    DownlevelAdapter { adapter: String, missing: String },
     /// The scene could not be loaded or is invalid.
     #[error("scene: {0}")]
     Scene(#[from] scene::SceneError),

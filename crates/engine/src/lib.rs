@@ -101,7 +101,7 @@ pub mod views;
 pub use components::Component;
 pub use effects::{Effect, Effects};
 pub use error::EngineError;
-pub use gpu::TransferCounts;
+pub use gpu::{TransferCounts, check_capabilities};
 pub use graph::pass;
 pub use passes::radiance_cache::CacheSummary;
 pub use renderer::{Frame, FrameStats, HdrFrame, Renderer};

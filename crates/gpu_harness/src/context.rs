@@ -18,6 +18,8 @@ pub enum Binding<'a> {
 /// A device and queue on the best adapter available, with its description.
 pub struct GpuContext {
     pub adapter_info: wgpu::AdapterInfo,
+    /// What the adapter can do short of WebGPU (GL's llvmpipe: less than a renderer needs).
+    pub downlevel: wgpu::DownlevelCapabilities,
     pub device: wgpu::Device,
     pub queue: wgpu::Queue,
 }
@@ -41,8 +43,10 @@ impl GpuContext {
                 std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "unset".into())
             )));
         }
-        // Prefer real GPUs, then Vulkan (lavapipe) over GL: GL lacks some compute limits.
+        // Prefer real GPUs, then Vulkan (lavapipe) over GL: GL lacks some compute limits; and
+        // whatever the kind, an adapter with WebGPU's full capabilities.
         adapters.sort_by_key(|a| {
+            let downlevel = !a.get_downlevel_capabilities().is_webgpu_compliant();
             let info = a.get_info();
             let kind = match info.device_type {
                 wgpu::DeviceType::DiscreteGpu => 0,
@@ -52,16 +56,17 @@ impl GpuContext {
                 wgpu::DeviceType::Other => 4,
             };
             let backend = if info.backend == wgpu::Backend::Vulkan { 0 } else { 1 };
-            (kind, backend)
+            (downlevel, kind, backend)
         });
         let adapter = adapters.remove(0);
         let adapter_info = adapter.get_info();
+        let downlevel = adapter.get_downlevel_capabilities();
         let desc = device_descriptor(&adapter);
         let (device, queue) = adapter
             .request_device(&desc)
             .await
             .map_err(|source| GpuError::Device { adapter: adapter_info.name.clone(), source })?;
-        Ok(Self { adapter_info, device, queue })
+        Ok(Self { adapter_info, downlevel, device, queue })
     }
 
     /// A one-line description such as `llvmpipe (LLVM 15.0.6, 256 bits) (Vulkan, Cpu)`.

@@ -34,6 +34,9 @@ impl Presenter {
             ..Default::default()
         }))
         .map_err(|e| EngineError::NoAdapter(e.to_string()))?;
+        let info = adapter.get_info();
+        let name = format!("{} ({:?}, {:?})", info.name, info.backend, info.device_type);
+        engine::check_capabilities(&name, &adapter.get_downlevel_capabilities())?;
         let (device, queue) =
             pollster::block_on(adapter.request_device(&gpu_harness::device_descriptor(&adapter)))
                 .map_err(gpu_err)?;

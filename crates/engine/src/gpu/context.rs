@@ -24,6 +24,7 @@ impl Gpu {
             gpu_harness::GpuError::NoAdapter(m) => EngineError::NoAdapter(m),
             other => EngineError::Gpu(other.to_string()),
         })?;
+        check_capabilities(&ctx.describe(), &ctx.downlevel)?;
         Ok(Self::from_parts(ctx.device, ctx.queue, &ctx.adapter_info))
     }
 
@@ -97,5 +98,46 @@ impl Gpu {
             .poll(wgpu::PollType::wait_indefinitely())
             .map(|_| ())
             .map_err(|e| EngineError::Gpu(e.to_string()))
+    }
+}
+
+/// A downlevel adapter (GL's llvmpipe, say) is a typed error naming what it lacks, before
+/// any pass fails on it with a validation error.
+pub fn check_capabilities(
+    adapter: &str,
+    downlevel: &wgpu::DownlevelCapabilities,
+) -> Result<(), EngineError> {
+    if downlevel.is_webgpu_compliant() {
+        return Ok(());
+    }
+    let missing = wgpu::DownlevelFlags::compliant().difference(downlevel.flags);
+    let names: Vec<&str> = missing.iter_names().map(|(name, _)| name).collect();
+    let mut missing = names.join(", ");
+    let limits = downlevel.shader_model < wgpu::ShaderModel::Sm5;
+    if limits {
+        missing = format!("{missing}{}shader model 5", if missing.is_empty() { "" } else { ", " });
+    }
+    Err(EngineError::DownlevelAdapter { adapter: adapter.to_string(), missing })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_downlevel_adapter_is_a_typed_error_naming_what_it_lacks() {
+        assert!(check_capabilities("gpu", &wgpu::DownlevelCapabilities::default()).is_ok());
+        let gl = wgpu::DownlevelCapabilities {
+            flags: wgpu::DownlevelFlags::compliant()
+                .difference(wgpu::DownlevelFlags::SURFACE_VIEW_FORMATS),
+            ..Default::default()
+        };
+        let e = check_capabilities("llvmpipe (Gl, Cpu)", &gl).expect_err("downlevel");
+        let EngineError::DownlevelAdapter { adapter, missing } = &e else { panic!("{e}") };
+        assert_eq!(
+            (adapter.as_str(), missing.as_str()),
+            ("llvmpipe (Gl, Cpu)", "SURFACE_VIEW_FORMATS")
+        );
+        assert!(e.to_string().contains("lavapipe"), "{e}");
     }
 }

@@ -8,7 +8,7 @@ mod timer;
 mod transfers;
 mod util;
 
-pub use context::Gpu;
+pub use context::{Gpu, check_capabilities};
 pub use scene::SceneBuffers;
 pub use targets::{GBUFFER_FORMATS, GBufferTargets, HDR_FORMAT};
 pub use timer::TimestampTimer;
