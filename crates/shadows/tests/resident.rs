@@ -465,3 +465,43 @@ fn passes_share_one_encoder_and_allocate_nothing_when_reused() {
         Err(ShadowError::InvalidParameter { .. })
     ));
 }
+
+/// `record_moved` renders exactly the cascades whose snapped view changed, and the maps it
+/// leaves are those of a full render: for a camera nudged by less than the far cascades'
+/// texels only the near ones move; an unmoved camera renders nothing.
+#[test]
+fn record_moved_renders_only_the_moved_cascades_and_matches_a_full_render() {
+    let Some(ctx) = gpu_test_context() else { return };
+    let d = &ctx.device;
+    let buffers = Buffers::new(d, &PlaneBox::DEFAULT.triangles());
+    let at = |dx: f32| cascades(Vec3::new(-6.0 + dx, 4.0, -5.0), 128);
+    let (_, pcss, start) = at(0.0);
+    let moved = |b: &[CsmCascade]| b.iter().zip(&start).filter(|(x, y)| x != y).count() as u32;
+    // The smallest nudge that moves some cascades but not all (stabilised cascades' texels
+    // grow with their distance).
+    let dx = (1..200)
+        .map(|k| k as f32 * 2e-3)
+        .find(|&dx| (1..3).contains(&moved(&at(dx).2)))
+        .expect("a nudge that moves only the near cascades");
+    let (_, pcss2, nudged) = at(dx);
+    let pass = CascadeShadows::new(d, VertexLayout::POSITION_NORMAL, 128, 3).unwrap();
+    let record = |blocks: &[CsmCascade], taps: &[glam::Vec2]| {
+        let mut rendered = 0;
+        submit(&ctx, |enc| {
+            let r = pass.record_moved(&ctx.queue, enc, &buffers.geometry(), blocks, taps);
+            rendered = r.unwrap().rendered;
+        });
+        rendered
+    };
+    assert_eq!(record(&start, pcss[0].taps()), 3, "a new pass renders every map");
+    assert_eq!(record(&start, pcss[0].taps()), 0, "an unmoved view renders nothing");
+    assert_eq!(record(&nudged, pcss2[0].taps()), moved(&nudged));
+    let full = CascadeShadows::new(d, VertexLayout::POSITION_NORMAL, 128, 3).unwrap();
+    submit(&ctx, |enc| {
+        full.record(&ctx.queue, enc, &buffers.geometry(), &nudged, pcss2[0].taps()).unwrap();
+    });
+    for c in 0..3 {
+        let (a, b) = (pass.read_back(d, &ctx.queue, c), full.read_back(d, &ctx.queue, c));
+        assert_eq!(a.unwrap().as_slice(), b.unwrap().as_slice(), "cascade {c}");
+    }
+}

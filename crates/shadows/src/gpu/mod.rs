@@ -32,7 +32,7 @@ mod rsm_vpls;
 mod slots;
 
 pub use crate::csm_lookup::CsmCascade;
-pub use cascades::{CascadeMaps, CascadeShadows, MAX_TAPS};
+pub use cascades::{CascadeMaps, CascadeShadows, MAX_TAPS, RecordedCascades};
 pub use cubes::{CubeLight, CubeShadows};
 pub use geometry::{DrawRange, Geometry, VertexLayout};
 pub use mask::AlphaMask;
