@@ -316,7 +316,7 @@ fn preset_entry(sweep: &mut Sweep, view: &View, preset: Preset, timed: usize) {
         .setting("camera_nudge_mm_per_frame", NUDGE_M * 1e3)
         .setting(
             "timing_method",
-            "mean wall ms of frames with the camera moved 1 mm sideways each frame, so every view-dependent pass reruns instead of being reused",
+            "mean wall ms of frames with the camera moved 1 mm sideways each frame, so every view-dependent pass reruns instead of being reused; the sun's cascades are re-rendered only when their texel-snapped views move (at 1 mm a frame, the nearest now and then: the shadow pass is mostly reused, as for a slow walk; a turning camera re-renders them all, see engine/flythrough_*)",
         );
     sweep.entry(
         t.settings(entry)

@@ -11,7 +11,7 @@
 //! |---|---|---|---|
 //! | `sky map` | paraboloid sky map, rebuilt only when the sun moved | 4.3 | `atmosphere` |
 //! | `sky volume` | sky-light irradiance volume, a few layers per frame | 5.3 | `sky_volume` |
-//! | `shadow maps` | stabilised cascades fitted to the camera, PCSS parameters (resident pass) | 4.2 | `shadows` |
+//! | `shadow maps` | stabilised cascades fitted to the camera, PCSS parameters (resident pass; only the cascades whose texel-snapped view moved) | 4.2 | `shadows` |
 //! | `point shadows` | one depth cube array for the shadow-casting point lights (resident pass) | 4.2 | `shadows` |
 //! | `g-buffer` | albedo + gloss, normal + power, geometry normal + material, depth | Table 3.1 | - |
 //! | `rsm + lpv` | sun RSM (and with `Settings::sky_bounce` the G-buffer's sky-bounce VPLs, `passes::sky_bounce`) → injection (from their textures on a GPU) + propagation in 3 cascades (indirect `lpv`) | 5.2, 5.3.7 | `shadows`, `lpv`, `sky_volume` |

@@ -211,6 +211,35 @@ fn static_camera_the_g_buffer_is_reused() {
     assert_outcome(&f, pass::GBUFFER, Outcome::Reused, "camera still again");
 }
 
+/// The sun's cascades are re-rendered only when their texel-snapped views change: a camera
+/// nudged by a millimetre re-renders the g-buffer but, within a few nudges, not the shadow
+/// maps; a large move re-renders them.
+#[test]
+fn a_nudged_camera_reuses_the_snapped_cascades() {
+    let city = Generated::City.build(common::SEED);
+    let Some(mut r) = common::renderer(city, one_sample_settings()) else { return };
+    r.render_frame().expect("frame");
+    let start = *r.camera();
+    let right = start.forward.cross(start.up).normalize();
+    let reused = (1..=10).any(|k| {
+        r.set_camera(Camera { position: start.position + right * (k as f32 * 1e-3), ..start })
+            .unwrap();
+        let f = r.render_frame().expect("frame");
+        assert_outcome(&f, pass::GBUFFER, Outcome::Ran, &format!("nudge {k} mm"));
+        outcome(&f, pass::SHADOW_MAPS) == Outcome::Reused
+    });
+    assert!(reused, "ten 1 mm nudges each re-rendered the cascades");
+    r.set_camera(Camera { position: start.position + right * 2.0, ..start }).unwrap();
+    let f = r.render_frame().expect("frame");
+    assert_outcome(&f, pass::SHADOW_MAPS, Outcome::Ran, "camera moved 2 m");
+    let rec = f.report.pass(pass::SHADOW_MAPS).expect("shadow maps");
+    assert!(
+        matches!(&rec.reason, Reason::KeyChanged { key } if key.contains("cascade views")),
+        "shadow maps reason {:?}",
+        rec.reason
+    );
+}
+
 const SUN_PASSES: [&str; 6] = [
     pass::SKY_MAP,
     pass::SKY_VOLUME,

@@ -54,13 +54,13 @@ pub(super) fn shadow_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
         .run_if("the sun casts shadows in view", |c: &FrameCtx| {
             c.needs.sun_shadows.needed && c.sun.is_some()
         })
-        .key("camera", camera_key)
-        .key("sun direction", sun_key)
+        // Equal plans render equal maps: the stabilised cascades keep their views while the
+        // camera moves by less than their texels; of a changed plan, only the maps whose view
+        // moved are rendered.
+        .key("cascade views (texel-snapped)", |c: &FrameCtx| sun_maps_plan(c).ok())
         .run(move |io| -> PassResult {
-            let c = io.ctx();
-            let (s, sun) = (&c.state, sun_of(c)?);
-            let (dir, radius) = (sun.dir, sun.angular_radius);
-            let maps = s.shadow.render(&s.gpu, &s.scene, &c.camera, dir, radius, &s.settings)?;
+            let s = &io.ctx().state;
+            let maps = s.shadow.render(&s.gpu, &s.scene, &sun_maps_plan(io.ctx())?)?;
             s.gpu.take_error()?;
             io.put(r.shadow, maps)?;
             Ok(())
@@ -80,6 +80,12 @@ pub(super) fn shadow_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
             io.put(r.cubes, CubeShadows)?;
             Ok(())
         });
+}
+
+/// The sun cascades the frame's camera and sun call for.
+fn sun_maps_plan(c: &FrameCtx) -> Result<SunMapsPlan, EngineError> {
+    let (s, sun) = (&c.state, sun_of(c)?);
+    s.shadow.plan(&c.camera, sun.dir, sun.angular_radius, &s.settings)
 }
 
 /// The G-buffer of the camera.

@@ -17,7 +17,7 @@ use crate::passes::lpv::LpvState;
 use crate::passes::radiance_cache::CacheState;
 use crate::passes::raycast::RayBatch;
 use crate::passes::rsm_gather::RsmGatherState;
-use crate::passes::shadow::ShadowMaps;
+use crate::passes::shadow::{ShadowMaps, SunMapsPlan};
 use crate::passes::sky::{SkyLight, SkyMapState, SkyVolumeState};
 use crate::passes::traced_lighting::{OsmPass, TracedInputs, TracedLightingPass};
 use crate::settings::TracedShading;

@@ -1,6 +1,9 @@
 //! Sun shadow maps (thesis 4.2): stabilised cascades fitted by `shadows` to the camera each
 //! frame and rendered by its resident pass over the scene's own buffers; the lighting pass
-//! reads them through `shaders/shadows/csm.inc.wgsl`.
+//! reads them through `shaders/shadows/csm.inc.wgsl`. The cascades snap to their texels, so a
+//! map whose view did not move is not rendered again (`CascadeShadows::record_moved`; the
+//! scene's geometry is fixed for a renderer's life), and the frame graph reuses the pass while
+//! no view moved ([`SunMapsPlan`] is its key).
 
 use crate::gpu::{Gpu, SceneBuffers};
 use crate::{EngineError, Settings};
@@ -42,18 +45,17 @@ impl ShadowPass {
         self.maps.maps(maps.map_or(0, |m| m.count))
     }
 
-    /// Fits the cascades to `camera` for a sun towards `sun_dir`, with PCSS filters for a sun
-    /// disk of `angular_radius` (hard shadows when the preset has no PCF taps), and renders
-    /// them.
-    pub fn render(
+    /// The cascades fitted to `camera` for a sun towards `sun_dir`, with PCSS filters for a
+    /// sun disk of `angular_radius` (hard shadows when the preset has no PCF taps): what
+    /// [`Self::render`] renders. Stabilised cascades snap to their texels, so the plan stays
+    /// equal while the camera moves by less than a texel of every cascade.
+    pub fn plan(
         &self,
-        gpu: &Gpu,
-        scene: &SceneBuffers,
         camera: &scene::Camera,
         sun_dir: Vec3,
         angular_radius: f32,
         settings: &Settings,
-    ) -> Result<ShadowMaps, EngineError> {
+    ) -> Result<SunMapsPlan, EngineError> {
         let cam = shadows::Camera::look_to(
             camera.position.as_dvec3(),
             camera.forward,
@@ -71,39 +73,68 @@ impl ShadowPass {
         };
         let csm = CascadedShadowMap::fit(&cam, -sun_dir, &csm_settings).map_err(tech)?;
         let views = csm.cascades.iter().map(|c| (&c.view, c.split_far as f32));
-        let count = render_sun_maps(&self.maps, gpu, scene, views, angular_radius, settings)?;
-        Ok(ShadowMaps { count })
+        SunMapsPlan::new(views, angular_radius, settings)
+    }
+
+    /// Renders the maps of `plan` whose view changed since they were last rendered.
+    pub fn render(
+        &self,
+        gpu: &Gpu,
+        scene: &SceneBuffers,
+        plan: &SunMapsPlan,
+    ) -> Result<ShadowMaps, EngineError> {
+        Ok(ShadowMaps { count: render_sun_maps(&self.maps, gpu, scene, plan)? })
     }
 }
 
-/// Renders sun shadow maps of `views` (each with the view depth its cascade ends at) into
-/// `maps`, their lookup blocks filtered by PCSS for a sun disk of `angular_radius` (hard
-/// shadows when the preset has no PCF taps); returns how many were rendered. The view's
-/// cascades and the traced G-buffer's overlapped maps both render through it.
-pub fn render_sun_maps<'a>(
+/// Sun shadow maps to render: each map's lookup block (view, split, PCSS filter) and the
+/// shared PCSS taps. The view's cascades and the traced G-buffer's overlapped maps both
+/// render through it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SunMapsPlan {
+    blocks: Vec<CsmCascade>,
+    taps: Vec<glam::Vec2>,
+}
+
+impl SunMapsPlan {
+    /// The maps of `views` (each with the view depth its cascade ends at), filtered by PCSS
+    /// for a sun disk of `angular_radius` (hard shadows when the preset has no PCF taps).
+    pub fn new<'a>(
+        views: impl Iterator<Item = (&'a ShadowView, f32)>,
+        angular_radius: f32,
+        settings: &Settings,
+    ) -> Result<Self, EngineError> {
+        let pcss_settings = PcssSettings {
+            blocker_taps: settings.pcss_blocker_taps.max(1),
+            pcf_taps: settings.pcss_pcf_taps.max(1),
+            ..PcssSettings::DEFAULT
+        };
+        let radius = if settings.pcss_pcf_taps == 0 { 0.0 } else { angular_radius };
+        let mut taps = Vec::new();
+        let mut blocks = Vec::new();
+        for (view, split_far) in views {
+            let pcss = Pcss::directional(view, radius, &pcss_settings).map_err(tech)?;
+            taps = pcss.taps().to_vec();
+            blocks.push(CsmCascade::of_view(view, split_far, &pcss));
+        }
+        Ok(Self { blocks, taps })
+    }
+}
+
+/// Renders the maps of `plan` into `maps`, only those whose view changed since `maps` last
+/// rendered them (the scene's geometry is fixed for the renderer's life); returns how many
+/// maps the plan has.
+pub fn render_sun_maps(
     maps: &CascadeShadows,
     gpu: &Gpu,
     scene: &SceneBuffers,
-    views: impl Iterator<Item = (&'a ShadowView, f32)>,
-    angular_radius: f32,
-    settings: &Settings,
+    plan: &SunMapsPlan,
 ) -> Result<u32, EngineError> {
-    let pcss_settings = PcssSettings {
-        blocker_taps: settings.pcss_blocker_taps.max(1),
-        pcf_taps: settings.pcss_pcf_taps.max(1),
-        ..PcssSettings::DEFAULT
-    };
-    let radius = if settings.pcss_pcf_taps == 0 { 0.0 } else { angular_radius };
-    let mut taps = Vec::new();
-    let mut blocks = Vec::new();
-    for (view, split_far) in views {
-        let pcss = Pcss::directional(view, radius, &pcss_settings).map_err(tech)?;
-        taps = pcss.taps().to_vec();
-        blocks.push(CsmCascade::of_view(view, split_far, &pcss));
-    }
     let mut enc = gpu.device.create_command_encoder(&Default::default());
     let geometry = scene.shadow_geometry(false);
-    let rendered = maps.record(&gpu.queue, &mut enc, &geometry, &blocks, &taps).map_err(tech)?;
+    let recorded = maps
+        .record_moved(&gpu.queue, &mut enc, &geometry, &plan.blocks, &plan.taps)
+        .map_err(tech)?;
     gpu.queue.submit([enc.finish()]);
-    Ok(rendered.count)
+    Ok(recorded.maps.count)
 }

@@ -8,7 +8,7 @@
 
 use super::lpv::LpvState;
 use super::raycast::RayBatch;
-use super::shadow::render_sun_maps;
+use super::shadow::{SunMapsPlan, render_sun_maps};
 use super::sky::{SkyLight, SkyVolumeBinding};
 use crate::gpu::{Gpu, SceneBuffers, compute_pipeline, dispatch, empty_storage, uniform_buffer};
 use crate::state::SunLight;
@@ -55,8 +55,8 @@ impl OsmPass {
         let osm = OverlappedShadowMaps::fit(eye.as_dvec3(), -sun.dir, &self.settings.osm)
             .map_err(tech)?;
         let views = osm.maps.iter().map(|v| (v, f32::INFINITY));
-        let (radius, set) = (sun.angular_radius, &self.settings);
-        let count = render_sun_maps(&self.maps, gpu, scene, views, radius, set)?;
+        let plan = SunMapsPlan::new(views, sun.angular_radius, &self.settings)?;
+        let count = render_sun_maps(&self.maps, gpu, scene, &plan)?;
         self.rendered = OsmMaps { count };
         Ok(())
     }
