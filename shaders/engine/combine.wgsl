@@ -4,6 +4,9 @@
 // glass pixel gathers the traced texels of the 3x3 quarter-resolution neighbourhood that
 // had a ray and lie at a similar depth (the thesis's "smart" blur that masks aliasing along
 // silhouettes), with tent weights, and adds them with its own Fresnel weights.
+// The lit view is copied first; this shader then runs only where a mirror or glass draw is
+// the visible surface (`vs_reflective`, depth test `Equal` against the G-buffer's z-buffer),
+// not over the whole screen.
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var lit_t: texture_2d<f32>;
@@ -14,6 +17,16 @@
 @group(0) @binding(6) var<storage, read> rays: array<RayCast>;
 // Two entries per quarter texel: reflected radiance, refracted radiance.
 @group(0) @binding(7) var<storage, read> traced: array<vec4<f32>>;
+
+struct ReflectiveOut {
+    // Invariant: equal, bit for bit, to the depth the G-buffer pass wrote (`gbuffer.wgsl`).
+    @builtin(position) @invariant clip: vec4<f32>,
+}
+
+@vertex
+fn vs_reflective(@location(0) position: vec3<f32>) -> ReflectiveOut {
+    return ReflectiveOut(frame.view_proj * vec4<f32>(position, 1.0));
+}
 
 @fragment
 fn fs_combine(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {

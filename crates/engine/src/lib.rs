@@ -21,7 +21,7 @@
 //! | `lighting` | sun (Phong/Blinn-Phong, PCSS), point lights, sky volume + LPV lookups or the RSM gather, SSAO (the crates' WGSL snippets) | 3.3, 5.3.6-5.3.8 | `shadows`, `ssao`, `sky_volume`, `lpv`, `rsm_gi` |
 //! | `overlapped shadow maps` | with `TracedShading::Gpu`: the sun's maps around the camera for what reflections see (resident pass) | 6.3.1 | `shadows` |
 //! | `traced g-buffer lighting` | with `TracedShading::Gpu`: the traced hits uploaded and lit with the deferred pass's BRDF, the maps above, the sky volume's and the LPV's lookups | 6.3 | `shadows`, `sky_volume`, `lpv` |
-//! | `traced upload + combine` | traced radiance added with Fresnel weights, depth-aware 3x3 gather | 6.3.4-6.3.5 | - |
+//! | `traced upload + combine` | traced radiance added with Fresnel weights, depth-aware 3x3 gather, drawn over the mirror and glass draws alone | 6.3.4-6.3.5 | - |
 //! | `still-view accumulation` | a still view's jittered frames averaged, up to `Settings::still_samples` (`passes::accumulate`) | - | - |
 //! | `tone mapping` | on the GPU, every frame: log-average luminance, eye adaptation, Reinhard, sRGB | 3.7 | - |
 //!

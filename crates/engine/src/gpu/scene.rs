@@ -297,6 +297,14 @@ impl SceneBuffers {
         }
     }
 
+    /// Whether draw `d`'s material reflects or transmits (a mirror or glass draw, which the
+    /// traced rays are combined over).
+    pub fn reflective(&self, d: &Draw) -> bool {
+        self.material_table
+            .get(d.material as usize)
+            .is_some_and(|m| m.params[1] + m.params[2] > 0.0)
+    }
+
     /// Where positions, normals and texture coordinates sit in a [`Vertex`], for the
     /// `shadows` passes.
     pub const SHADOW_LAYOUT: shadows::gpu::VertexLayout = shadows::gpu::VertexLayout {

@@ -42,7 +42,7 @@ fn target(
     format: wgpu::TextureFormat,
 ) -> wgpu::Texture {
     use wgpu::TextureUsages as U;
-    let usage = U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC;
+    let usage = U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC | U::COPY_DST;
     super::util::texture_2d(device, label, (w, h), format, usage)
 }
 

@@ -4,8 +4,8 @@
 
 use crate::EngineError;
 pub(crate) use gpu_harness::{
-    bind_entries, color_pass, dispatch, draw_fullscreen, empty_storage, init_buffer,
-    storage_buffer, texture_2d, uniform_buffer,
+    bind_entries, color_pass, dispatch, empty_storage, init_buffer, storage_buffer, texture_2d,
+    uniform_buffer,
 };
 
 fn shader_error(label: &str, e: gpu_harness::GpuError) -> EngineError {
@@ -41,17 +41,7 @@ pub(crate) fn compute_pipeline(
 }
 
 /// A full-screen triangle pipeline (`vs_fullscreen` of `common.inc.wgsl`) writing one HDR
-/// target with the fragment entry point `fs_entry`.
-pub(crate) fn fullscreen_pipeline(
-    device: &wgpu::Device,
-    label: &str,
-    source: &str,
-    fs_entry: &str,
-) -> Result<wgpu::RenderPipeline, EngineError> {
-    blended_fullscreen_pipeline(device, label, source, fs_entry, None)
-}
-
-/// The same, its output blended into the target with `blend`.
+/// target with the fragment entry point `fs_entry`, blended into the target with `blend`.
 pub(crate) fn blended_fullscreen_pipeline(
     device: &wgpu::Device,
     label: &str,

@@ -167,7 +167,7 @@ pub(super) fn combine_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
                 s.combine.upload(&s.gpu, &mut enc, io.read(r.batch)?, radiance);
             }
             let (device, targets, frame) = (&s.gpu.device, &s.targets, &s.frame);
-            s.combine.record(device, &mut enc, targets, frame, &s.scene.materials, &s.raycast);
+            s.combine.record(device, &mut enc, targets, frame, &s.scene, &s.raycast);
             s.gpu.queue.submit([enc.finish()]);
             s.gpu.take_error()?;
             io.put(r.combined, CombinedView(c.component))?;
