@@ -99,3 +99,14 @@ pub(crate) fn depth_write_state() -> wgpu::DepthStencilState {
         bias: Default::default(),
     }
 }
+
+/// Depth test `Equal` without writing, against a `Depth32Float` target the scene's depth was
+/// drawn into: a draw of the same geometry (invariant position) shades only the visible
+/// surface.
+pub(crate) fn depth_equal_state() -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        depth_write_enabled: Some(false),
+        depth_compare: Some(wgpu::CompareFunction::Equal),
+        ..depth_write_state()
+    }
+}

@@ -9,7 +9,7 @@
 use super::raycast::{RayBatch, RayCastPass};
 use crate::EngineError;
 use crate::gpu::{
-    GBufferTargets, Gpu, SceneBuffers, compute_pipeline, depth_write_state, dispatch,
+    GBufferTargets, Gpu, SceneBuffers, compute_pipeline, depth_equal_state, dispatch,
     empty_storage, shader, uniform_buffer,
 };
 use glam::Vec3;
@@ -128,14 +128,9 @@ impl CombinePass {
             targets.combined_texture.as_image_copy(),
             size,
         );
-        let load = wgpu::LoadOp::Load;
-        let mut pass = gpu_harness::depth_tested_pass(
-            enc,
-            "combine",
-            &targets.combined,
-            load,
-            Some(&targets.zbuffer),
-        );
+        let (load, zbuffer) = (wgpu::LoadOp::Load, Some(&targets.zbuffer));
+        let mut pass =
+            gpu_harness::depth_tested_pass(enc, "combine", &targets.combined, load, zbuffer);
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &bg, &[]);
         pass.set_vertex_buffer(0, scene.vertices.slice(..));
@@ -150,11 +145,6 @@ impl CombinePass {
 /// G-buffer's.
 fn reflective_pipeline(device: &wgpu::Device) -> Result<wgpu::RenderPipeline, EngineError> {
     let module = shader(device, "combine", &crate::shaders::combine())?;
-    let equal = wgpu::DepthStencilState {
-        depth_write_enabled: Some(false),
-        depth_compare: Some(wgpu::CompareFunction::Equal),
-        ..depth_write_state()
-    };
     Ok(device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some("combine"),
         layout: None,
@@ -165,7 +155,7 @@ fn reflective_pipeline(device: &wgpu::Device) -> Result<wgpu::RenderPipeline, En
             buffers: &[Some(SceneBuffers::vertex_layout(true))],
         },
         primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
-        depth_stencil: Some(equal),
+        depth_stencil: Some(depth_equal_state()),
         multisample: Default::default(),
         fragment: Some(wgpu::FragmentState {
             module: &module,

@@ -3,7 +3,9 @@
 //! order, not front to back: on lavapipe the pre-pass halved the city's G-buffer time).
 
 use crate::EngineError;
-use crate::gpu::{GBUFFER_FORMATS, GBufferTargets, SceneBuffers, depth_write_state, shader};
+use crate::gpu::{
+    GBUFFER_FORMATS, GBufferTargets, SceneBuffers, depth_equal_state, depth_write_state, shader,
+};
 
 pub struct GBufferPass {
     /// Materials without an alpha mask: a fragment shader that cannot discard, so the
@@ -77,13 +79,8 @@ impl GBufferPass {
                 cache: None,
             })
         };
-        let equal = wgpu::DepthStencilState {
-            depth_write_enabled: Some(false),
-            depth_compare: Some(wgpu::CompareFunction::Equal),
-            ..depth_write_state()
-        };
         Ok(Self {
-            opaque: pipeline("fs_opaque", equal),
+            opaque: pipeline("fs_opaque", depth_equal_state()),
             alpha_tested: pipeline("fs_alpha_tested", depth_write_state()),
             depth_only: pipeline("", depth_write_state()),
             frame_group: Default::default(),
