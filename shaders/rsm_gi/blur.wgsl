@@ -5,16 +5,13 @@
 // first discontinuity. Workgroup 8 x 8, one invocation per pixel.
 
 @group(0) @binding(0) var<uniform> view: RsmGiView;
-@group(0) @binding(1) var g_position: texture_2d<f32>;
-@group(0) @binding(2) var g_normal: texture_2d<f32>;
+@group(0) @binding(1) var<storage, read> geometry: array<vec4<f32>>;
 @group(0) @binding(3) var<storage, read> src: array<vec4<f32>>;
 @group(0) @binding(4) var<storage, read_write> dst: array<vec4<f32>>;
 
-// The G-buffer pixel a (low-resolution) image pixel stands for.
+// The (normal, depth) the first pass kept for an image pixel.
 fn pixel_at(t: vec2<i32>) -> RsmGiPixel {
-    let full = vec2<i32>(textureDimensions(g_position));
-    let f = rsm_gi_texel(t, i32(view.knobs.w), full);
-    return rsm_gi_make_pixel(textureLoad(g_position, f, 0).xyz, textureLoad(g_normal, f, 0).xyz, view.view_proj);
+    return rsm_gi_unpack(geometry[t.y * i32(view.sizes.x) + t.x]);
 }
 
 @compute @workgroup_size(8, 8)

@@ -72,6 +72,21 @@ fn rsm_gi_make_pixel(position: vec3<f32>, normal: vec3<f32>, view_proj: mat4x4<f
     return px;
 }
 
+// A pixel as the filters keep it on their grid: (unit normal, view depth); depth 0 = not
+// shaded. The gather (or the splat) writes one per pixel of its grid, so that the blur and
+// the upsampling read one vec4 per neighbour instead of two textures and a projection.
+fn rsm_gi_pack(px: RsmGiPixel) -> vec4<f32> {
+    return vec4<f32>(px.normal, px.position.w);
+}
+
+// The filters' view of a packed pixel: its normal and view depth (no position).
+fn rsm_gi_unpack(g: vec4<f32>) -> RsmGiPixel {
+    var px: RsmGiPixel;
+    px.position = vec4<f32>(0.0, 0.0, 0.0, g.w);
+    px.normal = g.xyz;
+    return px;
+}
+
 // Geometry-aware weight of neighbour q for centre c: -1 at a discontinuity (depth beyond
 // the relative tolerance, or normals more than 60 degrees apart), else cos^power.
 fn rsm_gi_geometry_weight(c: RsmGiPixel, q: RsmGiPixel, tolerance: f32, power: f32) -> f32 {

@@ -4,7 +4,7 @@
 // per pixel: pixel (x, y) of cell c sums VPLs c, c + N M, ... in order, the same terms in the
 // same order as the CPU's splat over each VPL's projected footprint (crates/rsm_gi/src/
 // splat.rs). view.sizes: image w, h, VPL count, cells; view.knobs.x: the splat radius; the
-// VPLs' flux carries the energy scale. Workgroup 8 x 8, one invocation per pixel.
+// VPLs' flux carries the energy scale; each pixel's (normal, depth) is kept for the blur. Workgroup 8 x 8, one invocation per pixel.
 
 struct SplatVpl {
     position: vec4<f32>,
@@ -17,6 +17,7 @@ struct SplatVpl {
 @group(0) @binding(2) var g_normal: texture_2d<f32>;
 @group(0) @binding(3) var<storage, read> vpls: array<SplatVpl>;
 @group(0) @binding(4) var<storage, read_write> irradiance: array<vec4<f32>>;
+@group(0) @binding(5) var<storage, read_write> geometry: array<vec4<f32>>;
 
 @compute @workgroup_size(8, 8)
 fn splat(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -28,6 +29,7 @@ fn splat(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = id.y * w + id.x;
     let t = vec2<i32>(id.xy);
     let px = rsm_gi_make_pixel(textureLoad(g_position, t, 0).xyz, textureLoad(g_normal, t, 0).xyz, view.view_proj);
+    geometry[i] = rsm_gi_pack(px);
     if (px.position.w <= 0.0) {
         irradiance[i] = vec4<f32>(0.0);
         return;

@@ -11,6 +11,8 @@
 
 @group(0) @binding(8) var<storage, read_write> irradiance: array<vec4<f32>>;
 @group(0) @binding(9) var<storage, read> low: array<vec4<f32>>;
+// The gather's (normal, depth) per low-resolution pixel.
+@group(0) @binding(11) var<storage, read> geometry: array<vec4<f32>>;
 
 const RSM_GI_FALLBACK_GROUP: u32 = 64u;
 
@@ -48,7 +50,6 @@ fn upsample(@builtin(global_invocation_id) id: vec3<u32>) {
     let f = u32(view.knobs.w);
     let lw = view.pattern.z;
     let lh = view.pattern.w;
-    let full = vec2<i32>(i32(w), i32(h));
     let cx = rsm_gi_coarse(id.x, f, lw);
     let cy = rsm_gi_coarse(id.y, f, lh);
     var sum = vec3<f32>(0.0);
@@ -59,11 +60,11 @@ fn upsample(@builtin(global_invocation_id) id: vec3<u32>) {
         let u = u32(select(cx.x, cx.y, bx == 1u));
         let v = u32(select(cy.x, cy.y, by == 1u));
         let b = select(1.0 - cx.z, cx.z, bx == 1u) * select(1.0 - cy.z, cy.z, by == 1u);
-        let q = rsm_gi_pixel_at(rsm_gi_texel(vec2<i32>(i32(u), i32(v)), i32(f), full));
-        let gw = rsm_gi_geometry_weight(c, q, view.knobs.y, view.knobs.z);
+        let j = v * lw + u;
+        let gw = rsm_gi_geometry_weight(c, rsm_gi_unpack(geometry[j]), view.knobs.y, view.knobs.z);
         if (gw >= 0.0) {
             let wt = (b + 1e-3) * gw;
-            sum = sum + low[v * lw + u].xyz * wt;
+            sum = sum + low[j].xyz * wt;
             wsum = wsum + wt;
         }
     }

@@ -17,7 +17,10 @@
 //! where no coarse pixel fits) fills the full image, as the CPU path does. The upsampling
 //! lists the pixels no coarse pixel fits and a second, indirect dispatch gathers them, 64 to
 //! a workgroup: gathered in place, each held its SIMD group of neighbours for the whole
-//! pattern (on lavapipe, a third of the upsampling's time on the city).
+//! pattern (on lavapipe, a third of the upsampling's time on the city). The first pass keeps
+//! each pixel of its grid as (unit normal, view depth) in one buffer, which the blur and the
+//! upsampling read for the neighbours: one `vec4` where they read two textures and
+//! projected the position.
 
 use crate::error::RsmGiError;
 use crate::input::{GBuffer, RsmInput};
@@ -244,7 +247,12 @@ const FALLBACK_HEADER: u64 = 16;
 
 impl Upsample {
     fn new(device: &wgpu::Device, width: u32, height: u32) -> Self {
-        let entries = [storage_entry(8, false), storage_entry(9, true), storage_entry(10, false)];
+        let entries = [
+            storage_entry(8, false),
+            storage_entry(9, true),
+            storage_entry(10, false),
+            storage_entry(11, true),
+        ];
         let (pipeline, layout) = pipeline(
             device,
             "rsm_gi upsample",
@@ -290,6 +298,9 @@ pub struct GpuGather {
     /// On the low grid: the gather's output, the x blur's, the y blur's; then the full
     /// image (the upsampling's).
     images: [wgpu::Buffer; 4],
+    /// On the low grid: each pixel's unit normal and view depth (0: not shaded), written by
+    /// the first pass and read by the blur and the upsampling.
+    geometry: wgpu::Buffer,
     readback: wgpu::Buffer,
 }
 
@@ -367,7 +378,7 @@ impl GpuGather {
                 "rsm_gi gather",
                 GATHER_WGSL,
                 "gather",
-                &gather_layout(&[storage_entry(8, false)]),
+                &gather_layout(&[storage_entry(8, false), storage_entry(11, false)]),
             );
             let upsample = (s.low_res > 1).then(|| Upsample::new(device, width, height));
             let (flat, ranges) = pattern_sets(gi, s.r_max * rsm_width as f32);
@@ -407,8 +418,14 @@ impl GpuGather {
             });
         }
         gpu_call(device, || {
-            let layout =
-                [uniform(0), tex(1), tex(2), storage_entry(3, true), storage_entry(4, false)];
+            let layout = [
+                uniform(0),
+                tex(1),
+                tex(2),
+                storage_entry(3, true),
+                storage_entry(4, false),
+                storage_entry(5, false),
+            ];
             let first = pipeline(device, "rsm_gi splat", SPLAT_WGSL, "splat", &layout);
             let vpls = device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("rsm_gi splat vpls"),
@@ -436,7 +453,7 @@ impl GpuGather {
             "rsm_gi blur",
             BLUR_WGSL,
             "blur",
-            &[uniform(0), tex(1), tex(2), storage_entry(3, true), storage_entry(4, false)],
+            &[uniform(0), storage_entry(1, true), storage_entry(3, true), storage_entry(4, false)],
         );
         let uni = |label| {
             device.create_buffer(&wgpu::BufferDescriptor {
@@ -483,6 +500,7 @@ impl GpuGather {
                 img("rsm_gi blurred", low.0, low.1),
                 img("rsm_gi upsampled", full.0, full.1),
             ],
+            geometry: img("rsm_gi geometry", low.0, low.1),
             readback,
         }
     }
@@ -524,15 +542,21 @@ impl GpuGather {
             )
         };
         gpu_call(device, || {
-            let first = group(&self.first.1, &self.views[0], &[(8, &self.images[0])]);
+            let outputs = [(8, &self.images[0]), (11, &self.geometry)];
+            let first = group(&self.first.1, &self.views[0], &outputs);
             // Two upsampling groups: over the gathered image and over the blurred one.
             let upsample = upsample.as_ref().map(|u| {
                 [0, 2].map(|src| {
-                    let extra = [(8, &self.images[3]), (9, &self.images[src]), (10, &u.list)];
+                    let extra = [
+                        (8, &self.images[3]),
+                        (9, &self.images[src]),
+                        (10, &u.list),
+                        (11, &self.geometry),
+                    ];
                     group(&u.layout, &self.views[3], &extra)
                 })
             });
-            self.binding(device, g, first, upsample, (rsm.width, rsm.height))
+            self.binding(device, first, upsample, (rsm.width, rsm.height))
         })
     }
 
@@ -565,23 +589,25 @@ impl GpuGather {
                             binding: 4,
                             resource: self.images[0].as_entire_binding(),
                         },
+                        wgpu::BindGroupEntry {
+                            binding: 5,
+                            resource: self.geometry.as_entire_binding(),
+                        },
                     ],
                 },
             );
-            self.binding(device, g, first, None, (0, 0))
+            self.binding(device, first, None, (0, 0))
         })
     }
 
-    /// A binding with the first pass's group `first`, the blur's over `g` and `upsample`.
+    /// A binding with the first pass's group `first`, the blur's and `upsample`.
     fn binding(
         &self,
         device: &wgpu::Device,
-        g: &GpuGBuffer,
         first: wgpu::BindGroup,
         upsample: Option<[wgpu::BindGroup; 2]>,
         rsm_size: (u32, u32),
     ) -> GatherBinding {
-        let tv = wgpu::BindingResource::TextureView;
         let blur = [(0usize, 1usize), (1, 2)].map(|(src, dst)| {
             gpu_harness::create_bind_group(
                 device,
@@ -593,8 +619,10 @@ impl GpuGather {
                             binding: 0,
                             resource: self.views[src + 1].as_entire_binding(),
                         },
-                        wgpu::BindGroupEntry { binding: 1, resource: tv(&g.position) },
-                        wgpu::BindGroupEntry { binding: 2, resource: tv(&g.normal) },
+                        wgpu::BindGroupEntry {
+                            binding: 1,
+                            resource: self.geometry.as_entire_binding(),
+                        },
                         wgpu::BindGroupEntry {
                             binding: 3,
                             resource: self.images[src].as_entire_binding(),
