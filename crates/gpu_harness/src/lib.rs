@@ -47,8 +47,8 @@ pub use bind_cache::{BindGroupCache, CACHED_GROUPS, bind_groups_created, create_
 pub use context::{Binding, GpuContext, device_descriptor};
 pub use error::GpuError;
 pub use pipelines::{
-    clear_pass, color_pass, compute_pipeline, depth_tested_fullscreen_pipeline, depth_tested_pass,
-    dispatch, draw_fullscreen, fullscreen_pipeline, pipeline_layout,
+    clear_pass, color_pass, compute_pipeline, depth_attachment, depth_tested_fullscreen_pipeline,
+    depth_tested_pass, dispatch, draw_fullscreen, fullscreen_pipeline, pipeline_layout,
 };
 pub use plumbing::{
     bind_entries, bind_group, empty_storage, init_buffer, storage_buffer, storage_entry,

@@ -127,6 +127,19 @@ pub fn color_pass<'e>(
     depth_tested_pass(encoder, label, target, load, None)
 }
 
+/// `view` as a depth attachment (no stencil) that starts from `load` and stores what is
+/// drawn.
+pub fn depth_attachment(
+    view: &wgpu::TextureView,
+    load: wgpu::LoadOp<f32>,
+) -> wgpu::RenderPassDepthStencilAttachment<'_> {
+    wgpu::RenderPassDepthStencilAttachment {
+        view,
+        depth_ops: Some(wgpu::Operations { load, store: wgpu::StoreOp::Store }),
+        stencil_ops: None,
+    }
+}
+
 /// The same with `depth` as the depth attachment, kept as it is (for the pipelines of
 /// [`depth_tested_fullscreen_pipeline`], which test against it without writing).
 pub fn depth_tested_pass<'e>(
@@ -144,14 +157,7 @@ pub fn depth_tested_pass<'e>(
             resolve_target: None,
             ops: wgpu::Operations { load, store: wgpu::StoreOp::Store },
         })],
-        depth_stencil_attachment: depth.map(|view| wgpu::RenderPassDepthStencilAttachment {
-            view,
-            depth_ops: Some(wgpu::Operations {
-                load: wgpu::LoadOp::Load,
-                store: wgpu::StoreOp::Store,
-            }),
-            stencil_ops: None,
-        }),
+        depth_stencil_attachment: depth.map(|view| depth_attachment(view, wgpu::LoadOp::Load)),
         timestamp_writes: None,
         occlusion_query_set: None,
         multiview_mask: None,

@@ -122,14 +122,10 @@ impl GBufferPass {
                 clear(&targets.geometry),
                 clear(&targets.depth),
             ],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &targets.zbuffer,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Load,
-                    store: wgpu::StoreOp::Store,
-                }),
-                stencil_ops: None,
-            }),
+            depth_stencil_attachment: Some(gpu_harness::depth_attachment(
+                &targets.zbuffer,
+                wgpu::LoadOp::Load,
+            )),
             timestamp_writes: None,
             occlusion_query_set: None,
             multiview_mask: None,
@@ -159,14 +155,10 @@ impl GBufferPass {
         let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("gbuffer depth"),
             color_attachments: &[],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &targets.zbuffer,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(1.0),
-                    store: wgpu::StoreOp::Store,
-                }),
-                stencil_ops: None,
-            }),
+            depth_stencil_attachment: Some(gpu_harness::depth_attachment(
+                &targets.zbuffer,
+                wgpu::LoadOp::Clear(1.0),
+            )),
             timestamp_writes: None,
             occlusion_query_set: None,
             multiview_mask: None,

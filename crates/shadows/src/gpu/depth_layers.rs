@@ -25,14 +25,7 @@ pub(crate) fn depth_state() -> wgpu::DepthStencilState {
 pub(crate) fn depth_attachment(
     view: &wgpu::TextureView,
 ) -> wgpu::RenderPassDepthStencilAttachment<'_> {
-    wgpu::RenderPassDepthStencilAttachment {
-        view,
-        depth_ops: Some(wgpu::Operations {
-            load: wgpu::LoadOp::Clear(1.0),
-            store: wgpu::StoreOp::Store,
-        }),
-        stencil_ops: None,
-    }
+    gpu_harness::depth_attachment(view, wgpu::LoadOp::Clear(1.0))
 }
 
 /// A pass's shadow pipelines over the caller's `vertex` layout, group 0 the draw `slots`,
