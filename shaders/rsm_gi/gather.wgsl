@@ -2,9 +2,9 @@
 // include: rsm_gi/gather.inc.wgsl
 // rsm_gi gather, interleaved: pixel (x, y) of the (low-resolution) grid sums the RSM texels
 // at its sub-buffer's share of the sample pattern (cell = x mod nx + nx (y mod ny)) around
-// its projection into the RSM, and keeps the pixel's (normal, depth) for the filters. Addressing the sub-buffers in place is the same arithmetic as
-// the CPU's swizzled tiles (on a GPU the swizzle only buys cache locality). Workgroup 8 x 8,
-// one invocation per pixel.
+// its projection into the RSM, and keeps the pixel's (normal, depth) for the filters.
+// Addressing the sub-buffers in place is the same arithmetic as the CPU's swizzled tiles (on
+// a GPU the swizzle only buys cache locality). Workgroup 8 x 8, one invocation per pixel.
 
 @group(0) @binding(8) var<storage, read_write> irradiance: array<vec4<f32>>;
 @group(0) @binding(11) var<storage, read_write> geometry: array<vec4<f32>>;

@@ -4,7 +4,8 @@
 // per pixel: pixel (x, y) of cell c sums VPLs c, c + N M, ... in order, the same terms in the
 // same order as the CPU's splat over each VPL's projected footprint (crates/rsm_gi/src/
 // splat.rs). view.sizes: image w, h, VPL count, cells; view.knobs.x: the splat radius; the
-// VPLs' flux carries the energy scale; each pixel's (normal, depth) is kept for the blur. Workgroup 8 x 8, one invocation per pixel.
+// VPLs' flux carries the energy scale; each pixel's (normal, depth) is kept for the blur.
+// Workgroup 8 x 8, one invocation per pixel.
 
 struct SplatVpl {
     position: vec4<f32>,
