@@ -25,9 +25,10 @@
 //!
 //! The texture's row is a constant here; in a first version of this race, which computed it
 //! per read from `textureDimensions` (and `countTrailingZeros` for the shift), the texture
-//! was 13% slower than the storage buffer. So a per-pixel lookup gains about a quarter from a texture, a small table read in a
-//! loop (taps, lights, cascades) almost three times from a uniform buffer, and fewer reads
-//! beat both (the sky volume's probes are packed halves for that reason).
+//! was 13% slower than the storage buffer. In isolation, then, a per-pixel lookup gains
+//! about a quarter from a texture, a small table read in a loop almost three times from a
+//! uniform buffer, and fewer reads beat both; inside the engine's lighting pass none of
+//! these moves showed in the frame when tried (`docs/ARCHITECTURE.md`, conventions).
 
 use std::time::Instant;
 
