@@ -124,7 +124,7 @@ fn source(v: &Variant) -> String {
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let rounds: usize = std::env::args().nth(1).and_then(|s| s.parse().ok()).unwrap_or(10);
+    let rounds: usize = std::env::args().nth(1).and_then(|s| s.parse().ok()).unwrap_or(10).max(1);
     let gpu = gpu_harness::GpuContext::new()?;
     println!("{}", gpu.describe());
     let d = &gpu.device;
