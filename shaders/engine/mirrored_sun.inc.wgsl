@@ -57,15 +57,23 @@ fn mirrored_sun(r: Reflector, p: vec3<f32>, l: vec3<f32>, q: ptr<function, vec3<
 // uniform `reflectors: Reflectors`, shading.inc.wgsl's base_brdf_cos, and
 //   fn mirrored_sun_visibility(q: vec3<f32>, nr: vec3<f32>) -> f32  // the sun at reflector point q
 fn mirrored_sunlight(a: vec3<f32>, g: f32, power: f32, n: vec3<f32>, v: vec3<f32>, p: vec3<f32>) -> vec3<f32> {
-    var sum = vec3<f32>(0.0);
     let l = frame.sun_dir.xyz;
+    // The reflectors that send the sun to p first (a few products each), then the BRDF and
+    // the shadow lookup for those alone (as shading.inc.wgsl's point_lights, for llvmpipe).
+    var hits = 0u;
     for (var k = 0u; k < min(reflectors.count.x, MAX_REFLECTORS); k++) {
+        var q = vec3<f32>(0.0);
+        if mirrored_sun(reflectors.items[k], p, l, &q).w > 0.0 {
+            hits |= 1u << k;
+        }
+    }
+    var sum = vec3<f32>(0.0);
+    while hits != 0u {
+        let k = firstTrailingBit(hits);
+        hits &= hits - 1u;
         let r = reflectors.items[k];
         var q = vec3<f32>(0.0);
         let ms = mirrored_sun(r, p, l, &q);
-        if ms.w <= 0.0 {
-            continue;
-        }
         let f = base_brdf_cos(a, g, power, n, ms.xyz, v);
         if any(f > vec3<f32>(0.0)) {
             let nr = r.normal.xyz * sign(dot(l, r.normal.xyz));

@@ -43,19 +43,31 @@ fn point_visibility(i: u32, p: vec3<f32>, gn: vec3<f32>) -> f32 {
 }
 
 // The light of every point light in reach reflected by the base BRDF at p (shading normal
-// n, geometric normal gn, towards v).
+// n, geometric normal gn, towards v). The lights in reach are found first, one distance each,
+// and only they are shaded: llvmpipe runs both sides of a branch under a lane mask, so a
+// light out of reach skipped inside one loop still cost its BRDF and shadow lookup, where a
+// loop over the lights in reach runs as many rounds as a SIMD group's lanes have lights.
 fn point_lights(albedo: vec3<f32>, g: f32, power: f32, n: vec3<f32>, v: vec3<f32>, p: vec3<f32>, gn: vec3<f32>) -> vec3<f32> {
     var sum = vec3<f32>(0.0);
-    for (var i = 0u; i < frame.size.z; i = i + 1u) {
-        let l = lights[i].position;
-        let d = l.xyz - p;
-        let dist2 = max(dot(d, d), 1e-4);
-        if dist2 > l.w * l.w {
-            continue;
+    // 32 lights at a time, a bit each.
+    for (var first = 0u; first < frame.size.z; first = first + 32u) {
+        var reach = 0u;
+        for (var j = 0u; j < min(frame.size.z - first, 32u); j = j + 1u) {
+            let l = lights[first + j].position;
+            let d = l.xyz - p;
+            if max(dot(d, d), 1e-4) <= l.w * l.w {
+                reach |= 1u << j;
+            }
         }
-        let f = base_brdf_cos(albedo, g, power, n, d * inverseSqrt(dist2), v);
-        if any(f > vec3<f32>(0.0)) {
-            sum += f * lights[i].color.rgb / dist2 * point_visibility(i, p, gn);
+        while reach != 0u {
+            let i = first + firstTrailingBit(reach);
+            reach &= reach - 1u;
+            let d = lights[i].position.xyz - p;
+            let dist2 = max(dot(d, d), 1e-4);
+            let f = base_brdf_cos(albedo, g, power, n, d * inverseSqrt(dist2), v);
+            if any(f > vec3<f32>(0.0)) {
+                sum += f * lights[i].color.rgb / dist2 * point_visibility(i, p, gn);
+            }
         }
     }
     return sum;
