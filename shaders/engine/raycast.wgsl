@@ -34,26 +34,36 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= qw || id.y >= qh {
         return;
     }
-    var out = RayCast(vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0));
-    // Block pixels in order of distance to the centre are all equal: take the first found.
+    // The first of the block's pixels (all equally near its centre) with a mirror or glass
+    // part, found with a few reads each; then its rays, computed once (on llvmpipe, which
+    // runs a loop's body under a lane mask until every lane is done, rays computed inside the
+    // search cost four times over).
+    var found = vec2<i32>(-1);
+    var m: Material;
+    var depth = 0.0;
     for (var k = 0u; k < 4u; k = k + 1u) {
         let px = vec2<i32>(i32(id.x * 2u + (k & 1u)), i32(id.y * 2u + (k >> 1u)));
         if px.x >= i32(frame.size.x) || px.y >= i32(frame.size.y) {
             continue;
         }
-        let depth = textureLoad(depth_t, px, 0).x;
-        if depth <= 0.0 {
+        let d = textureLoad(depth_t, px, 0).x;
+        if d <= 0.0 {
             continue;
         }
-        let gm = textureLoad(geometry_t, px, 0);
-        let m = materials[u32(gm.w + 0.5)];
+        let mk = materials[u32(textureLoad(geometry_t, px, 0).w + 0.5)];
+        if mk.params.y + mk.params.z > 0.0 {
+            found = px;
+            m = mk;
+            depth = d;
+            break;
+        }
+    }
+    var out = RayCast(vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0));
+    if found.x >= 0 {
         let refl = m.params.y;
         let trans = m.params.z;
-        if refl + trans <= 0.0 {
-            continue;
-        }
-        let p = world_position(frame, vec2<f32>(px), depth);
-        let n = normalize(textureLoad(normal_t, px, 0).xyz);
+        let p = world_position(frame, vec2<f32>(found), depth);
+        let n = normalize(textureLoad(normal_t, found, 0).xyz);
         let v = normalize(frame.camera_pos.xyz - p);
         let f = fresnel_schlick(dot(n, v), m.params.w);
         let r = reflect(-v, n);
@@ -70,7 +80,6 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         out.origin = vec4<f32>(p, depth);
         out.reflect = vec4<f32>(r, wr);
         out.refract = vec4<f32>(normalize(t + vec3<f32>(1e-20)), wt);
-        break;
     }
     let i = id.y * qw + id.x;
     rays[i] = out;

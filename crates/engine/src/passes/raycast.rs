@@ -125,20 +125,26 @@ impl RayCastPass {
             bytes = gpu.read_back(&self.read_back, enc, &self.list, list_bytes(count))?;
         }
         let entries = &bytes[LIST_HEADER as usize..list_bytes(count) as usize];
-        let mut listed: Vec<ListedRay> = bytemuck::pod_collect_to_vec(entries);
-        // The GPU appends in no set order: the texels' order makes the batch deterministic
-        // and keeps neighbouring rays together for the tracer's packets.
-        listed.sort_unstable_by_key(|l| l.texel[0]);
+        let listed: Vec<ListedRay> = bytemuck::pod_collect_to_vec(entries);
         Ok(batch(self.texels as usize, &listed))
     }
 }
 
 /// The rays of the `listed` texels (of `texels` in the buffer) that have any (weights above
-/// zero), offset off their surface.
+/// zero), offset off their surface, in the texels' order: the GPU appends in no set order, and
+/// the texels' order makes the batch deterministic and keeps neighbouring rays together for
+/// the tracer's packets (one pass over the buffer's texels, not a sort of the entries).
 pub fn batch(texels: usize, listed: &[ListedRay]) -> RayBatch {
+    let mut at = vec![u32::MAX; texels];
+    for (j, l) in listed.iter().enumerate() {
+        if let Some(slot) = at.get_mut(l.texel[0] as usize) {
+            *slot = j as u32;
+        }
+    }
     let mut b = RayBatch { texels, ..Default::default() };
-    for &ListedRay { ray: t, texel: [i, ..] } in listed {
-        if t.origin[3] <= 0.0 || i as usize >= texels {
+    for (i, &j) in at.iter().enumerate().filter(|&(_, &j)| j != u32::MAX) {
+        let t = listed[j as usize].ray;
+        if t.origin[3] <= 0.0 {
             continue;
         }
         let o = Vec3::from_slice(&t.origin[..3]);
@@ -146,10 +152,51 @@ pub fn batch(texels: usize, listed: &[ListedRay]) -> RayBatch {
         for (dir, refract) in [(t.reflect, false), (t.refract, true)] {
             let d = Vec3::from_slice(&dir[..3]);
             if dir[3] > 0.0 && d.is_finite() && d.length_squared() > 0.5 {
-                b.slots.push((i, refract));
+                b.slots.push((i as u32, refract));
                 b.rays.push(TraceRay { origin: o + d * eps, dir: d });
             }
         }
     }
     b
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn listed(texel: u32, reflect: f32, refract: f32) -> ListedRay {
+        ListedRay {
+            ray: RayCast {
+                origin: [texel as f32, 0.0, 0.0, 2.0],
+                reflect: [0.0, 1.0, 0.0, reflect],
+                refract: [0.0, 0.0, -1.0, refract],
+            },
+            texel: [texel, 0, 0, 0],
+        }
+    }
+
+    /// The GPU's list in any order gives the same batch, in the texels' order; rays without
+    /// weight and texels outside the buffer are left out.
+    #[test]
+    fn batch_is_in_texel_order_whatever_the_list_order() {
+        let list = [
+            listed(7, 1.0, 0.0),
+            listed(2, 0.5, 0.5),
+            listed(99, 1.0, 1.0),
+            listed(4, 0.0, 0.0),
+            listed(0, 0.0, 1.0),
+        ];
+        let b = batch(10, &list);
+        assert_eq!(b.texels, 10);
+        assert_eq!(b.slots, vec![(0, true), (2, false), (2, true), (7, false)]);
+        let mut reversed = list;
+        reversed.reverse();
+        let r = batch(10, &reversed);
+        assert_eq!(r.slots, b.slots);
+        let origins = |b: &RayBatch| b.rays.iter().map(|r| r.origin.x).collect::<Vec<_>>();
+        assert_eq!(origins(&r), origins(&b));
+        assert!(
+            b.rays.iter().zip(&b.slots).all(|(r, &(i, _))| (r.origin.x - i as f32).abs() < 0.1)
+        );
+    }
 }
