@@ -49,3 +49,19 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     textureStore(positions, vec2<i32>(id.xy), vec4<f32>(p, albedo));
 }
+
+// The world positions alone, for a frame whose one bounce reads no query buffer (the RSM
+// gather): two loads fewer a pixel, and none of the other buffers' code, which llvmpipe
+// would run under a lane mask even where its flag is off.
+@compute @workgroup_size(8, 8)
+fn positions_only(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= frame.size.x || id.y >= frame.size.y {
+        return;
+    }
+    let depth = textureLoad(depth_t, vec2<i32>(id.xy), 0).x;
+    var p = vec4<f32>(0.0);
+    if depth > 0.0 {
+        p = vec4<f32>(world_position(frame, vec2<f32>(id.xy), depth), 1.0);
+    }
+    textureStore(positions, vec2<i32>(id.xy), p);
+}

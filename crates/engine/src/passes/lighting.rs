@@ -15,6 +15,10 @@ use crate::gpu::{
 
 pub struct LightingPass {
     queries: wgpu::ComputePipeline,
+    /// The queries pass writing the world positions alone (`positions_only`), for the RSM
+    /// gather.
+    positions: wgpu::ComputePipeline,
+    positions_group: gpu_harness::BindGroupCache,
     /// The pixels geometry covers, and the background (`fs_sky`): two draws depth-tested
     /// against the G-buffer's z-buffer, so that each pixel runs only its own shader.
     pipeline: wgpu::RenderPipeline,
@@ -83,6 +87,13 @@ impl LightingPass {
                 &crate::shaders::queries(),
                 "main",
             )?,
+            positions: compute_pipeline(
+                device,
+                "world positions",
+                &crate::shaders::queries(),
+                "positions_only",
+            )?,
+            positions_group: Default::default(),
             pipeline,
             lpv_q: empty_storage(device, "lpv queries", n * 32),
             glossy_q: empty_storage(device, "lpv glossy queries", n * 32),
@@ -128,27 +139,40 @@ impl LightingPass {
         inputs: &LightingInputs<'b>,
     ) -> Result<&'b wgpu::Buffer, EngineError> {
         let tv = wgpu::BindingResource::TextureView;
-        if !matches!(inputs.indirect, IndirectSource::None) {
-            let bg = self.queries_group.get_in_order(
-                &gpu.device,
-                "lookup queries",
-                &self.queries.get_bind_group_layout(0),
-                &[
-                    inputs.frame.as_entire_binding(),
-                    tv(&targets.normal),
-                    tv(&targets.depth),
-                    self.lpv_q.as_entire_binding(),
-                    tv(&targets.positions),
-                    self.glossy_q.as_entire_binding(),
-                    tv(&targets.albedo),
-                ],
-            );
-            dispatch(
-                enc,
-                &self.queries,
-                &bg,
-                [targets.width.div_ceil(8), targets.height.div_ceil(8), 1],
-            );
+        let size = [targets.width.div_ceil(8), targets.height.div_ceil(8), 1];
+        match inputs.indirect {
+            IndirectSource::None => {}
+            // The gather reads the world positions alone.
+            IndirectSource::Rsm(..) => {
+                let bg = self.positions_group.get(
+                    &gpu.device,
+                    "world positions",
+                    &self.positions.get_bind_group_layout(0),
+                    &[
+                        (0, inputs.frame.as_entire_binding()),
+                        (2, tv(&targets.depth)),
+                        (4, tv(&targets.positions)),
+                    ],
+                );
+                dispatch(enc, &self.positions, &bg, size);
+            }
+            IndirectSource::Lpv(_) | IndirectSource::Cache(_) => {
+                let bg = self.queries_group.get_in_order(
+                    &gpu.device,
+                    "lookup queries",
+                    &self.queries.get_bind_group_layout(0),
+                    &[
+                        inputs.frame.as_entire_binding(),
+                        tv(&targets.normal),
+                        tv(&targets.depth),
+                        self.lpv_q.as_entire_binding(),
+                        tv(&targets.positions),
+                        self.glossy_q.as_entire_binding(),
+                        tv(&targets.albedo),
+                    ],
+                );
+                dispatch(enc, &self.queries, &bg, size);
+            }
         }
         Ok(match inputs.indirect {
             IndirectSource::Lpv(lpv) => {
