@@ -19,6 +19,12 @@ struct VOut {
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
     @location(3) @interpolate(flat) material: u32,
+    // The material's albedo, (specular power, alpha cutoff) and (albedo texture, alpha mask)
+    // flags, read once a vertex rather than once a pixel (a storage read is a gather lane by
+    // lane on llvmpipe).
+    @location(4) @interpolate(flat) albedo: vec4<f32>,
+    @location(5) @interpolate(flat) power_cutoff: vec2<f32>,
+    @location(6) @interpolate(flat) flags: vec2<u32>,
 }
 
 @vertex
@@ -34,6 +40,10 @@ fn vs_main(
     o.normal = normal;
     o.uv = uv;
     o.material = material;
+    let m = materials[material];
+    o.albedo = m.albedo;
+    o.power_cutoff = vec2<f32>(m.params.x, m.emission.w);
+    o.flags = m.flags.xy;
     return o;
 }
 
@@ -53,8 +63,7 @@ fn fs_opaque(v: VOut) -> GBuffer {
 fn fs_alpha_tested(v: VOut) -> GBuffer {
     let o = gbuffer(v);
     let alpha = textureSample(alpha_tex, material_sampler, v.uv).a;
-    let m = materials[v.material];
-    if m.flags.y != 0u && alpha < m.emission.w {
+    if v.flags.y != 0u && alpha < v.power_cutoff.y {
         discard;
     }
     return o;
@@ -77,7 +86,6 @@ fn gbuffer(v: VOut) -> GBuffer {
     let dnx = dpdx(shading);
     let dny = dpdy(shading);
     let s2 = frame.params.w * (dot(dnx, dnx) + dot(dny, dny)) / 12.0;
-    let m = materials[v.material];
     let to_eye = frame.camera_pos.xyz - v.world;
     var g = cross(dy, dx);
     if dot(g, g) < 1e-20 {
@@ -91,10 +99,11 @@ fn gbuffer(v: VOut) -> GBuffer {
     if dot(n, g) < 0.0 {
         n = -n;
     }
-    let albedo = m.albedo.rgb * select(vec3<f32>(1.0), tex.rgb, m.flags.x != 0u);
+    let albedo = v.albedo.rgb * select(vec3<f32>(1.0), tex.rgb, v.flags.x != 0u);
+    let power = v.power_cutoff.x;
     var o: GBuffer;
-    o.albedo = vec4<f32>(albedo, m.albedo.w);
-    o.normal = vec4<f32>(n, m.params.x / (1.0 + 4.0 * m.params.x * s2));
+    o.albedo = vec4<f32>(albedo, v.albedo.w);
+    o.normal = vec4<f32>(n, power / (1.0 + 4.0 * power * s2));
     o.geometry = vec4<f32>(g, f32(v.material));
     o.depth = dot(v.world - frame.camera_pos.xyz, frame.camera_fwd.xyz);
     return o;
