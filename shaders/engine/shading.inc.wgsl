@@ -20,14 +20,12 @@ fn base_brdf_cos(albedo: vec3<f32>, g: f32, power: f32, n: vec3<f32>, l: vec3<f3
     if c <= 0.0 {
         return vec3<f32>(0.0);
     }
-    var spec: f32;
-    if (frame.size.w & FLAG_BLINN) != 0u {
-        let h = normalize(l + v);
-        spec = (power + 8.0) / (8.0 * PI) * pow(max(dot(n, h), 0.0), power);
-    } else {
-        let r = reflect(-v, n);
-        spec = (power + 2.0) / (2.0 * PI) * pow(max(dot(r, l), 0.0), power);
-    }
+    // One lobe's cosine and normalisation picked, then one power: llvmpipe runs both sides of
+    // a branch, so a branch per model paid for two powers.
+    let blinn = (frame.size.w & FLAG_BLINN) != 0u;
+    let lobe_cos = select(dot(reflect(-v, n), l), dot(n, normalize(l + v)), blinn);
+    let norm = select((power + 2.0) / (2.0 * PI), (power + 8.0) / (8.0 * PI), blinn);
+    let spec = norm * pow(max(lobe_cos, 0.0), power);
     return ((1.0 - g) * albedo / PI + vec3<f32>(g * spec)) * c;
 }
 
