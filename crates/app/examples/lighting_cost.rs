@@ -63,9 +63,9 @@
 //! sun then stopped shading, under the lane mask, every light and reflector that does not
 //! reach the pixel (they collect the ones that do as bits first and loop over those), the
 //! RSM frame's queries pass writes the positions alone, the G-buffer reads its material once
-//! a vertex and the BRDF takes one power: all effects on, lighting 614-631 -> 537-550 ms,
-//! G-buffer 96-99 -> 89-94 ms (interleaved in one session, load 1.5-2.3 from the runs
-//! themselves). Tried in the same way and dropped: the PCSS blocker sums as vector lanes
+//! a vertex and the BRDF takes one power: all effects on, lighting 580-602 -> 505-528 ms,
+//! G-buffer 91-94 -> 87-88 ms, frame 788-817 -> 669-719 ms (the two builds interleaved over
+//! three runs of three rounds, load 1.9 from the runs themselves). Tried in the same way and dropped: the PCSS blocker sums as vector lanes
 //! instead of an array indexed by the tap, the cascade chosen before its struct is read,
 //! and the G-buffer channel views out of the lit geometry's shader (each within the noise).
 
