@@ -3,14 +3,14 @@
 //! of every pass.
 
 use crate::effects::{Effect, Effects};
-use crate::gpu::{TimestampTimer, TransferCounts};
+use crate::gpu::TransferCounts;
 use crate::graph::{self, pass};
 use crate::passes::accumulate;
 use crate::passes::display::Shown;
 use crate::state::{FrameCtx, State, SunLight};
 use crate::views::View;
 use crate::{EngineError, Settings};
-use frame_scheduler::{FrameReport, PassId, Res, Scheduler};
+use frame_scheduler::{FrameReport, PassId, Res, Scheduler, WgpuTimer};
 use glam::Vec3;
 use std::path::Path;
 use std::sync::Arc;
@@ -134,7 +134,7 @@ pub struct Renderer {
     effects: Effects,
     indirect: crate::Indirect,
     /// Per-pass GPU times for the frame report (made once).
-    timer: TimestampTimer,
+    timer: WgpuTimer,
     still: Still,
 }
 
@@ -187,7 +187,7 @@ impl Renderer {
         gpu: crate::gpu::Gpu,
     ) -> Result<Self, EngineError> {
         let state = Arc::new(State::new(&scene, settings, gpu)?);
-        let timer = TimestampTimer::new(&state.gpu.device, &state.gpu.queue);
+        let timer = WgpuTimer::new(&state.gpu.device, &state.gpu.queue);
         let layers = state.sky.as_ref().map_or(1, |s| s.layers());
         let set = &state.settings;
         let (g, out) = graph::build(set, layers);

@@ -26,8 +26,9 @@
 //! * Build the graph once and keep the [`Scheduler`], or declare it anew each frame (when the
 //!   set of passes changes) and hand it to [`Scheduler::rebuild`], which carries values, keys,
 //!   input versions and amortisation progress over by name.
-//! * GPU time comes from a [`GpuTimer`] (the engine's uses wgpu timestamp queries);
-//!   [`SimGpu`] is a simulated GPU queue and timer for tests and demos.
+//! * GPU time comes from a [`GpuTimer`]: with the feature `wgpu`, `WgpuTimer` measures each
+//!   GPU pass with wgpu timestamp queries; [`SimGpu`] is a simulated GPU queue and timer for
+//!   tests and demos.
 //!
 //! ```
 //! use frame_scheduler::{Budget, FrameGraph, Outcome, quantise_dir};
@@ -97,6 +98,8 @@ mod scheduler;
 mod sim;
 mod svg;
 mod timer;
+#[cfg(feature = "wgpu")]
+mod wgpu_timer;
 
 pub use error::{FrameError, GraphError, PassResult, ResourceError};
 pub use graph::FrameGraph;
@@ -108,3 +111,5 @@ pub use report::{ExecMode, FrameReport, Outcome, PassRecord, Reason, Span};
 pub use scheduler::Scheduler;
 pub use sim::SimGpu;
 pub use timer::{GpuSample, GpuTimer, GpuTimingSupport, NoGpuTimer};
+#[cfg(feature = "wgpu")]
+pub use wgpu_timer::WgpuTimer;

@@ -1,5 +1,5 @@
-//! GPU timing: a small trait the engine implements (with wgpu timestamp queries where the
-//! adapter supports them), and the no-op timer.
+//! GPU timing: a small trait (`WgpuTimer` implements it with wgpu timestamp queries
+//! where the adapter supports them, feature `wgpu`), and the no-op timer.
 
 use crate::handle::PassId;
 use serde::{Deserialize, Serialize};

@@ -4,13 +4,11 @@
 mod context;
 pub(crate) mod scene;
 mod targets;
-mod timer;
 mod transfers;
 mod util;
 
 pub use context::{Gpu, check_capabilities};
 pub use scene::SceneBuffers;
 pub use targets::{GBUFFER_FORMATS, GBufferTargets, HDR_FORMAT};
-pub use timer::TimestampTimer;
 pub use transfers::{TransferCounts, Transfers};
 pub(crate) use util::*;

@@ -1,15 +1,29 @@
-//! Per-pass GPU times from wgpu timestamp queries, for `frame_scheduler`'s report and
+//! Per-pass GPU times from wgpu timestamp queries (feature `wgpu`), for the report and the
 //! timeline. Each GPU pass is bracketed by two empty compute passes that write a timestamp
 //! at their start/end (only `TIMESTAMP_QUERY` is needed, not timestamps inside encoders);
 //! the queue executes in order, so the bracket encloses everything the pass submitted.
-//! The renderer keeps one timer: its query set and buffers are made once, not every frame.
+//! Keep one timer: its query set and buffers are made once, not every frame.
 
-use frame_scheduler::{GpuSample, GpuTimer, GpuTimingSupport, PassId};
+use crate::{GpuSample, GpuTimer, GpuTimingSupport, PassId};
 
 /// Passes per frame that can be timed.
 const MAX_PASSES: u32 = 32;
 
-pub struct TimestampTimer {
+/// A [`GpuTimer`] on a wgpu queue: hand it to [`Scheduler::run_frame_timed`]
+/// (`crate::Scheduler`) and each GPU pass's report gets the GPU time of the work it
+/// submitted to that queue.
+///
+/// ```no_run
+/// # fn frame(device: &wgpu::Device, queue: &wgpu::Queue,
+/// #     scheduler: &mut frame_scheduler::Scheduler<()>) -> Result<(), frame_scheduler::FrameError> {
+/// let mut timer = frame_scheduler::WgpuTimer::new(device, queue);
+/// let report = scheduler.run_frame_timed(&(), &mut timer)?;
+/// println!("{}", report.to_markdown()); // GPU ms per pass, "measured (wgpu timestamp queries)"
+/// # Ok(()) }
+/// ```
+///
+/// [`Scheduler::run_frame_timed`]: crate::Scheduler::run_frame_timed
+pub struct WgpuTimer {
     device: wgpu::Device,
     queue: wgpu::Queue,
     set: Option<wgpu::QuerySet>,
@@ -19,7 +33,7 @@ pub struct TimestampTimer {
     passes: Vec<PassId>,
 }
 
-impl TimestampTimer {
+impl WgpuTimer {
     /// A timer on `device` (which measures nothing when it lacks `TIMESTAMP_QUERY`).
     pub fn new(device: &wgpu::Device, queue: &wgpu::Queue) -> Self {
         let on = device.features().contains(wgpu::Features::TIMESTAMP_QUERY);
@@ -63,7 +77,7 @@ impl TimestampTimer {
     }
 }
 
-impl GpuTimer for TimestampTimer {
+impl GpuTimer for WgpuTimer {
     fn support(&self) -> GpuTimingSupport {
         match self.set {
             Some(_) => GpuTimingSupport::Supported { method: "wgpu timestamp queries".into() },
