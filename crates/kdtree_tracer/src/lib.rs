@@ -212,6 +212,21 @@
 //! buffer, 3% on the hemisphere one, but 2-3% more CPU time in six alternating runs, load
 //! 2.5-2.9: the new branch mispredicts).
 //!
+//! AVX-512 (tried on this Xeon, which has it, and not kept): the leaf test sixteen lanes at a
+//! time (`avx512f`, a leaf's last chunk under a lane mask, bit for bit the scalar test: the
+//! proptest above passed at widths 4, 8 and 16), the single-ray traversal and the packets
+//! compiled with AVX-512 so that it is inlined. Raced against the 8-lane AVX path in one
+//! process on the same trees and rays (a switch of width between interleaved rounds, one
+//! thread, `kdrace --rays 100000`, load 1.1), 16-lane throughput / 8-lane: city 0.96, blob
+//! 0.97, cable 0.95, atrium 0.92, mirror rays 0.91; `trace_tiles` packets on the mirror /
+//! hemisphere / primary buffers 0.95 / 0.96 / 0.94. With its division done as two 8-lane
+//! ones: city 0.97, blob 0.97, mirror 0.91, packets 0.96 / 0.96 / 0.95. The same code
+//! compiled with AVX-512 but testing 8 lanes ran as fast as the AVX path (1.01 / 1.01 /
+//! 1.01, packets 1.00 / 0.98 / 1.00), so the 16-lane test itself is what costs: it appears
+//! this CPU (a virtualised Xeon with AVX-512 FP16) runs 512-bit arithmetic at the 256-bit
+//! rate, and a leaf's masked-off lanes (a leaf of 12 triangles tests 16) are extra work. A
+//! CPU with two 512-bit FMA ports might gain; none was at hand.
+//!
 //! ```
 //! use glam::Vec3;
 //! use kdtree_tracer::{KdTree, Mesh, Ray, Settings};
