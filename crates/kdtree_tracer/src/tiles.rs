@@ -1,7 +1,12 @@
 //! Tiled parallel tracing of image-shaped ray buffers (thesis 6.2.5: 40x40-pixel jobs taken
 //! from a queue by one thread per core; here rayon's work stealing is the queue). Tiles are
 //! handed to rayon along a Z-order (Morton) curve, so each thread's contiguous share of the
-//! list is a compact block of the image (rays of nearby pixels meet nearby geometry).
+//! list is a compact block of the image (rays of nearby pixels meet nearby geometry). Every
+//! tile is its own rayon job (`with_max_len(1)`): left to itself, rayon splits the list into a
+//! few runs of tiles per thread and a run, once started, cannot be stolen, so on the mirror
+//! buffer one of two threads sat idle for the last quarter of the call.
+
+use std::cell::RefCell;
 
 use rayon::prelude::*;
 
@@ -25,6 +30,7 @@ where
     let order = z_order(tx, ty);
     let done: Vec<Vec<T>> = order
         .par_iter()
+        .with_max_len(1)
         .map(|&i| {
             let [x0, y0, x1, y1] = tile_rect(i, width, height, tile);
             (y0..y1).flat_map(|y| (x0..x1).map(move |x| (x, y))).map(|(x, y)| f(x, y)).collect()
@@ -116,34 +122,61 @@ pub fn trace_tiles_into<A: RayQuery + ?Sized>(
     }
     let tile = tile.max(1);
     let image = Pixels(out.as_mut_ptr());
-    let init = || (Vec::new(), Vec::new());
-    z_order(width.div_ceil(tile), height.div_ceil(tile)).par_iter().for_each_init(
-        init,
-        |(order, hits), &i| {
-            let [x0, y0, x1, y1] = tile_rect(i, width, height, tile);
-            // The tile's rays block by block (partial blocks padded with `None`).
-            order.clear();
-            for_blocks(x0, y0, x1, y1, |x, y| {
-                let inside = x < x1 && y < y1;
-                order.push(if inside { rays[(y * width + x) as usize] } else { None });
-            });
-            hits.clear();
-            hits.resize(order.len(), None);
-            accel.intersect_many(order, t_max, hits);
-            let mut k = 0;
-            for_blocks(x0, y0, x1, y1, |x, y| {
-                if x < x1 && y < y1 {
-                    // SAFETY: `(x, y)` is inside the image (`x < x1 <= width`, `y < y1 <=
-                    // height`, so below `out.len()`) and inside this tile; the tiles are
-                    // disjoint, so no other task writes this pixel, and `out` is borrowed
-                    // mutably for the whole call.
-                    unsafe { image.write((y * width + x) as usize, hits[k]) };
+    z_order(width.div_ceil(tile), height.div_ceil(tile)).par_iter().with_max_len(1).for_each(
+        |&i| {
+            let rect = tile_rect(i, width, height, tile);
+            // The thread's buffers, or new ones when this thread is already inside a tile (an
+            // `intersect_many` that waits on rayon may run another tile meanwhile).
+            SCRATCH.with(|cell| match cell.try_borrow_mut() {
+                Ok(mut s) => trace_tile(accel, rect, width, rays, t_max, &image, &mut s),
+                Err(_) => {
+                    trace_tile(accel, rect, width, rays, t_max, &image, &mut Default::default())
                 }
-                k += 1;
-            });
+            })
         },
     );
     Ok(())
+}
+
+/// Traces the tile `[x0, x1) x [y0, y1)` block by block into `image`, with `scratch` for the
+/// tile's rays in block order and their hits.
+fn trace_tile<A: RayQuery + ?Sized>(
+    accel: &A,
+    [x0, y0, x1, y1]: [u32; 4],
+    width: u32,
+    rays: &[Option<Ray>],
+    t_max: f32,
+    image: &Pixels,
+    (order, hits): &mut (Vec<Option<Ray>>, Vec<Option<Hit>>),
+) {
+    // The tile's rays block by block (partial blocks padded with `None`).
+    order.clear();
+    for_blocks(x0, y0, x1, y1, |x, y| {
+        let inside = x < x1 && y < y1;
+        order.push(if inside { rays[(y * width + x) as usize] } else { None });
+    });
+    hits.clear();
+    hits.resize(order.len(), None);
+    accel.intersect_many(order, t_max, hits);
+    let mut k = 0;
+    for_blocks(x0, y0, x1, y1, |x, y| {
+        if x < x1 && y < y1 {
+            // SAFETY: `(x, y)` is inside the image (`x < x1 <= width`, `y < y1 <= height`, so
+            // below the image's length) and inside this tile; the tiles are disjoint, so no
+            // other task writes this pixel, and the image is borrowed mutably for the whole
+            // call of `trace_tiles_into`.
+            unsafe { image.write((y * width + x) as usize, hits[k]) };
+        }
+        k += 1;
+    });
+}
+
+thread_local! {
+    /// A tile's rays in block order and their hits, kept per thread from tile to tile (a tile
+    /// is its own rayon job, so buffers made per job would be made per tile).
+    static SCRATCH: RefCell<(Vec<Option<Ray>>, Vec<Option<Hit>>)> = const {
+        RefCell::new((Vec::new(), Vec::new()))
+    };
 }
 
 /// Calls `f(x, y)` for the pixels of the tile `[x0, x1) x [y0, y1)` in [`BLOCK`]s (row by

@@ -6,8 +6,9 @@ use common::*;
 use glam::{Vec2, Vec3};
 use kdtree_tracer::test_util::{self, Camera, Rng};
 use kdtree_tracer::{
-    BruteForce, BvhAccel, BvhKind, BvhPreset, DEFAULT_TILE, KdTree, Mesh, Ray, RayDifferential,
-    RayQuery, SceneAccel, Settings, texture_footprint, trace_tiles, trace_tiles_into,
+    BruteForce, BvhAccel, BvhKind, BvhPreset, DEFAULT_TILE, Hit, KdTree, Mesh, Ray,
+    RayDifferential, RayQuery, SceneAccel, Settings, texture_footprint, trace_tiles,
+    trace_tiles_into,
 };
 use proptest::prelude::*;
 
@@ -183,4 +184,38 @@ fn footprint_of_a_head_on_view_is_the_pixel_size() {
     // Parallel offset ray: no footprint.
     let diff = RayDifferential { rx: Ray::new(o, Vec3::X), ry: diff.ry };
     assert!(texture_footprint(&hit, p, uv, &diff).is_none());
+}
+
+/// A query whose `intersect_many` traces a small buffer of its own with `trace_tiles` on the
+/// same pool (as a renderer's wrapper might): while it waits, rayon may run another tile on
+/// the same thread, which must not trip over the tile scratch the first tile holds. The
+/// answers are the inner tree's.
+struct Nested<'a>(&'a KdTree);
+
+impl RayQuery for Nested<'_> {
+    fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        self.0.intersect(ray, t_max)
+    }
+
+    fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
+        self.0.occluded(ray, t_max)
+    }
+
+    fn intersect_many(&self, rays: &[Option<Ray>], t_max: f32, out: &mut [Option<Hit>]) {
+        let hits = trace_tiles(self.0, rays.len() as u32, 1, rays, t_max, 1).unwrap();
+        out.copy_from_slice(&hits);
+    }
+}
+
+#[test]
+fn tiles_of_a_query_that_traces_tiles_itself() {
+    let mesh = test_util::city_block(2, 2000);
+    let tree = KdTree::build(&mesh, &Settings::DEFAULT).unwrap();
+    let cam = Camera::over_city(&mesh);
+    let (w, h) = (64, 48);
+    let rays = test_util::screen_incoherent_rays(&tree, &mesh, &cam, w, h, 11);
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+    let nested = pool.install(|| trace_tiles(&Nested(&tree), w, h, &rays, f32::INFINITY, 8));
+    let direct = trace_tiles(&tree, w, h, &rays, f32::INFINITY, 8).unwrap();
+    assert_eq!(nested.unwrap(), direct);
 }
