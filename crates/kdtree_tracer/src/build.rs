@@ -287,10 +287,15 @@ fn split_node(ctx: &Ctx, input: NodeInput, split: &Split) -> (NodeInput, NodeInp
     let mut rb = input.bounds;
     rb.min[axis] = p;
 
-    let mut left = Side::new(lb, input.depth + 1);
-    let mut right = Side::new(rb, input.depth + 1);
+    // Each side's size up front (growing the large nodes' lists by doubling cost 5-8% of the
+    // build on one thread).
+    let count = |c: u8| class.iter().filter(|&&k| k == c).count();
+    let (only_left, only_right) = (count(LEFT), count(RIGHT));
+    let straddling = n - only_left - only_right;
+    let mut left = Side::new(lb, input.depth + 1, only_left + straddling);
+    let mut right = Side::new(rb, input.depth + 1, only_right + straddling);
     let mut ids = vec![[u32::MAX; 2]; n];
-    let mut both = Vec::new();
+    let mut both = Vec::with_capacity(straddling);
     for t in 0..n {
         let (g, bx) = (input.tris[t], input.boxes[t]);
         match class[t] {
@@ -315,7 +320,8 @@ fn split_node(ctx: &Ctx, input: NodeInput, split: &Split) -> (NodeInput, NodeInp
                 _ => {}
             }
         }
-        let (mut ln, mut rn) = (Vec::new(), Vec::new());
+        let (mut ln, mut rn) =
+            (Vec::with_capacity(2 * both.len()), Vec::with_capacity(2 * both.len()));
         for &t in &both {
             let (il, ir) = (ids[t][0], ids[t][1]);
             push_events(&mut ln, &left.boxes[il as usize], a, il);
@@ -387,8 +393,9 @@ struct Side {
 }
 
 impl Side {
-    fn new(bounds: Aabb, depth: u32) -> Self {
-        Self { bounds, tris: Vec::new(), boxes: Vec::new(), events: Default::default(), depth }
+    fn new(bounds: Aabb, depth: u32, triangles: usize) -> Self {
+        let (tris, boxes) = (Vec::with_capacity(triangles), Vec::with_capacity(triangles));
+        Self { bounds, tris, boxes, events: Default::default(), depth }
     }
     fn add(&mut self, g: u32, b: Aabb) -> u32 {
         self.tris.push(g);
