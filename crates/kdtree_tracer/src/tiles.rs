@@ -138,7 +138,7 @@ pub fn trace_tiles_into<A: RayQuery + ?Sized>(
     Ok(())
 }
 
-/// Traces the tile `[x0, x1) x [y0, y1)` block by block into `image`, with `scratch` for the
+/// Traces the tile `[x0, x1) x [y0, y1)` block by block into `image`, with a [`TileScratch`] for
 /// tile's rays in block order and their hits.
 fn trace_tile<A: RayQuery + ?Sized>(
     accel: &A,
@@ -147,7 +147,7 @@ fn trace_tile<A: RayQuery + ?Sized>(
     rays: &[Option<Ray>],
     t_max: f32,
     image: &Pixels,
-    (order, hits): &mut (Vec<Option<Ray>>, Vec<Option<Hit>>),
+    (order, hits): &mut TileScratch,
 ) {
     // The tile's rays block by block (partial blocks padded with `None`).
     order.clear();
@@ -171,10 +171,13 @@ fn trace_tile<A: RayQuery + ?Sized>(
     });
 }
 
+/// A tile's rays in block order and their hits.
+type TileScratch = (Vec<Option<Ray>>, Vec<Option<Hit>>);
+
 thread_local! {
     /// A tile's rays in block order and their hits, kept per thread from tile to tile (a tile
     /// is its own rayon job, so buffers made per job would be made per tile).
-    static SCRATCH: RefCell<(Vec<Option<Ray>>, Vec<Option<Hit>>)> = const {
+    static SCRATCH: RefCell<TileScratch> = const {
         RefCell::new((Vec::new(), Vec::new()))
     };
 }
