@@ -139,7 +139,7 @@ pub fn trace_tiles_into<A: RayQuery + ?Sized>(
 }
 
 /// Traces the tile `[x0, x1) x [y0, y1)` block by block into `image`, with a [`TileScratch`] for
-/// tile's rays in block order and their hits.
+/// the tile's rays in block order and their hits.
 fn trace_tile<A: RayQuery + ?Sized>(
     accel: &A,
     [x0, y0, x1, y1]: [u32; 4],
