@@ -9,9 +9,10 @@ use crate::{GpuSample, GpuTimer, GpuTimingSupport, PassId};
 /// Passes per frame that can be timed.
 const MAX_PASSES: u32 = 32;
 
-/// A [`GpuTimer`] on a wgpu queue: hand it to [`Scheduler::run_frame_timed`]
-/// (`crate::Scheduler`) and each GPU pass's report gets the GPU time of the work it
-/// submitted to that queue.
+/// A [`GpuTimer`] on a wgpu queue: hand it to [`Scheduler::run_frame_timed`] and each GPU
+/// pass's record gets the GPU time of the work it submitted to that queue (the first 32 GPU
+/// passes of a frame; later ones get none). On a device without `TIMESTAMP_QUERY` it
+/// measures nothing and the report says why.
 ///
 /// ```no_run
 /// # fn frame(device: &wgpu::Device, queue: &wgpu::Queue,
