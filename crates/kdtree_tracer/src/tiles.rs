@@ -128,7 +128,13 @@ pub fn trace_tiles_into<A: RayQuery + ?Sized>(
             // The thread's buffers, or new ones when this thread is already inside a tile (an
             // `intersect_many` that waits on rayon may run another tile meanwhile).
             SCRATCH.with(|cell| match cell.try_borrow_mut() {
-                Ok(mut s) => trace_tile(accel, rect, width, rays, t_max, &image, &mut s),
+                Ok(mut s) => {
+                    trace_tile(accel, rect, width, rays, t_max, &image, &mut s);
+                    // A huge tile's buffers are not kept for the thread's life.
+                    if s.0.capacity() > KEPT_SCRATCH {
+                        *s = TileScratch::default();
+                    }
+                }
                 Err(_) => {
                     trace_tile(accel, rect, width, rays, t_max, &image, &mut Default::default())
                 }
@@ -170,6 +176,10 @@ fn trace_tile<A: RayQuery + ?Sized>(
         k += 1;
     });
 }
+
+/// Rays of the largest tile whose buffers a thread keeps (a 128x128 tile; the default 40x40
+/// holds 1,600).
+const KEPT_SCRATCH: usize = 1 << 14;
 
 /// A tile's rays in block order and their hits.
 type TileScratch = (Vec<Option<Ray>>, Vec<Option<Hit>>);
@@ -224,6 +234,29 @@ mod tests {
     fn z_order_walks_two_by_two_blocks() {
         assert_eq!(z_order(4, 2), [0, 1, 4, 5, 2, 3, 6, 7]);
         assert_eq!(spread(0b1011), 0b100_0101);
+    }
+
+    /// A thread keeps the buffers of default-sized tiles from call to call, not those of a
+    /// huge tile.
+    #[test]
+    fn threads_keep_small_tile_buffers_only() {
+        let mesh = crate::test_util::city_block(1, 200);
+        let tree = crate::KdTree::build(&mesh, &crate::Settings::DEFAULT).unwrap();
+        let (w, h) = (200u32, 150u32);
+        let rays: Vec<Option<Ray>> = (0..w * h)
+            .map(|i| Some(Ray::new(glam::Vec3::new(i as f32 % 7.0, 50.0, 1.0), -glam::Vec3::Y)))
+            .collect();
+        let mut out = vec![None; rays.len()];
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+        let kept = |tile: u32, out: &mut [Option<Hit>]| {
+            pool.install(|| {
+                trace_tiles_into(&tree, w, h, &rays, f32::INFINITY, tile, out).unwrap();
+                SCRATCH.with(|s| s.borrow().0.capacity())
+            })
+        };
+        assert!((1600..=KEPT_SCRATCH).contains(&kept(DEFAULT_TILE, &mut out)));
+        assert_eq!(kept(200, &mut out), 0, "a 200x200 tile's buffers were kept");
+        assert!(out.iter().all(Option::is_some));
     }
 
     proptest! {
