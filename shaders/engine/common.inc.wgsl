@@ -23,14 +23,7 @@ struct Frame {
     csm: vec4<u32>,
 }
 
-struct Material {
-    albedo: vec4<f32>,
-    // specular power, reflectivity, transparency, ior
-    params: vec4<f32>,
-    // emission rgb, alpha cutoff
-    emission: vec4<f32>,
-    flags: vec4<u32>,
-}
+// `Material` comes from the scene crate (`shaders/scene/material.inc.wgsl`), included first.
 
 // A query of the sky volume's lookup kernel (crate sky_volume): position, normal, albedo
 // (the lookup returns albedo / pi * E).

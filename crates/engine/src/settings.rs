@@ -63,7 +63,7 @@ impl FromStr for Preset {
 /// through the wall); whole frame (clamped) city 0.349 / 0.346 / 0.345, `cornell_window`
 /// 0.310 / 0.219 / 0.204; `two_rooms`' closed room (black truth) gets 0.0073 / 0.0002 /
 /// 0.0000 mean luminance of leaked bounce. The city's figures are after the RSM's flux took
-/// the albedo textures' mean (`SceneBuffers::diffuse_albedo`; before, the asphalt reflected
+/// the albedo textures' mean (`scene::gpu::GpuScene::diffuse_albedo`; before, the asphalt reflected
 /// as if white and every technique was 3-13x too bright there: 8.97 / 2.81 / 3.61). The
 /// gather's price: traced hits get no bounce (the city's reflections ratio 0.71 -> 0.54).
 ///

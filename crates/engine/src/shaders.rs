@@ -1,6 +1,6 @@
 //! The engine's WGSL (`shaders/engine/`), with the snippets each shader includes.
 
-const COMMON: &str = include_str!("../../../shaders/engine/common.inc.wgsl");
+const COMMON_INC: &str = include_str!("../../../shaders/engine/common.inc.wgsl");
 const GBUFFER: &str = include_str!("../../../shaders/engine/gbuffer.wgsl");
 const LIGHTING: &str = include_str!("../../../shaders/engine/lighting.wgsl");
 const QUERIES: &str = include_str!("../../../shaders/engine/queries.wgsl");
@@ -31,23 +31,31 @@ pub fn all() -> Vec<(&'static str, String)> {
 }
 
 pub fn gbuffer() -> String {
-    format!("{COMMON}\n{GBUFFER}")
+    let common = common();
+    format!("{common}\n{GBUFFER}")
 }
 
 pub fn lighting() -> String {
     use shadows::gpu::{CSM_INC_WGSL, CUBE_INC_WGSL, PCSS_INC_WGSL};
+    let common = common();
     let (ssao, sky) = (ssao::SSAO_INC_WGSL, atmosphere::gpu::SKYMAP_SAMPLE_INC_WGSL);
     let volume = sky_volume_lookup();
     format!(
-        "{COMMON}\n{PCSS_INC_WGSL}\n{CSM_INC_WGSL}\n{CUBE_INC_WGSL}\n{ssao}\n{sky}\n{volume}\n{SHADING}\n{MIRRORED_SUN}\n{LIGHTING}"
+        "{common}\n{PCSS_INC_WGSL}\n{CSM_INC_WGSL}\n{CUBE_INC_WGSL}\n{ssao}\n{sky}\n{volume}\n{SHADING}\n{MIRRORED_SUN}\n{LIGHTING}"
     )
 }
 
 pub fn traced() -> String {
     use shadows::gpu::{CSM_INC_WGSL, CUBE_INC_WGSL, OSM_INC_WGSL, PCSS_INC_WGSL};
+    let common = common();
     let shadows = format!("{PCSS_INC_WGSL}\n{CSM_INC_WGSL}\n{OSM_INC_WGSL}\n{CUBE_INC_WGSL}");
     let volume = sky_volume_lookup();
-    format!("{COMMON}\n{shadows}\n{volume}\n{SHADING}\n{MIRRORED_SUN}\n{TRACED}")
+    format!("{common}\n{shadows}\n{volume}\n{SHADING}\n{MIRRORED_SUN}\n{TRACED}")
+}
+
+/// The engine's common snippet after the `scene` crate's `Material` it uses.
+fn common() -> String {
+    format!("{}\n{COMMON_INC}", scene::gpu::MATERIAL_INC_WGSL)
 }
 
 /// `sky_volume`'s lookup snippet with the `sh_math` snippet it needs.
@@ -56,19 +64,23 @@ fn sky_volume_lookup() -> String {
 }
 
 pub fn queries() -> String {
-    format!("{COMMON}\n{QUERIES}")
+    let common = common();
+    format!("{common}\n{QUERIES}")
 }
 
 pub fn sky_vpls() -> String {
-    format!("{COMMON}\n{SKY_VPLS}")
+    let common = common();
+    format!("{common}\n{SKY_VPLS}")
 }
 
 pub fn raycast() -> String {
-    format!("{COMMON}\n{RAYCAST}")
+    let common = common();
+    format!("{common}\n{RAYCAST}")
 }
 
 pub fn combine() -> String {
-    format!("{COMMON}\n{COMBINE}")
+    let common = common();
+    format!("{common}\n{COMBINE}")
 }
 
 pub fn scatter() -> String {
@@ -76,7 +88,8 @@ pub fn scatter() -> String {
 }
 
 pub fn accumulate() -> String {
-    format!("{COMMON}\n{ACCUMULATE}")
+    let common = common();
+    format!("{common}\n{ACCUMULATE}")
 }
 
 pub fn tonemap() -> String {
@@ -116,7 +129,7 @@ mod tests {
         let sky_vpls = super::sky_vpls();
         let pairs = [
             (&lighting, "Frame", size_of::<crate::frame::FrameUniform>()),
-            (&lighting, "Material", size_of::<crate::gpu::scene::GpuMaterial>()),
+            (&lighting, "Material", size_of::<scene::gpu::GpuMaterial>()),
             (&lighting, "PointLight", size_of::<crate::passes::point_shadows::GpuPointLight>()),
             (&lighting, "CsmCascade", size_of::<shadows::CsmCascade>()),
             (&lighting, "Reflector", size_of::<crate::mirrored_sun::Reflector>()),

@@ -57,6 +57,8 @@ mod camera;
 mod change;
 mod error;
 mod generate;
+#[cfg(feature = "gpu")]
+pub mod gpu;
 mod light;
 mod load;
 mod material;

@@ -1,0 +1,126 @@
+//! The scene's textures on the GPU: linear RGBA16F with their mip chains, the white texture
+//! that stands in for a missing one, one sampler, and a bind group per material.
+
+use crate::{Scene, Texture, TextureId};
+
+/// The layout of a material's textures (albedo, alpha mask, sampler), visible to fragment
+/// shaders: [`super::GpuScene::material_layout`].
+pub(super) fn material_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let tex_entry = |binding| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable: true },
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    };
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("material textures"),
+        entries: &[
+            tex_entry(0),
+            tex_entry(1),
+            wgpu::BindGroupLayoutEntry {
+                binding: 2,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                count: None,
+            },
+        ],
+    })
+}
+
+/// The scene's textures uploaded, with the white texture that stands in for a missing one
+/// and the sampler every material uses.
+pub struct GpuTextures {
+    views: Vec<wgpu::TextureView>,
+    white: wgpu::TextureView,
+    sampler: wgpu::Sampler,
+}
+
+impl GpuTextures {
+    pub(super) fn new(device: &wgpu::Device, queue: &wgpu::Queue, scene: &Scene) -> Self {
+        let views = scene.textures.iter().map(|t| upload_texture(device, queue, t)).collect();
+        let solid = Texture::solid("white", glam::Vec4::ONE).expect("a solid texture is valid");
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("material sampler"),
+            address_mode_u: wgpu::AddressMode::Repeat,
+            address_mode_v: wgpu::AddressMode::Repeat,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            mipmap_filter: wgpu::MipmapFilterMode::Linear,
+            anisotropy_clamp: 4,
+            ..Default::default()
+        });
+        Self { views, white: upload_texture(device, queue, &solid), sampler }
+    }
+
+    /// Texture `id` (white for `None` or an id the scene does not have).
+    pub fn view(&self, id: Option<TextureId>) -> &wgpu::TextureView {
+        id.and_then(|t| self.views.get(t.index())).unwrap_or(&self.white)
+    }
+
+    /// The sampler every material's textures are read with (trilinear, repeat, 4x
+    /// anisotropic).
+    pub fn sampler(&self) -> &wgpu::Sampler {
+        &self.sampler
+    }
+
+    /// One bind group per material (albedo, alpha mask, sampler) in `layout`.
+    pub(super) fn groups(
+        &self,
+        device: &wgpu::Device,
+        scene: &Scene,
+        layout: &wgpu::BindGroupLayout,
+    ) -> Vec<wgpu::BindGroup> {
+        use wgpu::BindingResource as R;
+        scene
+            .materials
+            .iter()
+            .map(|m| {
+                let entries = [
+                    (0, R::TextureView(self.view(m.albedo_texture))),
+                    (1, R::TextureView(self.view(m.alpha_mask.map(|a| a.texture)))),
+                    (2, R::Sampler(&self.sampler)),
+                ];
+                gpu_harness::bind_entries(device, "material", layout, &entries)
+            })
+            .collect()
+    }
+}
+
+fn upload_texture(device: &wgpu::Device, queue: &wgpu::Queue, t: &Texture) -> wgpu::TextureView {
+    let (w, h) = (t.width().max(1), t.height().max(1));
+    let levels = t.levels.len().max(1) as u32;
+    let texture = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(&t.name),
+        size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+        mip_level_count: levels,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba16Float,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    for (i, level) in t.levels.iter().enumerate() {
+        let data: Vec<half::f16> =
+            level.texels.iter().flat_map(|c| c.to_array().map(half::f16::from_f32)).collect();
+        queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &texture,
+                mip_level: i as u32,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            bytemuck::cast_slice(&data),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(level.width * 8),
+                rows_per_image: Some(level.height),
+            },
+            wgpu::Extent3d { width: level.width, height: level.height, depth_or_array_layers: 1 },
+        );
+    }
+    texture.create_view(&Default::default())
+}
