@@ -186,6 +186,19 @@ impl ToneMapPass {
 mod tests {
     //! The Rust side's copies of the shader's layout and constants are the shader's.
 
+    /// The literal `const name` of `module` is initialised with.
+    fn constant(module: &naga::Module, name: &str) -> naga::Literal {
+        let (_, c) = module
+            .constants
+            .iter()
+            .find(|(_, c)| c.name.as_deref() == Some(name))
+            .unwrap_or_else(|| panic!("const {name} not in the shader"));
+        match module.global_expressions[c.init] {
+            naga::Expression::Literal(l) => l,
+            ref e => panic!("const {name} = {e:?}"),
+        }
+    }
+
     #[test]
     fn params_and_constants_match_the_shader() {
         let module = naga::front::wgsl::parse_str(super::super::TONEMAP_WGSL).expect("parses");
@@ -197,21 +210,7 @@ mod tests {
             .find(|(_, t)| t.name.as_deref() == Some("Params"))
             .expect("struct Params");
         assert_eq!(layouter[params].size as usize, std::mem::size_of::<super::Params>());
-        let (_, groups) = module
-            .constants
-            .iter()
-            .find(|(_, c)| c.name.as_deref() == Some("REDUCE_GROUPS"))
-            .expect("const REDUCE_GROUPS");
-        let init = &module.global_expressions[groups.init];
-        let naga::Expression::Literal(naga::Literal::U32(n)) = init else { panic!("{init:?}") };
-        assert_eq!(*n, super::REDUCE_GROUPS);
-        let (_, delta) = module
-            .constants
-            .iter()
-            .find(|(_, c)| c.name.as_deref() == Some("LOG_DELTA"))
-            .expect("const LOG_DELTA");
-        let init = &module.global_expressions[delta.init];
-        let naga::Expression::Literal(naga::Literal::F32(d)) = init else { panic!("{init:?}") };
-        assert_eq!(*d, crate::LOG_DELTA);
+        assert_eq!(constant(&module, "REDUCE_GROUPS"), naga::Literal::U32(super::REDUCE_GROUPS));
+        assert_eq!(constant(&module, "LOG_DELTA"), naga::Literal::F32(crate::LOG_DELTA));
     }
 }
