@@ -73,14 +73,8 @@ fn fullscreen_corner(i: u32) -> vec2<f32> {
     return vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u)) * 2.0 - 1.0;
 }
 
-// The full-screen triangle of the lighting and combine passes.
-@vertex
-fn vs_fullscreen(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    return vec4<f32>(fullscreen_corner(i), 0.0, 1.0);
-}
-
-// The same on the far plane, for passes depth-tested against the G-buffer's z-buffer
-// (cleared to 1): `Greater` passes where geometry was drawn, `Equal` the background.
+// The full-screen triangle on the far plane, for passes depth-tested against the G-buffer's
+// z-buffer (cleared to 1): `Greater` passes where geometry was drawn, `Equal` the background.
 @vertex
 fn vs_fullscreen_far(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
     return vec4<f32>(fullscreen_corner(i), 1.0, 1.0);

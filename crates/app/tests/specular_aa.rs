@@ -6,7 +6,7 @@
 //! variance (what its share of the pixel would suggest); the truth prefers much less once
 //! the samples are many (`jittered_footprint` in `crates/engine/src/state.rs`), and the
 //! view's first frame, widened by the whole pixel's variance because it is shown alone, is
-//! no longer one of the samples (`engine::passes::accumulate`). At 320x180: 0.099 today,
+//! no longer one of the samples (`post`'s still-view accumulation). At 320x180: 0.099 today,
 //! 0.124 with the first frame among the samples, 0.150 with `1/n` as well; the bound lies
 //! between. (With the first frame among the samples, `1/n` was worse at 640x360, 0.078
 //! against 0.073, but better at 160x90, where the statue is a few pixels across, 0.220

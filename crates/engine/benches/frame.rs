@@ -1,9 +1,9 @@
 //! Criterion benchmarks of one engine frame at 160x90 on whatever adapter exists (on Mesa
 //! these are CPU timings): a frame whose camera moved (every per-frame pass reruns), a fully
-//! reused frame (the scheduler's cost when nothing changed), and the CPU tone mapper.
+//! reused frame (the scheduler's cost when nothing changed). The CPU tone mapper's benchmark
+//! is `post`'s.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use engine::passes::tonemap::{ToneMapper, log_average};
 use std::hint::black_box;
 
 fn frames(c: &mut Criterion) {
@@ -40,13 +40,5 @@ fn frames(c: &mut Criterion) {
     g.finish();
 }
 
-fn tonemap(c: &mut Criterion) {
-    let px: Vec<[f32; 4]> =
-        (0..1600 * 900).map(|i| [(i % 977) as f32 * 0.01, 0.5, 0.25, 1.0]).collect();
-    let mut t = ToneMapper::default();
-    t.adapt(log_average(&px), 0.0, 1.0);
-    c.bench_function("tonemap_1600x900_cpu", |b| b.iter(|| black_box(t.map(black_box(&px), 0.18))));
-}
-
-criterion_group!(benches, frames, tonemap);
+criterion_group!(benches, frames);
 criterion_main!(benches);

@@ -22,8 +22,8 @@
 //! | `overlapped shadow maps` | with `TracedShading::Gpu`: the sun's maps around the camera for what reflections see (resident pass) | 6.3.1 | `shadows` |
 //! | `traced g-buffer lighting` | with `TracedShading::Gpu`: the traced hits uploaded and lit with the deferred pass's BRDF, the maps above, the sky volume's and the LPV's lookups | 6.3 | `shadows`, `sky_volume`, `lpv` |
 //! | `traced upload + combine` | traced radiance added with Fresnel weights, depth-aware 3x3 gather, drawn over the mirror and glass draws alone | 6.3.4-6.3.5 | - |
-//! | `still-view accumulation` | a still view's jittered frames averaged, up to `Settings::still_samples` (`passes::accumulate`) | - | - |
-//! | `tone mapping` | on the GPU, every frame: log-average luminance, eye adaptation, Reinhard, sRGB | 3.7 | - |
+//! | `still-view accumulation` | a still view's jittered frames averaged, up to `Settings::still_samples` | - | `post` |
+//! | `tone mapping` | on the GPU, every frame: log-average luminance, eye adaptation, Reinhard, sRGB | 3.7 | `post` |
 //!
 //! Nothing is read back for the frame itself but the ray-casting buffer's texels that have
 //! rays (with the LPV as the one-bounce technique also its volumes for the traced rays on a
@@ -59,7 +59,7 @@
 //! depends on no command-line, progress-bar or reference crate.
 //!
 //! ## What differs from the thesis
-//! - A still view is anti-aliased by averaging jittered frames (`passes::accumulate`; the
+//! - A still view is anti-aliased by averaging jittered frames (`post`; the
 //!   thesis shades one point per pixel): on the city's ledger the whole frame's rel RMS goes
 //!   0.43 -> 0.27 against the reference, the direct sun's 0.48 -> 0.20
 //!   (`app::ledger` has the table). A moving camera gets no anti-aliasing.

@@ -5,7 +5,6 @@
 use crate::effects::{Effect, Effects};
 use crate::gpu::TransferCounts;
 use crate::graph::{self, pass};
-use crate::passes::accumulate;
 use crate::passes::display::Shown;
 use crate::state::{FrameCtx, State, SunLight};
 use crate::views::View;
@@ -73,7 +72,7 @@ pub struct FrameStats {
     pub needs: scene::SceneNeeds,
     /// The still view's frame the frame rendered: 0 a first frame (its pixels' centres, shown
     /// alone), `k` in `1..=Settings::still_samples` (when more than one) the `k`-th jittered
-    /// sample, after which the view shows the mean of `k` (`crate::passes::accumulate`).
+    /// sample, after which the view shows the mean of `k` (`post`).
     pub still_sample: u32,
 }
 
@@ -148,7 +147,7 @@ struct StillKey {
     indirect: crate::Indirect,
 }
 
-/// The still view's anti-aliasing ([`crate::passes::accumulate`]) across frames.
+/// The still view's anti-aliasing (`post`: jittered frames averaged) across frames.
 struct Still {
     /// The last frame's key and sample.
     key: Option<StillKey>,
@@ -315,7 +314,7 @@ impl Renderer {
     /// amortised pass (sky volume, radiance cache) ran in it, and the still view's average
     /// holds all `Settings::still_samples` samples.
     pub fn settled(&self) -> bool {
-        let last = accumulate::last_sample(self.state.settings.still_samples);
+        let last = post::last_sample(self.state.settings.still_samples);
         self.still.key.is_some() && !self.still.restart && self.still.sample >= last
     }
 
@@ -342,7 +341,7 @@ impl Renderer {
     /// The still view's sample of the next frame: the next one after the last frame's when
     /// nothing changed, up to the last; else 0.
     fn next_still_sample(&self, key: &StillKey) -> u32 {
-        let last = accumulate::last_sample(self.state.settings.still_samples);
+        let last = post::last_sample(self.state.settings.still_samples);
         match self.still.key {
             Some(k) if k == *key && !self.still.restart => (self.still.sample + 1).min(last),
             _ => 0,
@@ -438,7 +437,7 @@ impl Renderer {
 
     /// The display image of the last frame (RGBA8, sRGB-encoded values in a linear format).
     pub fn display_texture(&self) -> &wgpu::Texture {
-        &self.state.display.ldr_texture
+        self.state.display.texture()
     }
 
     /// Reads the last frame's HDR image and display image back.
@@ -457,7 +456,7 @@ impl Renderer {
         let halves: Vec<half::f16> = bytemuck::pod_collect_to_vec(&s.gpu.read_texture(texture, 8)?);
         let pixels =
             halves.chunks_exact(4).map(|h| [h[0], h[1], h[2], h[3]].map(f32::from)).collect();
-        let ldr = s.gpu.read_texture(&s.display.ldr_texture, 4)?;
+        let ldr = s.gpu.read_texture(s.display.texture(), 4)?;
         s.gpu.take_error()?;
         Ok((HdrFrame { width: t.width, height: t.height, pixels }, ldr))
     }

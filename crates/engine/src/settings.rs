@@ -269,13 +269,13 @@ pub struct Settings {
     /// The sun mirrored by the scene's large planar reflectors (glass walls, mirrors) onto
     /// the surfaces in front of them ([`crate::mirrored_sun`]), in the full frame.
     pub mirrored_sun: bool,
-    /// Anti-aliasing of a still view ([`crate::passes::accumulate`]): while the camera, the
-    /// sun, the view shown and the switches stay the same and no amortised pass is still
-    /// filling, each frame's G-buffer is offset by a sub-pixel jitter and the lit frame is
-    /// averaged with the ones before it, up to this many frames; then the frame is reused
-    /// as it is until something changes. 1: off (every frame shades its pixels' centres). A
-    /// moving camera restarts it every frame, so it costs a moving frame one full-screen
-    /// copy and buys it nothing.
+    /// Anti-aliasing of a still view (`post`'s accumulation): while the camera, the sun, the
+    /// view shown and the switches stay the same and no amortised pass is still filling,
+    /// each frame's G-buffer is offset by a sub-pixel jitter and the lit frame is averaged
+    /// with the ones before it, up to this many frames; then the frame is reused as it is
+    /// until something changes. 1: off (every frame shades its pixels' centres). A moving
+    /// camera restarts it every frame: its frames are first frames, shown as they were lit,
+    /// so the average costs it nothing and buys it nothing.
     pub still_samples: u32,
     /// Reinhard key (middle grey) and eye adaptation rate per second (thesis 3.7).
     pub key: f32,

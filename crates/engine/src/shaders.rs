@@ -10,8 +10,6 @@ const SCATTER: &str = include_str!("../../../shaders/engine/scatter.wgsl");
 const SKY_VPLS: &str = include_str!("../../../shaders/engine/sky_vpls.wgsl");
 const SHADING: &str = include_str!("../../../shaders/engine/shading.inc.wgsl");
 const TRACED: &str = include_str!("../../../shaders/engine/traced.wgsl");
-const TONEMAP: &str = include_str!("../../../shaders/engine/tonemap.wgsl");
-const ACCUMULATE: &str = include_str!("../../../shaders/engine/accumulate.wgsl");
 const MIRRORED_SUN: &str = include_str!("../../../shaders/engine/mirrored_sun.inc.wgsl");
 
 /// Every complete shader as `(name, source)`, for the pipelines and the naga test.
@@ -25,8 +23,6 @@ pub fn all() -> Vec<(&'static str, String)> {
         ("combine", combine()),
         ("scatter", scatter()),
         ("traced", traced()),
-        ("tonemap", tonemap()),
-        ("accumulate", accumulate()),
     ]
 }
 
@@ -85,15 +81,6 @@ pub fn combine() -> String {
 
 pub fn scatter() -> String {
     SCATTER.to_string()
-}
-
-pub fn accumulate() -> String {
-    let common = common();
-    format!("{common}\n{ACCUMULATE}")
-}
-
-pub fn tonemap() -> String {
-    TONEMAP.to_owned()
 }
 
 /// The value of `const NAME: u32 = Nu;` in `source` (`None`: not declared so). The tests

@@ -3,9 +3,8 @@
 
 use crate::gpu::{GBufferTargets, Gpu, SceneBuffers, storage_buffer, uniform_buffer};
 use crate::passes::{
-    accumulate::AccumulatePass,
     combine::CombinePass,
-    display::DisplayPass,
+    display::{accumulate_pass, tone_map_pass},
     gbuffer::GBufferPass,
     lighting::LightingPass,
     lpv::LpvState,
@@ -37,8 +36,8 @@ pub struct State {
     pub lighting: LightingPass,
     pub raycast: RayCastPass,
     pub combine: CombinePass,
-    pub accumulate: AccumulatePass,
-    pub display: DisplayPass,
+    pub accumulate: post::gpu::AccumulatePass,
+    pub display: post::gpu::ToneMapPass,
     /// The atmosphere and where the sky volume goes; `None` when the scene shows no sky.
     pub sky: Option<SkySetup>,
     pub trace: TraceScene,
@@ -76,8 +75,7 @@ pub struct FrameCtx {
     pub effects: crate::effects::Effects,
     /// The one-bounce technique of this frame.
     pub indirect: crate::settings::Indirect,
-    /// The still view's sample this frame renders (`crate::passes::accumulate`; 0: a first
-    /// frame, unjittered).
+    /// The still view's sample this frame renders (`post`; 0: a first frame, unjittered).
     pub still_sample: u32,
 }
 
@@ -98,8 +96,8 @@ pub struct FrameCtx {
 /// `1 / n` (what each sample's share of the pixel would suggest) was best at 4 samples only.
 /// The table was measured while the view's first frame, widened by the whole pixel's
 /// variance, was one of the `n` samples; since it is shown alone and left out of the average
-/// (`crate::passes::accumulate`) the same rule gives 0.344 / 0.099 / 0.035 (low / default /
-/// high; at low a widening of 1/2 gives 0.342, 1/8 0.420).
+/// (`post`) the same rule gives 0.344 / 0.099 / 0.035 (low / default / high; at low a
+/// widening of 1/2 gives 0.342, 1/8 0.420).
 /// Checked at other sizes (default preset, 16 samples, `16 / n³` against `1 / n`): 640x360
 /// 0.073 against 0.078, but 160x90, where the statue is a few pixels across, 0.231 against
 /// 0.220. `plane_box` and `cornell_window`, with no curved glossy surfaces, do not move
@@ -113,8 +111,7 @@ pub fn jittered_footprint(n: u32) -> f32 {
 impl FrameCtx {
     /// The share of a pixel's normal variance this frame's G-buffer widens specular lobes by
     /// (its specular anti-aliasing): 1 for a first sample (it is shown alone), and for the
-    /// jittered samples of a still view averaging `n` (`crate::passes::accumulate`)
-    /// [`jittered_footprint`]`(n)`.
+    /// jittered samples of a still view averaging `n` (`post`) [`jittered_footprint`]`(n)`.
     pub fn footprint(&self) -> f32 {
         match self.still_sample {
             0 => 1.0,
@@ -125,7 +122,7 @@ impl FrameCtx {
     /// The camera's view-projection moved by this frame's sub-pixel jitter: what the
     /// G-buffer is rasterised with and every pass that projects into the view uses.
     pub fn view_projection(&self) -> glam::Mat4 {
-        let j = crate::passes::accumulate::frame_jitter(self.still_sample);
+        let j = post::frame_jitter(self.still_sample);
         let set = &self.state.settings;
         // Clip-space x + 2 j.x / W w: the image moves by j pixels (y up in clip space).
         let ndc =
@@ -160,8 +157,8 @@ impl State {
             lighting: LightingPass::new(device, &targets)?,
             raycast: RayCastPass::new(device, &targets)?,
             combine: CombinePass::new(device, &targets)?,
-            accumulate: AccumulatePass::new(device, &targets)?,
-            display: DisplayPass::new(device, &targets)?,
+            accumulate: accumulate_pass(device, &targets)?,
+            display: tone_map_pass(device, &targets)?,
             trace: TraceScene::new(scene)?,
             frame,
             lights: storage_buffer(device, "point lights", bytemuck::cast_slice(&lights)),

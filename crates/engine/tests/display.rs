@@ -1,11 +1,11 @@
-//! The GPU tone mapper (`shaders/engine/tonemap.wgsl`) against its CPU twin
-//! (`engine::passes::tonemap::ToneMapper`): the same display image from the same HDR frame,
+//! The engine's tone mapping (`post::gpu::ToneMapPass` over its HDR targets) against the CPU
+//! twin (`post::ToneMapper`) of the HDR frame it read back: the same display image,
 //! on the first frame (exposure adapts at once) and after a frame of adaptation; and a frame
 //! rendered without its images reads back nothing but what its passes need.
 
 mod common;
 
-use engine::passes::tonemap::{ToneMapper, log_average};
+use post::{ToneMapper, log_average};
 
 /// Channels differing by more than one step of 8 bits, and the largest difference.
 fn compare(gpu: &[u8], cpu: &[u8]) -> (usize, u8) {

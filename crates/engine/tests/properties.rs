@@ -1,8 +1,7 @@
 //! Property tests: whatever the camera, the engine's HDR frame is finite and non-negative and
-//! the tone mapper's output is a valid image; tone mapping is monotone in the input.
+//! the display image has every pixel (the tone curve's own properties are `post`'s).
 //! Case counts are sized for CI; `PROPTEST_CASES` raises them.
 
-use engine::passes::tonemap::{ToneMapper, log_average};
 use glam::Vec3;
 use proptest::prelude::*;
 use std::sync::{Mutex, OnceLock};
@@ -49,34 +48,5 @@ proptest! {
             prop_assert!(p.iter().all(|c| c.is_finite() && *c >= 0.0), "{p:?}");
         }
         prop_assert_eq!(f.ldr.len(), 48 * 27 * 4);
-    }
-
-    /// Brighter HDR input never gives a darker output, and black stays black.
-    #[test]
-    fn tone_mapping_is_monotone(
-        base in proptest::collection::vec(0.0f32..1e4, 3..64),
-        gain in 1.0f32..100.0,
-        adapted in 1e-4f32..1e3,
-    ) {
-        let px: Vec<[f32; 4]> = base.iter().map(|&v| [v, v * 0.5, v * 0.25, 1.0]).collect();
-        let brighter: Vec<[f32; 4]> = px.iter().map(|p| [p[0] * gain, p[1] * gain, p[2] * gain, 1.0]).collect();
-        let mut t = ToneMapper::default();
-        t.adapt(adapted, 0.0, 1.0);
-        let (a, b) = (t.map(&px, 0.18), t.map(&brighter, 0.18));
-        for (x, y) in a.iter().zip(&b) {
-            prop_assert!(y >= x);
-        }
-        let black = t.map(&[[0.0; 4]], 0.18);
-        prop_assert_eq!(&black[..3], &[0, 0, 0]);
-    }
-
-    /// The log average is finite and positive whatever the pixels (NaN, inf, negative, none).
-    #[test]
-    fn log_average_is_finite(px in proptest::collection::vec(prop_oneof![
-        Just(f32::NAN), Just(f32::INFINITY), Just(-1.0f32), 0.0f32..1e6
-    ], 0..32)) {
-        let p: Vec<[f32; 4]> = px.iter().map(|&v| [v, v, v, 1.0]).collect();
-        let l = log_average(&p);
-        prop_assert!(l.is_finite() && l > 0.0, "{l}");
     }
 }

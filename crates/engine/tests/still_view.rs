@@ -1,6 +1,6 @@
-//! The still view's anti-aliasing (`engine::passes::accumulate`): jittered samples of a still
-//! view average to what a pixel's area integrates, a moving camera is not touched by it, and
-//! a settled view costs nothing more.
+//! The still view's anti-aliasing (`post`'s accumulation, wired by the engine): jittered
+//! samples of a still view average to what a pixel's area integrates, a moving camera is not
+//! touched by it, and a settled view costs nothing more.
 
 mod common;
 

@@ -29,7 +29,7 @@ pub struct GBufferTargets {
     pub lit: wgpu::TextureView,
     pub combined_texture: wgpu::Texture,
     pub combined: wgpu::TextureView,
-    /// The mean of a still view's jittered frames (`crate::passes::accumulate`).
+    /// The mean of a still view's jittered frames (`post`).
     pub accumulated_texture: wgpu::Texture,
     pub accumulated: wgpu::TextureView,
 }

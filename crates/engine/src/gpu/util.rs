@@ -4,8 +4,7 @@
 
 use crate::EngineError;
 pub(crate) use gpu_harness::{
-    bind_entries, color_pass, dispatch, empty_storage, init_buffer, storage_buffer, texture_2d,
-    uniform_buffer,
+    bind_entries, dispatch, empty_storage, init_buffer, storage_buffer, texture_2d, uniform_buffer,
 };
 
 fn shader_error(label: &str, e: gpu_harness::GpuError) -> EngineError {
@@ -36,26 +35,6 @@ pub(crate) fn compute_pipeline(
 ) -> Result<wgpu::ComputePipeline, EngineError> {
     gpu_harness::validated(device, || {
         gpu_harness::compute_pipeline(device, label, source, entry, None)
-    })
-    .map_err(|e| shader_error(label, e))
-}
-
-/// A full-screen triangle pipeline (`vs_fullscreen` of `common.inc.wgsl`) writing one HDR
-/// target with the fragment entry point `fs_entry`, blended into the target with `blend`.
-pub(crate) fn blended_fullscreen_pipeline(
-    device: &wgpu::Device,
-    label: &str,
-    source: &str,
-    fs_entry: &str,
-    blend: Option<wgpu::BlendState>,
-) -> Result<wgpu::RenderPipeline, EngineError> {
-    let target = wgpu::ColorTargetState {
-        format: super::HDR_FORMAT,
-        blend,
-        write_mask: wgpu::ColorWrites::ALL,
-    };
-    gpu_harness::validated(device, || {
-        gpu_harness::fullscreen_pipeline(device, label, source, ("vs_fullscreen", fs_entry), target)
     })
     .map_err(|e| shader_error(label, e))
 }

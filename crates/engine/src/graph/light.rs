@@ -2,6 +2,7 @@
 //! the one-bounce techniques, the deferred lighting and the tone mapping.
 
 use super::*;
+use crate::passes::display::post_err;
 
 /// The sky map (when the sun moved) and the sky volume filled over frames.
 pub(super) fn sky_passes(
@@ -269,7 +270,7 @@ const FIRST_FRAME_SHOWN_AS_LIT: &str =
     "a still view's sample (a view's first frame is shown as it was lit, not copied)";
 
 /// The still view's anti-aliasing: the frame's image averaged with the still view's earlier
-/// samples (`crate::passes::accumulate`).
+/// samples (`post::gpu::AccumulatePass`).
 pub(super) fn accumulate_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
     g.gpu_pass(pass::ACCUMULATE)
         .reads(r.lit)
@@ -285,7 +286,8 @@ pub(super) fn accumulate_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
             let c = io.ctx();
             let s = &c.state;
             let mut enc = s.gpu.device.create_command_encoder(&Default::default());
-            s.accumulate.record(&mut enc, &s.targets, frame_image(io, r), c.still_sample);
+            let source = frame_image(io, r).index();
+            s.accumulate.record(&mut enc, source, c.still_sample).map_err(post_err)?;
             s.gpu.queue.submit([enc.finish()]);
             s.gpu.take_error()?;
             io.put(r.accumulated, super::Accumulated(c.still_sample.max(1)))?;
@@ -306,14 +308,15 @@ pub(super) fn tone_mapping_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
         };
         let set = &s.settings;
         let mut enc = s.gpu.device.create_command_encoder(&Default::default());
-        let exposure = Exposure {
+        let exposure = post::Exposure {
             dt: c.dt,
             rate: set.adaptation_per_s,
             key: set.key,
             reset: c.reset_exposure,
             raw: crate::views::View::of_code(c.component).is_some_and(|v| v.is_raw()),
         };
-        s.display.record(&s.gpu, &mut enc, which, exposure);
+        s.display.record(&s.gpu.queue, &mut enc, which.index(), exposure).map_err(post_err)?;
+        s.gpu.transfers.uploaded(post::gpu::ToneMapPass::UPLOAD_BYTES);
         s.gpu.queue.submit([enc.finish()]);
         s.gpu.take_error()?;
         io.put(r.shown, which)?;

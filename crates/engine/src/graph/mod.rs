@@ -11,7 +11,7 @@ use crate::frame::{
     FLAG_VOLUME_QUERIES, FrameUniform,
 };
 use crate::mirrored_sun::ReflectorSet;
-use crate::passes::display::{Exposure, Shown};
+use crate::passes::display::Shown;
 use crate::passes::lighting::{IndirectSource, LightingInputs};
 use crate::passes::lpv::LpvState;
 use crate::passes::radiance_cache::CacheState;

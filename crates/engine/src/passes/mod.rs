@@ -1,7 +1,6 @@
 //! One file per pass; each pass is a struct of its pipelines and a plain function that
 //! records or runs it.
 
-pub mod accumulate;
 pub mod combine;
 pub mod display;
 pub mod gbuffer;
@@ -15,5 +14,4 @@ pub mod shadow;
 pub mod sky;
 pub mod sky_bounce;
 pub mod sun_rsm;
-pub mod tonemap;
 pub mod traced_lighting;

@@ -1,8 +1,9 @@
 // HDR to display on the GPU (thesis 3.7): the log-average luminance of the frame (Reinhard et
 // al. 2002, with their small delta), eye adaptation towards it over frames, Reinhard's global
 // operator on luminance with the colour ratio kept, and the sRGB transfer function into an
-// RGBA8 target. The WGSL twin of crates/engine/src/passes/tonemap.rs (ToneMapper), kept equal
-// by a GPU/CPU parity test. Three entry points, dispatched in order:
+// RGBA8 target. The WGSL twin of `post::ToneMapper` (crates/post/src/tonemap.rs), kept equal
+// by a GPU/CPU parity test (crates/post/tests/gpu.rs). Three entry points, dispatched in order
+// by `post::gpu::ToneMapPass`:
 //   reduce: 64 workgroups of 256 threads, partial sums of ln(delta + L) and counts;
 //   adapt:  one thread, the log average and the adapted luminance (kept in `state`);
 //           nothing for a raw view;
@@ -84,6 +85,8 @@ fn adapt() {
     if params.reset == 0u {
         let prev = state.x;
         a = prev + (goal - prev) * (1.0 - exp(-params.dt * params.rate));
+        // Never past the goal (rounding can carry a cancelling step there): as the CPU twin.
+        a = clamp(a, min(prev, goal), max(prev, goal));
     }
     state = vec4<f32>(a, log_avg, 0.0, 0.0);
 }
