@@ -26,6 +26,9 @@ pub struct ResidentSkyVolume {
     /// Sky radiance per sample direction (rewritten by [`ResidentSkyVolume::set_sky`]).
     sky: wgpu::Buffer,
     probes: wgpu::Buffer,
+    /// The lookup's bind groups over callers' buffers ([`Self::record_lookup_into`]).
+    lookups: gpu_harness::BindGroupCache,
+    lookup_layout: wgpu::BindGroupLayout,
     directions: Vec<glam::Vec3>,
     layers: u32,
     points_per_layer: u32,
@@ -144,6 +147,7 @@ impl ResidentSkyVolume {
             bytemuck::bytes_of(&volume.gpu_lookup_params()),
             wgpu::BufferUsages::UNIFORM,
         );
+        let lookup_layout = lookup.get_bind_group_layout(0);
         Self {
             fill,
             fill_group,
@@ -151,6 +155,8 @@ impl ResidentSkyVolume {
             lookup_params,
             sky,
             probes,
+            lookups: gpu_harness::BindGroupCache::new(),
+            lookup_layout,
             directions: volume.sample_directions().to_vec(),
             layers,
             points_per_layer,
@@ -205,6 +211,33 @@ impl ResidentSkyVolume {
     /// includes [`crate::gpu::LOOKUP_INC_WGSL`] with [`Self::probes`].
     pub fn lookup_params(&self) -> &wgpu::Buffer {
         &self.lookup_params
+    }
+
+    /// Records the lookup of the first `count` of `queries` into `out` (as
+    /// [`Self::bind_lookup`]; whole workgroups of 64, so up to 63 more of the buffer's
+    /// queries are looked up too), with a bind group made on the first call for this pair of
+    /// buffers and kept for the next ([`gpu_harness::BindGroupCache`]): for a caller that
+    /// looks up a few buffers of its own, frame after frame, without keeping bindings.
+    pub fn record_lookup_into(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        (queries, out): (&wgpu::Buffer, &wgpu::Buffer),
+        count: u32,
+    ) {
+        let group = self.lookups.get_in_order(
+            device,
+            "sky volume lookup",
+            &self.lookup_layout,
+            &[
+                self.lookup_params.as_entire_binding(),
+                self.probes.as_entire_binding(),
+                queries.as_entire_binding(),
+                out.as_entire_binding(),
+            ],
+        );
+        let capacity = (queries.size() / std::mem::size_of::<crate::gpu::Query>() as u64) as u32;
+        self.record_lookup_first(encoder, &LookupBinding { group, count: capacity }, count);
     }
 
     /// Binds the lookup once to `queries` (`gpu::Query` per pixel) and `out` (`vec4` per

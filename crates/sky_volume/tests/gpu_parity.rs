@@ -203,6 +203,27 @@ fn resident_fill_and_lookup_match_cpu_and_allocate_nothing_per_record() {
             "{p}: {got} vs {want}"
         );
     }
+    // The cached lookup into buffers of the caller's gives the same light, first 64 queries
+    // only, and binds them once.
+    let cached_out = device.create_buffer(&wgpu::BufferDescriptor {
+        label: None,
+        size: out.size(),
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let mut live = None;
+    for _ in 0..2 {
+        let mut enc = device.create_command_encoder(&Default::default());
+        resident.record_lookup_into(device, &mut enc, (&q, &cached_out), 64);
+        queue.submit([enc.finish()]);
+        let now = gpu_harness::live_objects(device);
+        assert!(live.is_none_or(|l| l == now), "{live:?} -> {now:?}");
+        live = Some(now);
+    }
+    let cached: Vec<[f32; 4]> =
+        cast_vec(&gpu_harness::read_buffer(device, queue, &cached_out, out.size()).unwrap());
+    assert_eq!(cached[..64], light[..64]);
+    assert!(cached[64..].iter().all(|v| *v == [0.0; 4]), "only the first 64 are looked up");
     let mut enc = device.create_command_encoder(&Default::default());
     let e = resident.record_fill(&mut enc, 0..layers + 1).unwrap_err();
     assert!(matches!(e, SkyVolumeError::LayerOutOfRange { .. }), "{e}");

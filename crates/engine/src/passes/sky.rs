@@ -8,9 +8,8 @@ use crate::gpu::{Gpu, empty_storage, uniform_buffer};
 use crate::{EngineError, Settings};
 use atmosphere::{Sky, SkyMap, SkyMapSettings, SkyRadiance as _};
 use glam::Vec3;
-use sky_volume::gpu::{LookupBinding, ResidentSkyVolume};
+use sky_volume::gpu::ResidentSkyVolume;
 use sky_volume::{OcclusionQuad, SkyVolume, VolumeGrid};
-use std::sync::Mutex;
 
 /// What the sky passes are made from, fixed for the renderer's life: the atmosphere (its
 /// look-up tables) and where the volume goes, with the quads that occlude it.
@@ -86,29 +85,12 @@ impl SkyMapState {
     }
 }
 
-struct MapSky<'a>(&'a SkyMap);
-
-impl sky_volume::SkyRadiance for MapSky<'_> {
-    fn radiance(&self, dir: Vec3) -> Vec3 {
-        self.0.radiance(dir)
-    }
-}
-
-/// Which queries and output a lookup binding binds (for all the queries they hold).
-type LookupKey = (wgpu::Buffer, wgpu::Buffer);
-
-/// Bytes of one sky-volume query (`sky_volume::gpu::Query`).
-const QUERY_BYTES: u64 = std::mem::size_of::<sky_volume::gpu::Query>() as u64;
-
 /// The sky-light volume, filled on the CPU (the traced rays' lookups read it there) and
 /// uploaded into the crate's resident pass, whose probes the lighting shader reads through
 /// the crate's lookup snippet.
 pub struct SkyVolumeState {
     pub volume: SkyVolume,
     resident: ResidentSkyVolume,
-    /// The lookups bound to other queries (the sky-bounce VPLs'): made once
-    /// per pair of query and output buffers, the most recent few kept.
-    other_lookups: Mutex<Vec<(LookupKey, LookupBinding)>>,
     /// The map generation the volume is being lit from.
     lit_from: Option<u64>,
 }
@@ -124,30 +106,7 @@ impl SkyVolumeState {
             sky_volume::Settings { samples: settings.sky_samples, ..sky_volume::Settings::DEFAULT };
         let volume = SkyVolume::with_quads(setup.grid, vs, &setup.quads).map_err(tech)?;
         let resident = ResidentSkyVolume::new(&gpu.device, &volume).map_err(tech)?;
-        Ok(Self { volume, resident, other_lookups: Mutex::default(), lit_from: None })
-    }
-
-    /// Records the lookup of the first `count` of `queries` into `out`, bound once per pair
-    /// of buffers (for as many queries as `queries` holds).
-    fn record_other_lookup(
-        &self,
-        gpu: &Gpu,
-        enc: &mut wgpu::CommandEncoder,
-        (queries, out, count): (&wgpu::Buffer, &wgpu::Buffer, u32),
-    ) {
-        let key = (queries.clone(), out.clone());
-        let mut cached = self.other_lookups.lock().unwrap_or_else(|e| e.into_inner());
-        let binding = match cached.iter().position(|(k, _)| *k == key) {
-            Some(i) => cached[i].1.clone(),
-            None => {
-                let capacity = (queries.size() / QUERY_BYTES) as u32;
-                let binding = self.resident.bind_lookup(&gpu.device, queries, out, capacity);
-                cached.insert(0, (key, binding.clone()));
-                cached.truncate(gpu_harness::CACHED_GROUPS);
-                binding
-            }
-        };
-        self.resident.record_lookup_first(enc, &binding, count);
+        Ok(Self { volume, resident, lit_from: None })
     }
 
     /// Fills layer `layer` from `map` and uploads its probes (a new map marks the whole
@@ -162,7 +121,7 @@ impl SkyVolumeState {
             self.volume.sky_changed();
             self.lit_from = Some(map.generation);
         }
-        self.volume.fill_layers(layer..layer + 1, &MapSky(&map.map)).map_err(tech)?;
+        self.volume.fill_layers(layer..layer + 1, &|d| map.map.radiance(d)).map_err(tech)?;
         let (offset, bytes) = self.volume.gpu_layer_bytes(layer..layer + 1);
         gpu.write(self.resident.probes(), offset, &bytes);
         Ok(())
@@ -221,7 +180,7 @@ impl SkyLight<'_> {
     }
 
     /// Records the lookup of other `queries` (position, normal, albedo) to `out`
-    /// (`albedo / pi * E`), binding them for this call.
+    /// (`albedo / pi * E`), bound on the first call for this pair of buffers and kept.
     pub fn record_lookup(
         &self,
         gpu: &Gpu,
@@ -230,6 +189,6 @@ impl SkyLight<'_> {
         out: &wgpu::Buffer,
         count: u32,
     ) {
-        self.volume.record_other_lookup(gpu, enc, (queries, out, count));
+        self.volume.resident.record_lookup_into(&gpu.device, enc, (queries, out), count);
     }
 }
