@@ -103,7 +103,7 @@ pub use effects::{Effect, Effects};
 pub use error::EngineError;
 pub use gpu::{TransferCounts, check_capabilities};
 pub use graph::pass;
-pub use passes::radiance_cache::CacheSummary;
+pub use radiance_cache::CacheSummary;
 pub use renderer::{Frame, FrameStats, HdrFrame, Renderer};
 pub use settings::{Indirect, Preset, Settings, Specular, TracedShading};
 /// The CPU tracing of the ray casting buffer and the mirrored sun live in `traced_effects`.

@@ -82,6 +82,7 @@ mod lookup;
 pub mod octa;
 mod pool;
 mod settings;
+mod summary;
 mod vpls;
 pub mod wgsl;
 
@@ -94,4 +95,5 @@ pub use lattice::{Lattice, PlanStep, corners, plan};
 pub use light::{GatherParams, GatherResult, IRRADIANCE_FLOATS, MAX_COEFFS, gather, moments};
 pub use lookup::{CRUSH_BELOW, VARIANCE_FLOOR, visibility_weight};
 pub use settings::Settings;
+pub use summary::CacheSummary;
 pub use vpls::PreparedVpls;

@@ -25,7 +25,7 @@ use crate::trace::TraceScene;
 use crate::{EngineError, Settings};
 use glam::{DVec3, Vec3};
 use radiance_cache::gpu::{GpuCacheData, GpuLookup, LookupBinding};
-use radiance_cache::{RadianceCache, SurfacePoint};
+use radiance_cache::{CacheSummary, RadianceCache, SurfacePoint};
 use rayon::prelude::*;
 use shadows::Vpl;
 
@@ -47,39 +47,6 @@ pub struct CacheState {
     points: (u32, u32),
     /// What the last update did.
     last: Option<CacheSummary>,
-}
-
-/// What the radiance cache's last update did ([`crate::Renderer::radiance_cache`]): how much
-/// of the full grids the view needed, how many caches it lit, and how stale the light is.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CacheSummary {
-    /// Caches allocated (the view's) and in the full cascades.
-    pub allocated: usize,
-    pub full_grid: usize,
-    /// Caches lit in the last update (at most the budget), and allocated ones never lit yet.
-    pub lit: usize,
-    pub never_lit: usize,
-    /// Frames since the oldest allocated cache was lit.
-    pub oldest_age_frames: u64,
-    /// Bytes of cache data on the CPU.
-    pub memory_bytes: usize,
-}
-
-impl std::fmt::Display for CacheSummary {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let share = 100.0 * self.allocated as f64 / self.full_grid.max(1) as f64;
-        write!(
-            f,
-            "{} of {} caches allocated ({share:.1}%), {} lit in the last update, {} never lit, \
-             oldest light {} frames old, {} KiB",
-            self.allocated,
-            self.full_grid,
-            self.lit,
-            self.never_lit,
-            self.oldest_age_frames,
-            self.memory_bytes / 1024
-        )
-    }
 }
 
 fn tech(e: radiance_cache::CacheError) -> EngineError {
@@ -199,14 +166,7 @@ impl CacheState {
         if written.grown || self.binding.is_none() {
             self.binding = Some(self.lookup.bind(&gpu.device, &self.data, queries, output, count));
         }
-        self.last = Some(CacheSummary {
-            allocated: alloc.allocated,
-            full_grid: alloc.full_grid,
-            lit: lit.lit,
-            never_lit: lit.never_lit,
-            oldest_age_frames: lit.oldest_age_frames,
-            memory_bytes: self.cache.memory_bytes(),
-        });
+        self.last = Some(CacheSummary::new(&alloc, &lit, &self.cache));
         Ok(())
     }
 
