@@ -70,11 +70,7 @@ pub(crate) fn depth_tested_fullscreen_pipeline(
     fs_entry: &str,
     compare: wgpu::CompareFunction,
 ) -> Result<wgpu::RenderPipeline, EngineError> {
-    let depth = wgpu::DepthStencilState {
-        depth_write_enabled: Some(false),
-        depth_compare: Some(compare),
-        ..depth_write_state()
-    };
+    let depth = gpu_harness::depth_test(compare);
     gpu_harness::validated(device, || {
         let entries = ("vs_fullscreen_far", fs_entry);
         gpu_harness::depth_tested_fullscreen_pipeline(
@@ -104,9 +100,5 @@ pub(crate) fn depth_write_state() -> wgpu::DepthStencilState {
 /// drawn into: a draw of the same geometry (invariant position) shades only the visible
 /// surface.
 pub(crate) fn depth_equal_state() -> wgpu::DepthStencilState {
-    wgpu::DepthStencilState {
-        depth_write_enabled: Some(false),
-        depth_compare: Some(wgpu::CompareFunction::Equal),
-        ..depth_write_state()
-    }
+    gpu_harness::depth_test(wgpu::CompareFunction::Equal)
 }
