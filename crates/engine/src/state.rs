@@ -4,14 +4,12 @@
 use crate::gpu::{GBufferTargets, Gpu, SceneBuffers, storage_buffer, uniform_buffer};
 use crate::passes::{
     accumulate::AccumulatePass,
-    combine::CombinePass,
     display::DisplayPass,
     gbuffer::GBufferPass,
     lighting::LightingPass,
     lpv::LpvState,
     point_shadows::{PointShadowPass, gpu_lights},
     radiance_cache::CacheState,
-    raycast::RayCastPass,
     rsm_gather::RsmGatherState,
     shadow::ShadowPass,
     sky::SkySetup,
@@ -20,6 +18,7 @@ use crate::passes::{
 use crate::trace::TraceScene;
 use crate::{EngineError, Settings};
 use glam::Vec3;
+use traced_effects::gpu::{Combine, RayCasting};
 
 /// What every frame is rendered with, built once per scene and settings and never changed
 /// by a pass: the device, the scene's buffers and the passes' pipelines and targets. What
@@ -35,8 +34,9 @@ pub struct State {
     pub gbuffer: GBufferPass,
     pub shadow: ShadowPass,
     pub lighting: LightingPass,
-    pub raycast: RayCastPass,
-    pub combine: CombinePass,
+    /// The ray casting buffer and the combination of the traced rays (`traced_effects`).
+    pub raycast: RayCasting,
+    pub combine: Combine,
     pub accumulate: AccumulatePass,
     pub display: DisplayPass,
     /// The atmosphere and where the sky volume goes; `None` when the scene shows no sky.
@@ -158,8 +158,8 @@ impl State {
             gbuffer: GBufferPass::new(device, &buffers)?,
             shadow: ShadowPass::new(device, &settings)?,
             lighting: LightingPass::new(device, &targets)?,
-            raycast: RayCastPass::new(device, &targets)?,
-            combine: CombinePass::new(device, &targets)?,
+            raycast: RayCasting::new(device, targets.size())?,
+            combine: Combine::new(device, targets.size(), crate::gpu::HDR_FORMAT)?,
             accumulate: AccumulatePass::new(device, &targets)?,
             display: DisplayPass::new(device, &targets)?,
             trace: TraceScene::new(scene)?,

@@ -95,10 +95,3 @@ pub(crate) fn depth_write_state() -> wgpu::DepthStencilState {
         bias: Default::default(),
     }
 }
-
-/// Depth test `Equal` without writing, against a `Depth32Float` target the scene's depth was
-/// drawn into: a draw of the same geometry (invariant position) shades only the visible
-/// surface.
-pub(crate) fn depth_equal_state() -> wgpu::DepthStencilState {
-    gpu_harness::depth_test(wgpu::CompareFunction::Equal)
-}

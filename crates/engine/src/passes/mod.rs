@@ -2,14 +2,12 @@
 //! records or runs it.
 
 pub mod accumulate;
-pub mod combine;
 pub mod display;
 pub mod gbuffer;
 pub mod lighting;
 pub mod lpv;
 pub mod point_shadows;
 pub mod radiance_cache;
-pub mod raycast;
 pub mod rsm_gather;
 pub mod shadow;
 pub mod sky;
