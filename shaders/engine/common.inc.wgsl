@@ -1,5 +1,6 @@
-// Shared by the engine's passes: the per-frame uniform, the material table entry, and
-// reconstruction of world positions from the linear-depth G-buffer target.
+// Shared by the engine's passes: the per-frame uniform and reconstruction of world positions
+// from the linear-depth G-buffer target. Included after the scene crate's `Material` and
+// traced_effects' `fresnel.inc.wgsl` and `screen.inc.wgsl` (`crate::shaders::common`).
 
 struct Frame {
     view_proj: mat4x4<f32>,
@@ -12,7 +13,7 @@ struct Frame {
     sun_dir: vec4<f32>,
     // rgb sun irradiance at the ground, w sun angular radius (radians)
     sun_irradiance: vec4<f32>,
-    // width, height, point-light count, flags (bit 0 sky, bit 1 Blinn-Phong, bit 2 one-bounce (LPV or RSM gather), bit 3 sky volume, bit 4 shadows, bit 5 reflection rays, bit 6 refraction rays, bit 7 sun glints, bit 8 the LPV's glossy lookup, bit 9 the mirrored sun)
+    // width, height, point-light count, flags (bit 0 sky, bit 1 Blinn-Phong, bit 2 one-bounce (LPV or RSM gather), bit 3 sky volume, bit 4 shadows, bits 5-6 unused, bit 7 sun glints, bit 8 the LPV's glossy lookup, bit 9 the mirrored sun)
     size: vec4<u32>,
     // SSAO radius (m), SSAO samples, sky-map size, the share of a pixel's normal variance the
     // specular lobes are widened by (1; less for the jittered samples of a still view:
@@ -33,23 +34,11 @@ struct SkyQuery {
     albedo: vec4<f32>,
 }
 
-// One texel of the quarter-resolution ray casting buffer (thesis Table 6.1).
-struct RayCast {
-    // xyz origin, w view depth (0: no ray)
-    origin: vec4<f32>,
-    // xyz reflection direction, w weight
-    reflect: vec4<f32>,
-    // xyz refraction direction, w weight
-    refract: vec4<f32>,
-}
-
 const FLAG_SKY: u32 = 1u;
 const FLAG_BLINN: u32 = 2u;
 const FLAG_INDIRECT: u32 = 4u;
 const FLAG_SKY_VOLUME: u32 = 8u;
 const FLAG_SHADOWS: u32 = 16u;
-const FLAG_REFLECTIONS: u32 = 32u;
-const FLAG_REFRACTIONS: u32 = 64u;
 const FLAG_SUN_GLINTS: u32 = 128u;
 const FLAG_LPV_GLOSSY: u32 = 256u;
 const FLAG_MIRRORED_SUN: u32 = 512u;
@@ -80,29 +69,24 @@ fn vs_fullscreen_far(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f
     return vec4<f32>(fullscreen_corner(i), 1.0, 1.0);
 }
 
-// Unit view ray through the centre of pixel `px`.
+// The frame's image size in pixels.
+fn frame_size(f: Frame) -> vec2<f32> {
+    return vec2<f32>(f32(f.size.x), f32(f.size.y));
+}
+
+// Unit view ray through the centre of pixel `px` (traced_effects' `screen.inc.wgsl`).
 fn view_ray(f: Frame, px: vec2<f32>) -> vec3<f32> {
-    let size = vec2<f32>(f32(f.size.x), f32(f.size.y));
-    let ndc = vec2<f32>((px.x + 0.5) / size.x * 2.0 - 1.0, 1.0 - (px.y + 0.5) / size.y * 2.0);
-    let far = f.inv_view_proj * vec4<f32>(ndc, 1.0, 1.0);
-    return normalize(far.xyz / far.w - f.camera_pos.xyz);
+    return pixel_view_ray(f.inv_view_proj, f.camera_pos.xyz, frame_size(f), px);
 }
 
 // World position of pixel `px` whose linear (view-axis) depth is `depth`.
 fn world_position(f: Frame, px: vec2<f32>, depth: f32) -> vec3<f32> {
-    let d = view_ray(f, px);
-    return f.camera_pos.xyz + d * (depth / max(dot(d, f.camera_fwd.xyz), 1e-4));
+    let eye = f.camera_pos.xyz;
+    return pixel_world_position(f.inv_view_proj, eye, f.camera_fwd.xyz, frame_size(f), px, depth);
 }
 
 // Diffuse reflectance of material `m` under G-buffer albedo `a` (rgb albedo, w glossiness):
 // the part of the light neither mirrored, transmitted nor reflected glossily.
 fn diffuse_reflectance(m: Material, a: vec4<f32>) -> vec3<f32> {
     return max(1.0 - m.params.y - m.params.z, 0.0) * (1.0 - a.w) * a.rgb;
-}
-
-// Schlick's Fresnel reflectance for a dielectric of index `ior` seen at cosine `c`.
-fn fresnel_schlick(c: f32, ior: f32) -> f32 {
-    let r0 = (ior - 1.0) / (ior + 1.0);
-    let f0 = r0 * r0;
-    return f0 + (1.0 - f0) * pow(1.0 - clamp(c, 0.0, 1.0), 5.0);
 }

@@ -1,3 +1,6 @@
+// include: scene/material.inc.wgsl
+// include: traced_effects/fresnel.inc.wgsl
+// include: traced_effects/screen.inc.wgsl
 // include: engine/common.inc.wgsl
 // G-buffer (thesis Table 3.1, formats for wgpu): albedo + glossiness (RGBA8), shading normal +
 // specular power (RGBA16F), geometry normal + material id (RGBA16F), linear depth (R32F).

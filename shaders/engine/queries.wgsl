@@ -1,3 +1,6 @@
+// include: scene/material.inc.wgsl
+// include: traced_effects/fresnel.inc.wgsl
+// include: traced_effects/screen.inc.wgsl
 // include: engine/common.inc.wgsl
 // One lookup query per pixel for the LPV's or radiance cache's lookup kernel
 // (`shaders/lpv/lookup.wgsl`, `shaders/radiance_cache/lookup.wgsl`): world position and

@@ -1,3 +1,6 @@
+// include: scene/material.inc.wgsl
+// include: traced_effects/fresnel.inc.wgsl
+// include: traced_effects/screen.inc.wgsl
 // include: engine/common.inc.wgsl
 // Sky light bounced once, as VPLs for the LPV (thesis 5.3.7, Fig. 5.16): the G-buffer sampled
 // on a coarse grid of cells is a reflective shadow map of sky light. Two entry points, with

@@ -1,3 +1,6 @@
+// include: scene/material.inc.wgsl
+// include: traced_effects/fresnel.inc.wgsl
+// include: traced_effects/screen.inc.wgsl
 // include: engine/common.inc.wgsl
 // include: shadows/pcss.inc.wgsl
 // include: shadows/csm.inc.wgsl

@@ -26,8 +26,9 @@ pub enum EngineError {
     /// A wgpu call through the shared GPU plumbing failed (validation, read-back).
     #[error("GPU: {0}")]
     Wgpu(#[from] gpu_harness::GpuError),
-    /// The scene could not be prepared for ray tracing.
-    #[error("ray tracer: {0}")]
+    /// The scene could not be prepared for ray tracing, or a pass of the traced rays
+    /// (`traced_effects::gpu`) could not be made or run.
+    #[error("traced effects: {0}")]
     Trace(#[from] traced_effects::TraceError),
     /// A technique crate refused its input or failed; `source` is its own typed error.
     #[error("{technique}: {source}")]

@@ -9,9 +9,6 @@ pub(crate) const FLAG_BLINN: u32 = 2;
 pub(crate) const FLAG_INDIRECT: u32 = 4;
 pub(crate) const FLAG_SKY_VOLUME: u32 = 8;
 pub(crate) const FLAG_SHADOWS: u32 = 16;
-/// The ray casting writes reflection rays (refraction rays) where materials ask for them.
-pub(crate) const FLAG_REFLECTIONS: u32 = 32;
-pub(crate) const FLAG_REFRACTIONS: u32 = 64;
 /// The lighting adds the sun's glint in mirror and glass parts (`Settings::sun_glints`).
 pub(crate) const FLAG_SUN_GLINTS: u32 = 128;
 /// The LPV's glossy lookup lights glossy surfaces (`Settings::lpv_glossy`).
@@ -68,8 +65,6 @@ mod tests {
             ("FLAG_INDIRECT", FLAG_INDIRECT),
             ("FLAG_SKY_VOLUME", FLAG_SKY_VOLUME),
             ("FLAG_SHADOWS", FLAG_SHADOWS),
-            ("FLAG_REFLECTIONS", FLAG_REFLECTIONS),
-            ("FLAG_REFRACTIONS", FLAG_REFRACTIONS),
             ("FLAG_SUN_GLINTS", FLAG_SUN_GLINTS),
             ("FLAG_LPV_GLOSSY", FLAG_LPV_GLOSSY),
             ("FLAG_MIRRORED_SUN", FLAG_MIRRORED_SUN),

@@ -16,12 +16,12 @@
 //! | `g-buffer` | albedo + gloss, normal + power, geometry normal + material, depth | Table 3.1 | - |
 //! | `rsm + lpv` | sun RSM (and with `Settings::sky_bounce` the G-buffer's sky-bounce VPLs, `passes::sky_bounce`) → injection (from their textures on a GPU) + propagation in 3 cascades (indirect `lpv`) | 5.2, 5.3.7 | `shadows`, `lpv`, `sky_volume` |
 //! | `rsm (gather)` | the same sun RSM, kept on the GPU for the lighting pass's interleaved gather (indirect `rsm`) | seed 2 | `shadows`, `rsm_gi` |
-//! | `ray casting buffer` | quarter-res origins + reflection/refraction rays; the texels with rays listed and read back | 6.2.1 | - |
+//! | `ray casting buffer` | quarter-res origins + reflection/refraction rays; the texels with rays listed and read back (resident pass) | 6.2.1 | `traced_effects` |
 //! | `ray tracing` | CPU kd-tree tracing and shading of those rays, on a worker thread | 6.2-6.3 | `traced_effects`, `kdtree_tracer` |
 //! | `lighting` | sun (Phong/Blinn-Phong, PCSS), point lights, sky volume + LPV lookups or the RSM gather, SSAO (the crates' WGSL snippets) | 3.3, 5.3.6-5.3.8 | `shadows`, `ssao`, `sky_volume`, `lpv`, `rsm_gi` |
 //! | `overlapped shadow maps` | with `TracedShading::Gpu`: the sun's maps around the camera for what reflections see (resident pass) | 6.3.1 | `shadows` |
 //! | `traced g-buffer lighting` | with `TracedShading::Gpu`: the traced hits uploaded and lit with the deferred pass's BRDF, the maps above, the sky volume's and the LPV's lookups | 6.3 | `shadows`, `sky_volume`, `lpv` |
-//! | `traced upload + combine` | traced radiance added with Fresnel weights, depth-aware 3x3 gather, drawn over the mirror and glass draws alone | 6.3.4-6.3.5 | - |
+//! | `traced upload + combine` | traced radiance added with Fresnel weights, depth-aware 3x3 gather, drawn over the mirror and glass draws alone (resident pass) | 6.3.4-6.3.5 | `traced_effects` |
 //! | `still-view accumulation` | a still view's jittered frames averaged, up to `Settings::still_samples` | - | `post` |
 //! | `tone mapping` | on the GPU, every frame: log-average luminance, eye adaptation, Reinhard, sRGB | 3.7 | `post` |
 //!
@@ -106,6 +106,7 @@ pub use graph::pass;
 pub use radiance_cache::CacheSummary;
 pub use renderer::{Frame, FrameStats, HdrFrame, Renderer};
 pub use settings::{Indirect, Preset, Settings, Specular, TracedShading};
-/// The CPU tracing of the ray casting buffer and the mirrored sun live in `traced_effects`.
-pub use traced_effects::{mirrored_sun, trace};
+/// The ray casting buffer's rays, their CPU tracing and the mirrored sun live in
+/// `traced_effects`.
+pub use traced_effects::{mirrored_sun, ray_casting, trace};
 pub use views::{Channel, View};

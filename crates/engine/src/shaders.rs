@@ -1,12 +1,10 @@
-//! The engine's WGSL (`shaders/engine/`), with the snippets each shader includes.
+//! The engine's WGSL (`shaders/engine/`), with the snippets each shader includes. The ray
+//! casting buffer's and the combination's are `traced_effects::gpu`'s.
 
 const COMMON_INC: &str = include_str!("../../../shaders/engine/common.inc.wgsl");
 const GBUFFER: &str = include_str!("../../../shaders/engine/gbuffer.wgsl");
 const LIGHTING: &str = include_str!("../../../shaders/engine/lighting.wgsl");
 const QUERIES: &str = include_str!("../../../shaders/engine/queries.wgsl");
-const RAYCAST: &str = include_str!("../../../shaders/engine/raycast.wgsl");
-const COMBINE: &str = include_str!("../../../shaders/engine/combine.wgsl");
-const SCATTER: &str = include_str!("../../../shaders/engine/scatter.wgsl");
 const SKY_VPLS: &str = include_str!("../../../shaders/engine/sky_vpls.wgsl");
 const SHADING: &str = include_str!("../../../shaders/engine/shading.inc.wgsl");
 const TRACED: &str = include_str!("../../../shaders/engine/traced.wgsl");
@@ -19,9 +17,6 @@ pub fn all() -> Vec<(&'static str, String)> {
         ("lighting", lighting()),
         ("queries", queries()),
         ("sky_vpls", sky_vpls()),
-        ("raycast", raycast()),
-        ("combine", combine()),
-        ("scatter", scatter()),
         ("traced", traced()),
     ]
 }
@@ -49,9 +44,13 @@ pub fn traced() -> String {
     format!("{common}\n{shadows}\n{volume}\n{SHADING}\n{MIRRORED_SUN}\n{TRACED}")
 }
 
-/// The engine's common snippet after the `scene` crate's `Material` it uses.
+/// The engine's common snippet after what it uses of other crates: the `scene` crate's
+/// `Material`, and `traced_effects`' Fresnel term (the weights of the mirror and glass parts,
+/// as the combination weighs them) and position reconstruction.
 fn common() -> String {
-    format!("{}\n{COMMON_INC}", scene::gpu::MATERIAL_INC_WGSL)
+    use traced_effects::gpu::{FRESNEL_INC_WGSL, SCREEN_INC_WGSL};
+    let material = scene::gpu::MATERIAL_INC_WGSL;
+    format!("{material}\n{FRESNEL_INC_WGSL}\n{SCREEN_INC_WGSL}\n{COMMON_INC}")
 }
 
 /// `sky_volume`'s lookup snippet with the `sh_math` snippet it needs.
@@ -69,20 +68,6 @@ pub fn sky_vpls() -> String {
     format!("{common}\n{SKY_VPLS}")
 }
 
-pub fn raycast() -> String {
-    let common = common();
-    format!("{common}\n{RAYCAST}")
-}
-
-pub fn combine() -> String {
-    let common = common();
-    format!("{common}\n{COMBINE}")
-}
-
-pub fn scatter() -> String {
-    SCATTER.to_string()
-}
-
 /// The value of `const NAME: u32 = Nu;` in `source` (`None`: not declared so). The tests
 /// check Rust's copies of the shaders' constants with it.
 pub fn u32_constant(source: &str, name: &str) -> Option<u32> {
@@ -96,23 +81,10 @@ mod tests {
     //! The structs Rust writes for the shaders have the sizes WGSL lays their twins out with
     //! (a field added on one side only fails here, not in a wrong image).
 
-    /// Size in bytes of struct `name` as WGSL lays it out in `source`.
-    fn wgsl_size(source: &str, name: &str) -> usize {
-        let module = naga::front::wgsl::parse_str(source).expect("parses");
-        let mut layouter = naga::proc::Layouter::default();
-        layouter.update(module.to_ctx()).expect("lays out");
-        let (handle, _) = module
-            .types
-            .iter()
-            .find(|(_, t)| t.name.as_deref() == Some(name))
-            .unwrap_or_else(|| panic!("struct {name} not in the shader"));
-        layouter[handle].size as usize
-    }
-
     #[test]
     fn rust_structs_match_their_wgsl_twins() {
         use std::mem::size_of;
-        let (lighting, traced, raycast) = (super::lighting(), super::traced(), super::raycast());
+        let (lighting, traced) = (super::lighting(), super::traced());
         let sky_vpls = super::sky_vpls();
         let pairs = [
             (&lighting, "Frame", size_of::<crate::frame::FrameUniform>()),
@@ -124,11 +96,10 @@ mod tests {
             (&lighting, "SkyVolumeLookup", size_of::<sky_volume::gpu::LookupParams>()),
             (&traced, "SkyVolumeLookup", size_of::<sky_volume::gpu::LookupParams>()),
             (&sky_vpls, "SkyQuery", size_of::<sky_volume::gpu::Query>()),
-            (&raycast, "RayCast", size_of::<crate::passes::raycast::RayCast>()),
             (&traced, "TracedHit", size_of::<crate::trace::TracedHit>()),
         ];
         for (source, name, rust) in pairs {
-            assert_eq!(wgsl_size(source, name), rust, "{name}");
+            assert_eq!(gpu_harness::wgsl_struct_size(source, name), Ok(rust), "{name}");
         }
     }
 }

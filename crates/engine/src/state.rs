@@ -3,14 +3,12 @@
 
 use crate::gpu::{GBufferTargets, Gpu, SceneBuffers, storage_buffer, uniform_buffer};
 use crate::passes::{
-    combine::CombinePass,
     display::{accumulate_pass, tone_map_pass},
     gbuffer::GBufferPass,
     lighting::LightingPass,
     lpv::LpvState,
     point_shadows::{PointShadowPass, gpu_lights},
     radiance_cache::CacheState,
-    raycast::RayCastPass,
     rsm_gather::RsmGatherState,
     shadow::ShadowPass,
     sky::SkySetup,
@@ -19,6 +17,7 @@ use crate::passes::{
 use crate::trace::TraceScene;
 use crate::{EngineError, Settings};
 use glam::Vec3;
+use traced_effects::gpu::{Combine, RayCasting};
 
 /// What every frame is rendered with, built once per scene and settings and never changed
 /// by a pass: the device, the scene's buffers and the passes' pipelines and targets. What
@@ -34,8 +33,9 @@ pub struct State {
     pub gbuffer: GBufferPass,
     pub shadow: ShadowPass,
     pub lighting: LightingPass,
-    pub raycast: RayCastPass,
-    pub combine: CombinePass,
+    /// The ray casting buffer and the combination of the traced rays (`traced_effects`).
+    pub raycast: RayCasting,
+    pub combine: Combine,
     pub accumulate: post::gpu::AccumulatePass,
     pub display: post::gpu::ToneMapPass,
     /// The atmosphere and where the sky volume goes; `None` when the scene shows no sky.
@@ -155,8 +155,8 @@ impl State {
             gbuffer: GBufferPass::new(device, &buffers)?,
             shadow: ShadowPass::new(device, &settings)?,
             lighting: LightingPass::new(device, &targets)?,
-            raycast: RayCastPass::new(device, &targets)?,
-            combine: CombinePass::new(device, &targets)?,
+            raycast: RayCasting::new(device, targets.size())?,
+            combine: Combine::new(device, targets.size(), crate::gpu::HDR_FORMAT)?,
             accumulate: accumulate_pass(device, &targets)?,
             display: tone_map_pass(device, &targets)?,
             trace: TraceScene::new(scene)?,

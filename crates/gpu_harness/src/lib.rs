@@ -1,9 +1,11 @@
 //! A wgpu device on whatever adapter exists, for tests, parity checks and benchmarks; the
 //! wgpu pieces every crate's resident passes are built from, written once (buffers and 2D
-//! textures, compute and full-screen pipelines, [`dispatch`], [`clear_pass`], bind groups and
-//! the [`BindGroupCache`] that keeps a pass from making its groups again every frame); and
-//! the buffer read-back every crate's GPU path offers beside its resident passes
-//! ([`read_buffer`], [`map_read`]).
+//! textures, compute and full-screen pipelines and [`geometry_pipeline`]s over the caller's
+//! vertices, [`depth_test`], [`dispatch`], [`clear_pass`], bind groups and the
+//! [`BindGroupCache`] that keeps a pass from making its groups again every frame); the
+//! buffer read-back every crate's GPU path offers beside its resident passes
+//! ([`read_buffer`], [`map_read`]); and for the tests of the structs a crate shares with its
+//! shaders, the size WGSL lays a struct out with ([`wgsl_struct_size`]).
 //!
 //! Every bind group in the workspace is made by [`create_bind_group`], which counts them
 //! ([`bind_groups_created`]): a renderer's test can show that a steady frame makes none.
@@ -47,8 +49,9 @@ pub use bind_cache::{BindGroupCache, CACHED_GROUPS, bind_groups_created, create_
 pub use context::{Binding, GpuContext, device_descriptor};
 pub use error::GpuError;
 pub use pipelines::{
-    clear_pass, color_pass, compute_pipeline, depth_attachment, depth_tested_fullscreen_pipeline,
-    depth_tested_pass, dispatch, draw_fullscreen, fullscreen_pipeline, pipeline_layout,
+    clear_pass, color_pass, compute_pipeline, depth_attachment, depth_test,
+    depth_tested_fullscreen_pipeline, depth_tested_pass, dispatch, draw_fullscreen,
+    fullscreen_pipeline, geometry_pipeline, pipeline_layout,
 };
 pub use plumbing::{
     bind_entries, bind_group, empty_storage, init_buffer, storage_buffer, storage_entry,
@@ -57,4 +60,5 @@ pub use plumbing::{
 pub use readback::{ReadBack, map_read, read_buffer, read_buffer_after, read_texture};
 pub use support::{
     LiveObjects, SKIP_ENV, cast_vec, gpu_test_context, live_objects, skip_requested, validate_wgsl,
+    wgsl_struct_size,
 };

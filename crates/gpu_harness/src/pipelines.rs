@@ -1,6 +1,7 @@
 //! Pipelines and the recording of their passes, written once for every crate's resident
-//! passes: a compute pipeline from WGSL source, a full-screen triangle pipeline, one compute
-//! dispatch, and a render pass over one colour target.
+//! passes: a compute pipeline from WGSL source, a full-screen triangle pipeline and one over
+//! the caller's geometry, a depth test, one compute dispatch, and a render pass over one
+//! colour target.
 
 /// A compute pipeline running `entry` of the WGSL `source`; `layout: None` lets wgpu derive
 /// the layout from the shader. Not validated: create it inside [`crate::validated`] to get a
@@ -62,7 +63,23 @@ pub fn depth_tested_fullscreen_pipeline(
     device: &wgpu::Device,
     label: &str,
     source: &str,
+    entries: (&str, &str),
+    target: impl Into<wgpu::ColorTargetState>,
+    depth: Option<wgpu::DepthStencilState>,
+) -> wgpu::RenderPipeline {
+    geometry_pipeline(device, label, source, entries, &[], target, depth)
+}
+
+/// A pipeline drawing the caller's geometry (`vertex_buffers`, read by the vertex entry
+/// `vs_entry`; both windings) with the fragment entry `fs_entry` into one target, tested
+/// against the pass's depth attachment with `depth`, layout derived from the shader. Not
+/// validated, as [`compute_pipeline`].
+pub fn geometry_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    source: &str,
     (vs_entry, fs_entry): (&str, &str),
+    vertex_buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
     target: impl Into<wgpu::ColorTargetState>,
     depth: Option<wgpu::DepthStencilState>,
 ) -> wgpu::RenderPipeline {
@@ -77,7 +94,7 @@ pub fn depth_tested_fullscreen_pipeline(
             module: &module,
             entry_point: Some(vs_entry),
             compilation_options: Default::default(),
-            buffers: &[],
+            buffers: vertex_buffers,
         },
         primitive: Default::default(),
         depth_stencil: depth,
@@ -91,6 +108,19 @@ pub fn depth_tested_fullscreen_pipeline(
         multiview_mask: None,
         cache: None,
     })
+}
+
+/// A depth test against a `Depth32Float` attachment with `compare`, without writing: what a
+/// pass drawn over the depth another pass wrote tests with (`Equal` with the same geometry
+/// shades only the visible surface).
+pub fn depth_test(compare: wgpu::CompareFunction) -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        format: wgpu::TextureFormat::Depth32Float,
+        depth_write_enabled: Some(false),
+        depth_compare: Some(compare),
+        stencil: Default::default(),
+        bias: Default::default(),
+    }
 }
 
 /// Records one dispatch of `groups` workgroups of `pipeline` with `bind` as group 0 (a zero

@@ -68,6 +68,21 @@ pub fn validate_wgsl(source: &str) -> Result<naga::Module, String> {
     Ok(module)
 }
 
+/// The size in bytes of struct `name` as WGSL lays it out in `source` (naga's layouter): what
+/// the tests of a `#[repr(C)]` struct shared with a shader compare its Rust size with, so
+/// that a field added on one side only fails there, not in a wrong image.
+pub fn wgsl_struct_size(source: &str, name: &str) -> Result<usize, String> {
+    let module = naga::front::wgsl::parse_str(source).map_err(|e| e.emit_to_string(source))?;
+    let mut layouter = naga::proc::Layouter::default();
+    layouter.update(module.to_ctx()).map_err(|e| e.to_string())?;
+    let (handle, _) = module
+        .types
+        .iter()
+        .find(|(_, t)| t.name.as_deref() == Some(name))
+        .ok_or_else(|| format!("struct {name} not in the shader"))?;
+    Ok(layouter[handle].size as usize)
+}
+
 #[cfg(test)]
 mod tests {
     #[test]
@@ -81,5 +96,12 @@ mod tests {
         let read_only = "@group(0) @binding(0) var<storage, read> d: array<f32>;
             @compute @workgroup_size(1) fn main() { d[0] = 1.0; }";
         assert!(super::validate_wgsl(read_only).is_err());
+    }
+
+    #[test]
+    fn wgsl_struct_size_lays_out_as_wgsl_does() {
+        let src = "struct S { a: vec3<f32>, b: f32, c: mat4x4<f32> }";
+        assert_eq!(super::wgsl_struct_size(src, "S"), Ok(80));
+        assert!(super::wgsl_struct_size(src, "T").unwrap_err().contains('T'));
     }
 }

@@ -1,6 +1,6 @@
 //! The crate's typed errors.
 
-/// Why a scene could not be prepared for tracing.
+/// Why a scene could not be prepared for tracing, or a GPU pass could not run.
 #[derive(Debug, thiserror::Error)]
 pub enum TraceError {
     /// The scene is inconsistent (a mesh names a material it does not have).
@@ -9,4 +9,12 @@ pub enum TraceError {
     /// The kd-tree could not be built (non-finite geometry).
     #[error("ray tracer: {0}")]
     Tree(#[from] kdtree_tracer::Error),
+    /// A GPU pass's inputs do not fit it (a view or target of another size than the pass
+    /// was made for).
+    #[error("traced_effects GPU pass: {0}")]
+    Mismatch(&'static str),
+    /// A GPU pass could not be made or run (shader or pipeline validation, read-back).
+    #[cfg(feature = "gpu")]
+    #[error("traced_effects GPU path: {0}")]
+    Gpu(#[from] gpu_harness::GpuError),
 }

@@ -67,8 +67,10 @@ pub struct TraceScene {
 /// Most surfaces a shadow ray passes through before it counts as blocked.
 const MAX_TRANSMISSIONS: u32 = 16;
 
-/// Fresnel-Schlick reflectance of a dielectric of index `ior` at incidence cosine `cos`.
-pub(crate) fn fresnel_schlick(ior: f32, cos: f32) -> f32 {
+/// Fresnel-Schlick reflectance of a dielectric of index `ior` at incidence cosine `cos`
+/// (clamped to `[0, 1]`); the WGSL twin is `fresnel_schlick(c, ior)` of the `gpu` feature's
+/// `FRESNEL_INC_WGSL`.
+pub fn fresnel_schlick(ior: f32, cos: f32) -> f32 {
     let r0 = ((ior - 1.0) / (ior + 1.0)).powi(2);
     r0 + (1.0 - r0) * (1.0 - cos.clamp(0.0, 1.0)).powi(5)
 }
@@ -242,7 +244,7 @@ pub struct TraceLighting<'a> {
 }
 
 /// One ray of the ray casting buffer (thesis 6.2.6). `dir` need not be normalised.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TraceRay {
     pub origin: Vec3,
     pub dir: Vec3,
@@ -278,7 +280,7 @@ pub fn trace_rays(
 }
 
 /// One traced ray's first surface, for lighting on the GPU (thesis 6.3: the traced
-/// G-buffer); `TracedHit` in `shaders/engine/traced.wgsl`.
+/// G-buffer); `TracedHit` in the engine's `shaders/engine/traced.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct TracedHit {

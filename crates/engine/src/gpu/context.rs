@@ -65,19 +65,6 @@ impl Gpu {
         self.queue.write_buffer(buffer, offset, bytes);
     }
 
-    /// Submits `encoder` after a copy of `size` bytes of `src` through `via`, waits, and
-    /// returns them (counted as read back).
-    pub fn read_back(
-        &self,
-        via: &gpu_harness::ReadBack,
-        encoder: wgpu::CommandEncoder,
-        src: &wgpu::Buffer,
-        size: u64,
-    ) -> Result<Vec<u8>, EngineError> {
-        self.transfers.read_back(size);
-        Ok(via.read_after(&self.device, &self.queue, encoder, src, size)?)
-    }
-
     /// Reads a whole 2D texture back, rows unpadded (counted as read back).
     pub fn read_texture(
         &self,

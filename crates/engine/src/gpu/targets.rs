@@ -82,8 +82,14 @@ impl GBufferTargets {
         self.width as usize * self.height as usize
     }
 
-    /// Quarter resolution of the ray casting buffer: half width by half height.
-    pub fn quarter(&self) -> (u32, u32) {
-        (self.width.div_ceil(2), self.height.div_ceil(2))
+    /// Width and height.
+    pub fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
+    /// The G-buffer as `traced_effects`' passes read it.
+    pub fn traced_gbuffer(&self) -> traced_effects::gpu::GBufferViews<'_> {
+        let (normal, geometry, depth) = (&self.normal, &self.geometry, &self.depth);
+        traced_effects::gpu::GBufferViews { normal, geometry, depth }
     }
 }

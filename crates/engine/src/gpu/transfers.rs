@@ -38,6 +38,13 @@ impl Transfers {
         self.waits.fetch_add(1, Ordering::Relaxed);
     }
 
+    /// What a `traced_effects` pass moved.
+    pub fn traced(&self, t: traced_effects::gpu::Transferred) {
+        self.uploaded(t.uploaded);
+        self.read_back.fetch_add(t.read_back, Ordering::Relaxed);
+        self.waits.fetch_add(t.reads as u64, Ordering::Relaxed);
+    }
+
     /// The counts since the last call, which start again from zero.
     pub fn take(&self) -> TransferCounts {
         TransferCounts {

@@ -49,11 +49,7 @@ pub(crate) fn depth_tested_fullscreen_pipeline(
     fs_entry: &str,
     compare: wgpu::CompareFunction,
 ) -> Result<wgpu::RenderPipeline, EngineError> {
-    let depth = wgpu::DepthStencilState {
-        depth_write_enabled: Some(false),
-        depth_compare: Some(compare),
-        ..depth_write_state()
-    };
+    let depth = gpu_harness::depth_test(compare);
     gpu_harness::validated(device, || {
         let entries = ("vs_fullscreen_far", fs_entry);
         gpu_harness::depth_tested_fullscreen_pipeline(
@@ -76,16 +72,5 @@ pub(crate) fn depth_write_state() -> wgpu::DepthStencilState {
         depth_compare: Some(wgpu::CompareFunction::Less),
         stencil: Default::default(),
         bias: Default::default(),
-    }
-}
-
-/// Depth test `Equal` without writing, against a `Depth32Float` target the scene's depth was
-/// drawn into: a draw of the same geometry (invariant position) shades only the visible
-/// surface.
-pub(crate) fn depth_equal_state() -> wgpu::DepthStencilState {
-    wgpu::DepthStencilState {
-        depth_write_enabled: Some(false),
-        depth_compare: Some(wgpu::CompareFunction::Equal),
-        ..depth_write_state()
     }
 }

@@ -6,16 +6,14 @@
 use crate::EngineError;
 use crate::effects::Effect;
 use crate::frame::{
-    FLAG_BLINN, FLAG_INDIRECT, FLAG_LPV_GLOSSY, FLAG_MIRRORED_SUN, FLAG_REFLECTIONS,
-    FLAG_REFRACTIONS, FLAG_SHADOWS, FLAG_SKY, FLAG_SKY_VOLUME, FLAG_SUN_GLINTS,
-    FLAG_VOLUME_QUERIES, FrameUniform,
+    FLAG_BLINN, FLAG_INDIRECT, FLAG_LPV_GLOSSY, FLAG_MIRRORED_SUN, FLAG_SHADOWS, FLAG_SKY,
+    FLAG_SKY_VOLUME, FLAG_SUN_GLINTS, FLAG_VOLUME_QUERIES, FrameUniform,
 };
 use crate::mirrored_sun::ReflectorSet;
 use crate::passes::display::Shown;
 use crate::passes::lighting::{IndirectSource, LightingInputs};
 use crate::passes::lpv::LpvState;
 use crate::passes::radiance_cache::CacheState;
-use crate::passes::raycast::RayBatch;
 use crate::passes::rsm_gather::RsmGatherState;
 use crate::passes::shadow::{ShadowMaps, SunMapsPlan};
 use crate::passes::sky::{SkyLight, SkyMapState, SkyVolumeState};
@@ -30,6 +28,7 @@ use frame_scheduler::{
 };
 use glam::Vec3;
 use std::any::Any;
+use traced_effects::ray_casting::RayBatch;
 
 mod light;
 mod traced;
@@ -127,12 +126,6 @@ fn write_frame_uniform(c: &FrameCtx, bound: Bound) {
         if matches!(c.indirect, Indirect::Lpv | Indirect::Cache) {
             flags |= FLAG_VOLUME_QUERIES;
         }
-    }
-    if c.needs.reflections.needed {
-        flags |= FLAG_REFLECTIONS;
-    }
-    if c.needs.refractions.needed {
-        flags |= FLAG_REFRACTIONS;
     }
     if set.specular == Specular::BlinnPhong {
         flags |= FLAG_BLINN;

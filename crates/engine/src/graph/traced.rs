@@ -1,7 +1,26 @@
 //! The passes of the traced rays: the ray-casting buffer read back, the CPU tracing, the
-//! traced G-buffer lit on the GPU (`TracedShading::Gpu`) and the combination with the view.
+//! traced G-buffer lit on the GPU (`TracedShading::Gpu`) and the combination with the view
+//! (the first and the last `traced_effects::gpu`'s passes).
 
 use super::*;
+use traced_effects::gpu::{CombineInputs, TracedView};
+use traced_effects::ray_casting::RayKinds;
+use traced_effects::screen::ScreenView;
+
+/// `traced_effects`' uniform for this frame's view (jittered as the G-buffer), the kinds of
+/// rays the scene calls for, and whether the view shown takes the traced radiance (the full
+/// frame and the reflections component).
+fn traced_view(c: &FrameCtx) -> TracedView {
+    let set = &c.state.settings;
+    let (eye, forward) = (c.camera.position, c.camera.forward);
+    let view = ScreenView::new(c.view_projection(), eye, forward, (set.width, set.height));
+    let kinds = RayKinds {
+        reflections: c.needs.reflections.needed,
+        refractions: c.needs.refractions.needed,
+    };
+    let shown = [None, Some(crate::Component::Reflections)].map(crate::components::code);
+    TracedView::new(&view, kinds, shown.contains(&c.component))
+}
 
 /// The ray-casting buffer read back and traced on a CPU worker.
 pub(super) fn trace_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
@@ -16,11 +35,13 @@ pub(super) fn trace_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
         })
         .run(move |io| -> PassResult {
             let c = io.ctx();
-            let s = &c.state;
-            write_frame_uniform(c, Bound::default());
-            let b = s.raycast.run(&s.gpu, &s.targets, &s.frame, &s.scene.materials)?;
-            s.gpu.take_error()?;
-            io.put(r.batch, b)?;
+            let (s, gpu) = (&c.state, &c.state.gpu);
+            let gbuffer = s.targets.traced_gbuffer();
+            let (device, queue, materials) = (&gpu.device, &gpu.queue, &s.scene.materials);
+            let listed = s.raycast.run(device, queue, &traced_view(c), &gbuffer, materials)?;
+            gpu.transfers.traced(listed.transferred);
+            gpu.take_error()?;
+            io.put(r.batch, listed.batch)?;
             Ok(())
         });
 
@@ -161,15 +182,25 @@ pub(super) fn combine_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
         .key("view shown", |c: &FrameCtx| c.component)
         .run(move |io| -> PassResult {
             let c = io.ctx();
-            let s = &c.state;
-            let mut enc = s.gpu.device.create_command_encoder(&Default::default());
+            let (s, gpu, t) = (&c.state, &c.state.gpu, &c.state.targets);
+            let mut enc = gpu.device.create_command_encoder(&Default::default());
             if let Traced::Radiance(radiance) = io.read(r.traced)? {
-                s.combine.upload(&s.gpu, &mut enc, io.read(r.batch)?, radiance);
+                let batch = io.read(r.batch)?;
+                gpu.transfers.traced(s.combine.upload(&gpu.queue, &mut enc, batch, radiance));
             }
-            let (device, targets, frame) = (&s.gpu.device, &s.targets, &s.frame);
-            s.combine.record(device, &mut enc, targets, frame, &s.scene, &s.raycast);
-            s.gpu.queue.submit([enc.finish()]);
-            s.gpu.take_error()?;
+            let inputs = CombineInputs {
+                gbuffer: t.traced_gbuffer(),
+                lit: (&t.lit_texture, &t.lit),
+                output: (&t.combined_texture, &t.combined),
+                zbuffer: &t.zbuffer,
+                scene: &s.scene.gpu,
+                rays: &s.raycast,
+            };
+            let view = traced_view(c);
+            let written = s.combine.record(&gpu.device, &gpu.queue, &mut enc, &view, &inputs)?;
+            gpu.transfers.traced(written);
+            gpu.queue.submit([enc.finish()]);
+            gpu.take_error()?;
             io.put(r.combined, CombinedView(c.component))?;
             Ok(())
         });

@@ -3,9 +3,7 @@
 //! order, not front to back: on lavapipe the pre-pass halved the city's G-buffer time).
 
 use crate::EngineError;
-use crate::gpu::{
-    GBUFFER_FORMATS, GBufferTargets, SceneBuffers, depth_equal_state, depth_write_state, shader,
-};
+use crate::gpu::{GBUFFER_FORMATS, GBufferTargets, SceneBuffers, depth_write_state, shader};
 
 pub struct GBufferPass {
     /// Materials without an alpha mask: a fragment shader that cannot discard, so the
@@ -80,7 +78,7 @@ impl GBufferPass {
             })
         };
         Ok(Self {
-            opaque: pipeline("fs_opaque", depth_equal_state()),
+            opaque: pipeline("fs_opaque", gpu_harness::depth_test(wgpu::CompareFunction::Equal)),
             alpha_tested: pipeline("fs_alpha_tested", depth_write_state()),
             depth_only: pipeline("", depth_write_state()),
             frame_group: Default::default(),

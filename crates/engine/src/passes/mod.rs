@@ -1,14 +1,12 @@
 //! One file per pass; each pass is a struct of its pipelines and a plain function that
 //! records or runs it.
 
-pub mod combine;
 pub mod display;
 pub mod gbuffer;
 pub mod lighting;
 pub mod lpv;
 pub mod point_shadows;
 pub mod radiance_cache;
-pub mod raycast;
 pub mod rsm_gather;
 pub mod shadow;
 pub mod sky;

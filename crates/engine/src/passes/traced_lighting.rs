@@ -7,7 +7,6 @@
 //! traced radiance.
 
 use super::lpv::LpvState;
-use super::raycast::RayBatch;
 use super::shadow::{SunMapsPlan, render_sun_maps};
 use super::sky::{SkyLight, SkyVolumeBinding};
 use crate::gpu::{Gpu, SceneBuffers, compute_pipeline, dispatch, empty_storage, uniform_buffer};
@@ -17,6 +16,7 @@ use crate::{EngineError, Settings};
 use glam::Vec3;
 use shadows::OverlappedShadowMaps;
 use shadows::gpu::{CascadeMaps, CascadeShadows};
+use traced_effects::ray_casting::RayBatch;
 
 fn tech(e: shadows::ShadowError) -> EngineError {
     EngineError::technique("shadows", e)
@@ -146,11 +146,11 @@ impl TracedLightingPass {
         let count = count as u32;
         let records: Vec<TracedHit> = hits
             .iter()
-            .zip(&batch.slots)
+            .zip(batch.slot_indices())
             .take(count as usize)
-            .map(|(h, &(texel, refract))| {
+            .map(|(h, slot)| {
                 let mut h = *h;
-                h.position[3] = (texel * 2 + u32::from(refract)) as f32;
+                h.position[3] = slot as f32;
                 h
             })
             .collect();

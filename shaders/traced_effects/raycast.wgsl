@@ -1,20 +1,23 @@
-// include: engine/common.inc.wgsl
+// include: scene/material.inc.wgsl
+// include: traced_effects/fresnel.inc.wgsl
+// include: traced_effects/screen.inc.wgsl
+// include: traced_effects/common.inc.wgsl
 // The ray casting buffer (thesis 6.2.1, Table 6.1) at quarter resolution (half width, half
 // height): for every 2x2 block the pixel with a mirror or glass material nearest the block's
 // centre writes its origin, view depth, and the reflection and refraction directions with
 // their weights (reflect: reflectivity + transparency * Fresnel; refract: transparency *
 // (1 - Fresnel)). Texels without such a pixel have zero weights and are not traced. The
 // texels with such a pixel are also appended to `list` (in no particular order), which is
-// all the CPU reads back.
+// all the CPU reads back. Twin: traced_effects::ray_casting::cast_rays.
 
-@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(0) var<uniform> view: TracedView;
 @group(0) @binding(1) var normal_t: texture_2d<f32>;
 @group(0) @binding(2) var geometry_t: texture_2d<f32>;
 @group(0) @binding(3) var depth_t: texture_2d<f32>;
 @group(0) @binding(4) var<storage, read> materials: array<Material>;
 @group(0) @binding(5) var<storage, read_write> rays: array<RayCast>;
 
-// A texel with a ray and its index (engine::passes::raycast::ListedRay).
+// A texel with a ray and its index (traced_effects::ray_casting::ListedRay).
 struct ListedRay {
     ray: RayCast,
     texel: vec4<u32>,
@@ -29,8 +32,8 @@ struct RayList {
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    let qw = (frame.size.x + 1u) / 2u;
-    let qh = (frame.size.y + 1u) / 2u;
+    let qw = (view.size.x + 1u) / 2u;
+    let qh = (view.size.y + 1u) / 2u;
     if id.x >= qw || id.y >= qh {
         return;
     }
@@ -43,7 +46,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     var depth = 0.0;
     for (var k = 0u; k < 4u; k = k + 1u) {
         let px = vec2<i32>(i32(id.x * 2u + (k & 1u)), i32(id.y * 2u + (k >> 1u)));
-        if px.x >= i32(frame.size.x) || px.y >= i32(frame.size.y) {
+        if px.x >= i32(view.size.x) || px.y >= i32(view.size.y) {
             continue;
         }
         let d = textureLoad(depth_t, px, 0).x;
@@ -62,9 +65,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if found.x >= 0 {
         let refl = m.params.y;
         let trans = m.params.z;
-        let p = world_position(frame, vec2<f32>(found), depth);
+        let p = traced_world_position(view, vec2<f32>(found), depth);
         let n = normalize(textureLoad(normal_t, found, 0).xyz);
-        let v = normalize(frame.camera_pos.xyz - p);
+        let v = normalize(view.eye.xyz - p);
         let f = fresnel_schlick(dot(n, v), m.params.w);
         let r = reflect(-v, n);
         var t = refract(-v, n, 1.0 / max(m.params.w, 1e-3));
@@ -74,9 +77,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             wt = 0.0;
         }
         // A switched-off kind of ray gets no weight, so it is not traced.
-        let flags = frame.size.w;
-        let wr = select(0.0, refl + trans * f, (flags & FLAG_REFLECTIONS) != 0u);
-        wt = select(0.0, wt, (flags & FLAG_REFRACTIONS) != 0u);
+        let flags = view.size.z;
+        let wr = select(0.0, refl + trans * f, (flags & TRACED_REFLECTIONS) != 0u);
+        wt = select(0.0, wt, (flags & TRACED_REFRACTIONS) != 0u);
         out.origin = vec4<f32>(p, depth);
         out.reflect = vec4<f32>(r, wr);
         out.refract = vec4<f32>(normalize(t + vec3<f32>(1e-20)), wt);

@@ -1,7 +1,7 @@
 // The traced radiance as uploaded, one entry per traced ray (xyz radiance, w the bits of its
-// slot in the combine pass's buffer, a u32: 2 texel + 1 for a refraction), placed in that
-// buffer (cleared before; slots without a ray stay zero). Workgroup 64, one invocation per
-// entry.
+// slot in the combination's buffer, a u32: 2 texel + 1 for a refraction, as
+// traced_effects::ray_casting::RayBatch::slot_indices numbers them), placed in that buffer
+// (cleared before; slots without a ray stay zero). Workgroup 64, one invocation per entry.
 
 @group(0) @binding(0) var<uniform> count: vec4<u32>;
 @group(0) @binding(1) var<storage, read> uploaded: array<vec4<f32>>;

@@ -1,4 +1,7 @@
-// include: engine/common.inc.wgsl
+// include: scene/material.inc.wgsl
+// include: traced_effects/fresnel.inc.wgsl
+// include: traced_effects/screen.inc.wgsl
+// include: traced_effects/common.inc.wgsl
 // Combines the lit main view with the ray-traced reflections and refractions (thesis
 // 6.3.4-6.3.5). Traced radiance lives at quarter resolution; each full-resolution mirror or
 // glass pixel gathers the traced texels of the 3x3 quarter-resolution neighbourhood that
@@ -6,9 +9,9 @@
 // silhouettes), with tent weights, and adds them with its own Fresnel weights.
 // The lit view is copied first; this shader then runs only where a mirror or glass draw is
 // the visible surface (`vs_reflective`, depth test `Equal` against the G-buffer's z-buffer),
-// not over the whole screen.
+// not over the whole screen. Twin: traced_effects::combine::traced_radiance.
 
-@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(0) var<uniform> view: TracedView;
 @group(0) @binding(1) var lit_t: texture_2d<f32>;
 @group(0) @binding(2) var normal_t: texture_2d<f32>;
 @group(0) @binding(3) var geometry_t: texture_2d<f32>;
@@ -19,24 +22,23 @@
 @group(0) @binding(7) var<storage, read> traced: array<vec4<f32>>;
 
 struct ReflectiveOut {
-    // Invariant: equal, bit for bit, to the depth the G-buffer pass wrote (`gbuffer.wgsl`).
+    // Invariant: equal, bit for bit, to the depth the caller's G-buffer pass wrote with the
+    // same view-projection and an invariant position.
     @builtin(position) @invariant clip: vec4<f32>,
 }
 
 @vertex
 fn vs_reflective(@location(0) position: vec3<f32>) -> ReflectiveOut {
-    return ReflectiveOut(frame.view_proj * vec4<f32>(position, 1.0));
+    return ReflectiveOut(view.view_proj * vec4<f32>(position, 1.0));
 }
 
 @fragment
 fn fs_combine(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     let px = vec2<i32>(frag.xy);
-    let component = frame.csm.w;
-    if component != COMPONENT_FULL && component != COMPONENT_REFLECTIONS {
+    // The caller may want the lit view alone (a renderer showing one lighting term).
+    if (view.size.z & TRACED_ADD) == 0u {
         return textureLoad(lit_t, px, 0);
     }
-    // The reflections component alone: what the traced rays add to the lit view's (the sun's
-    // glint in the mirror and glass parts).
     let lit = textureLoad(lit_t, px, 0);
     let depth = textureLoad(depth_t, px, 0).x;
     if depth <= 0.0 {
@@ -48,12 +50,12 @@ fn fs_combine(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     if refl + trans <= 0.0 {
         return lit;
     }
-    let p = world_position(frame, vec2<f32>(px), depth);
+    let p = traced_world_position(view, vec2<f32>(px), depth);
     let n = normalize(textureLoad(normal_t, px, 0).xyz);
-    let v = normalize(frame.camera_pos.xyz - p);
+    let v = normalize(view.eye.xyz - p);
     let f = fresnel_schlick(dot(n, v), m.params.w);
-    let qw = i32((frame.size.x + 1u) / 2u);
-    let qh = i32((frame.size.y + 1u) / 2u);
+    let qw = i32((view.size.x + 1u) / 2u);
+    let qh = i32((view.size.y + 1u) / 2u);
     let qc = vec2<f32>((f32(px.x) + 0.5) * 0.5 - 0.5, (f32(px.y) + 0.5) * 0.5 - 0.5);
     var sum_r = vec3<f32>(0.0);
     var sum_t = vec3<f32>(0.0);
