@@ -1,9 +1,14 @@
 //! The scene on the GPU (`scene::gpu`, feature `gpu`; runs on lavapipe in CI): what is
-//! uploaded is the scene, and the material struct has one size in Rust and WGSL.
+//! uploaded is the scene, the material struct and the G-buffer's camera have one size in Rust
+//! and WGSL, and the G-buffer pass draws what a small scene shows.
 #![cfg(feature = "gpu")]
 
+use glam::{Vec2, Vec3, Vec4};
 use gpu_harness::gpu_test_context;
-use scene::gpu::{GpuMaterial, GpuScene, MATERIAL_INC_WGSL};
+use scene::gpu::{
+    GBUFFER_WGSL, GBuffer, GBufferCamera, GBufferPass, GpuMaterial, GpuScene, MATERIAL_INC_WGSL,
+};
+use scene::{AlphaMask, Camera, Material, MaterialId, Mesh, MeshData, Scene, Texture};
 
 #[test]
 fn material_struct_has_the_size_of_its_wgsl_twin() {
@@ -41,4 +46,171 @@ fn an_empty_scene_binds_one_zeroed_material() {
     let gpu = GpuScene::new(&ctx.device, &ctx.queue, &scene::Scene::new("empty"));
     assert_eq!(materials(&ctx, &gpu), vec![GpuMaterial::default()]);
     assert!(gpu.draws.is_empty() && gpu.triangle_count == 0);
+}
+
+#[test]
+fn gbuffer_shader_validates_and_its_camera_has_the_size_of_its_wgsl_twin() {
+    gpu_harness::validate_wgsl(GBUFFER_WGSL).unwrap_or_else(|e| panic!("gbuffer: {e}"));
+    let size = gpu_harness::wgsl_struct_size(GBUFFER_WGSL, "GBufferCamera");
+    assert_eq!(size, Ok(std::mem::size_of::<GBufferCamera>()));
+}
+
+/// A quad in the plane `z` over `[x0, x1] x [y0, y1]`, texture u along x, with vertex
+/// normals `normal`.
+fn quad(
+    name: &str,
+    z: f32,
+    (x0, x1): (f32, f32),
+    (y0, y1): (f32, f32),
+    normal: Vec3,
+    m: u32,
+) -> Mesh {
+    let positions = vec![
+        Vec3::new(x0, y0, z),
+        Vec3::new(x1, y0, z),
+        Vec3::new(x1, y1, z),
+        Vec3::new(x0, y1, z),
+    ];
+    let uvs = vec![Vec2::new(0.0, 1.0), Vec2::new(1.0, 1.0), Vec2::new(1.0, 0.0), Vec2::ZERO];
+    let data = MeshData {
+        positions,
+        normals: Some(vec![normal; 4]),
+        uvs: Some(uvs),
+        indices: vec![0, 1, 2, 0, 2, 3],
+    };
+    Mesh::build(name, data, MaterialId(m)).expect("a quad").0
+}
+
+/// Seen from `(0, 0, 4)` looking down -z: a blue glossy quad 6 m away (material 0), a red
+/// one 4 m away on the left whose vertex normals face away from the camera (material 1), and
+/// a green alpha-tested one 3 m away on the right whose mask cuts its right half (material
+/// 2), in front of the blue quad.
+fn three_quads() -> Scene {
+    let mut scene = Scene::new("three quads");
+    let mask = [1.0, 1.0, 0.0, 0.0].map(|a| Vec4::new(1.0, 1.0, 1.0, a)).to_vec();
+    let mask = scene.add_texture(Texture::from_linear("mask", 4, 1, mask).expect("a mask"));
+    let blue = Material::glossy("blue", Vec3::new(0.1, 0.2, 0.9), 0.5, 64.0);
+    let red = Material::diffuse("red", Vec3::new(0.8, 0.1, 0.1));
+    let green = Material {
+        alpha_mask: Some(AlphaMask { texture: mask, cutoff: 0.5 }),
+        ..Material::diffuse("leaf", Vec3::new(0.1, 0.7, 0.2))
+    };
+    for m in [blue, red, green] {
+        scene.add_material(m);
+    }
+    scene.meshes.push(quad("back", -2.0, (-2.0, 2.0), (-2.0, 2.0), Vec3::Z, 0));
+    scene.meshes.push(quad("left", 0.0, (-1.0, 0.0), (-1.0, 1.0), Vec3::NEG_Z, 1));
+    scene.meshes.push(quad("leaf", 1.0, (0.0, 1.0), (-1.0, 1.0), Vec3::Z, 2));
+    scene.camera = Camera::look_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, 60.0, 1.0);
+    scene.validate().expect("a valid scene");
+    scene
+}
+
+/// Texel `(x, y)` of G-buffer target `t` (0 albedo .. 3 depth) as four floats.
+struct Targets {
+    size: u32,
+    texels: Vec<Vec<Vec4>>,
+}
+
+impl Targets {
+    fn read(ctx: &gpu_harness::GpuContext, g: &GBuffer) -> Self {
+        let read = |t: usize, bytes| {
+            let aspect = wgpu::TextureAspect::All;
+            gpu_harness::read_texture(&ctx.device, &ctx.queue, &g.textures[t], 0, aspect, bytes)
+                .expect("the target reads back")
+        };
+        let unorm: Vec<Vec4> = read(0, 4)
+            .chunks(4)
+            .map(|c| Vec4::from_array(std::array::from_fn(|i| c[i] as f32 / 255.0)))
+            .collect();
+        let half = |t| -> Vec<Vec4> {
+            let h: Vec<half::f16> = gpu_harness::cast_vec(&read(t, 8));
+            h.chunks(4).map(|c| Vec4::from_array(std::array::from_fn(|i| c[i].to_f32()))).collect()
+        };
+        let depth: Vec<f32> = gpu_harness::cast_vec(&read(3, 4));
+        let depth = depth.into_iter().map(|d| Vec4::new(d, 0.0, 0.0, 0.0)).collect();
+        Self { size: g.width, texels: vec![unorm, half(1), half(2), depth] }
+    }
+
+    /// The four targets at the pixel that world point `p` projects to.
+    fn at(&self, camera: &Camera, p: Vec3) -> [Vec4; 4] {
+        let ndc = camera.view_projection().project_point3(p);
+        let px = ((ndc.x + 1.0) * 0.5 * self.size as f32) as usize;
+        let py = ((1.0 - ndc.y) * 0.5 * self.size as f32) as usize;
+        let i = py * self.size as usize + px;
+        std::array::from_fn(|t| self.texels[t][i])
+    }
+}
+
+fn near(a: Vec4, b: Vec4, tol: f32) -> bool {
+    (a - b).abs().max_element() <= tol
+}
+
+#[test]
+fn gbuffer_pass_draws_depth_normals_materials_and_alpha_cut_outs() {
+    let Some(ctx) = gpu_test_context() else { return };
+    let scene = three_quads();
+    let cam = scene.camera;
+    let gpu = GpuScene::new(&ctx.device, &ctx.queue, &scene);
+    let gbuffer = GBuffer::new(&ctx.device, 32, 32);
+    let pass = GBufferPass::new(&ctx.device, &gpu).expect("the G-buffer pipelines");
+    let camera = GBufferCamera::new(cam.view_projection(), cam.position, cam.forward, 1.0);
+    let frame = || {
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        let bytes = pass.record(&ctx.queue, &mut encoder, &gbuffer, &gpu, &camera);
+        ctx.queue.submit([encoder.finish()]);
+        assert_eq!(bytes, std::mem::size_of::<GBufferCamera>() as u64);
+    };
+    frame();
+    let t = Targets::read(&ctx, &gbuffer);
+    let rgb = |m: &Material, w: f32| m.albedo.extend(w);
+    let toward_camera = Vec4::new(0.0, 0.0, 1.0, 0.0);
+    let tol = 1.0 / 255.0 + 1e-3;
+
+    // The red quad, 4 m along the view axis; its normals face the viewer, not the vertices'.
+    let [albedo, normal, geometry, depth] = t.at(&cam, Vec3::new(-0.5, 0.0, 0.0));
+    assert!(near(albedo, rgb(&scene.materials[1], 0.0), tol), "red albedo {albedo}");
+    assert!(near(normal, toward_camera.with_w(1.0), 1e-3), "red normal {normal}");
+    assert!(near(geometry, toward_camera.with_w(1.0), 1e-3), "red geometry {geometry}");
+    assert!((depth.x - 4.0).abs() < 1e-4, "red depth {}", depth.x);
+
+    // The leaf's kept half, 3 m away: material 2.
+    let [albedo, _, geometry, depth] = t.at(&cam, Vec3::new(0.25, 0.0, 1.0));
+    assert!(near(albedo, rgb(&scene.materials[2], 0.0), tol), "leaf albedo {albedo}");
+    assert!(near(geometry, toward_camera.with_w(2.0), 1e-3), "leaf geometry {geometry}");
+    assert!((depth.x - 3.0).abs() < 1e-4, "leaf depth {}", depth.x);
+
+    // Through the leaf's cut half: the blue quad 6 m away, glossiness and power kept (a flat
+    // quad's normal does not vary over a pixel).
+    for p in [Vec3::new(0.85, 0.0, 1.0), Vec3::new(-1.8, -1.8, -2.0)] {
+        let [albedo, normal, geometry, depth] = t.at(&cam, p);
+        assert!(near(albedo, rgb(&scene.materials[0], 0.5), tol), "blue albedo {albedo} at {p}");
+        assert!(near(normal, toward_camera.with_w(64.0), 1e-3), "blue normal {normal} at {p}");
+        assert!(near(geometry, toward_camera.with_w(0.0), 1e-3), "blue geometry {geometry}");
+        assert!((depth.x - 6.0).abs() < 1e-4, "blue depth {} at {p}", depth.x);
+    }
+
+    // Nothing drawn in the corners: depth 0, everything cleared.
+    let corner = t.texels.iter().map(|texels| texels[0]).collect::<Vec<_>>();
+    assert!(corner.iter().all(|&v| v == Vec4::ZERO), "background {corner:?}");
+    let zbuffer = gpu_harness::read_texture(
+        &ctx.device,
+        &ctx.queue,
+        &gbuffer.textures[4],
+        0,
+        wgpu::TextureAspect::DepthOnly,
+        4,
+    )
+    .expect("the z-buffer reads back");
+    let z: Vec<f32> = gpu_harness::cast_vec(&zbuffer);
+    assert_eq!(z[0], 1.0, "the background keeps the cleared depth");
+    assert!(z.iter().any(|&z| z > 0.0 && z < 1.0));
+
+    // A second frame makes nothing: no bind group, no buffer, no texture or view.
+    let (objects, groups) =
+        (gpu_harness::live_objects(&ctx.device), gpu_harness::bind_groups_created());
+    frame();
+    assert_eq!(gpu_harness::live_objects(&ctx.device), objects);
+    assert_eq!(gpu_harness::bind_groups_created(), groups);
+    assert_eq!(Targets::read(&ctx, &gbuffer).texels, t.texels, "the same frame again");
 }

@@ -1,7 +1,10 @@
 //! The scene on the GPU (feature `gpu`), for a rasterizer's passes: one world-space vertex
 //! buffer, one index buffer with the triangles sorted by material and a draw per material, the
 //! material table as a storage buffer (`Material` of [`MATERIAL_INC_WGSL`]), the textures
-//! (linear RGBA16F with their mip chains) with one bind group per material, made once.
+//! (linear RGBA16F with their mip chains) with one bind group per material, made once; and the
+//! G-buffer pass ([`gbuffer`]: the thesis's G-buffer, Table 3.1, as [`GBuffer`] targets, and
+//! [`GBufferPass`], a resident pass that rasterizes the scene into them from a
+//! [`GBufferCamera`]).
 //!
 //! ```no_run
 //! let ctx = gpu_harness::GpuContext::new().expect("an adapter");
@@ -18,8 +21,12 @@
 //! assert_eq!(gpu.triangle_count, city.stats().triangles);
 //! ```
 
+pub mod gbuffer;
 mod textures;
 
+pub use gbuffer::{
+    GBUFFER_FORMATS, GBUFFER_WGSL, GBuffer, GBufferCamera, GBufferPass, ZBUFFER_FORMAT,
+};
 pub use textures::GpuTextures;
 
 use crate::{Material, Scene};

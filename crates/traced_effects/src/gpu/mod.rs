@@ -149,6 +149,13 @@ pub struct GBufferViews<'a> {
     pub depth: &'a wgpu::TextureView,
 }
 
+/// The views of a G-buffer drawn by the scene crate's pass ([`scene::gpu::GBufferPass`]).
+impl<'a> From<&'a scene::gpu::GBuffer> for GBufferViews<'a> {
+    fn from(g: &'a scene::gpu::GBuffer) -> Self {
+        Self { normal: &g.normal, geometry: &g.geometry, depth: &g.depth }
+    }
+}
+
 /// What a call moved between the CPU and the GPU, for a renderer's accounting.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Transferred {

@@ -1,0 +1,126 @@
+// include: scene/material.inc.wgsl
+// G-buffer (thesis Table 3.1, formats for wgpu; `scene::gpu::gbuffer`): albedo + glossiness
+// (RGBA8), shading normal + specular power (RGBA16F), geometry normal + material id (RGBA16F),
+// linear view-axis depth (R32F, 0 where nothing is drawn).
+// Alpha-tested materials (their own pipeline, `fs_alpha_tested`) discard below their cutoff;
+// the others (`fs_opaque`) cannot discard, which keeps the early depth test for them.
+// Surfaces are two-sided, both normals face the viewer.
+
+// The camera the G-buffer is drawn from (`scene::gpu::GBufferCamera`, one size in Rust and
+// WGSL: the scene crate's test checks it).
+struct GBufferCamera {
+    // world to clip space (jittered or not)
+    view_proj: mat4x4<f32>,
+    // xyz camera position, w unused
+    position: vec4<f32>,
+    // xyz unit forward (the depth target's axis), w unused
+    forward: vec4<f32>,
+    // x: the share of a pixel's normal variance the specular lobes are widened by (1; less
+    // for the jittered samples of a view averaged over several frames), yzw unused
+    footprint: vec4<f32>,
+}
+
+@group(0) @binding(0) var<uniform> camera: GBufferCamera;
+@group(0) @binding(1) var<storage, read> materials: array<Material>;
+@group(1) @binding(0) var albedo_tex: texture_2d<f32>;
+@group(1) @binding(1) var alpha_tex: texture_2d<f32>;
+@group(1) @binding(2) var material_sampler: sampler;
+
+struct VOut {
+    // Invariant: the depth pre-pass and the shading draws (depth test Equal) must compute the
+    // same depth for the same vertex, in every pipeline that uses this stage.
+    @builtin(position) @invariant clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) @interpolate(flat) material: u32,
+    // The material's albedo, (specular power, alpha cutoff) and (albedo texture, alpha mask)
+    // flags, read once a vertex rather than once a pixel (a storage read is a gather lane by
+    // lane on llvmpipe).
+    @location(4) @interpolate(flat) albedo: vec4<f32>,
+    @location(5) @interpolate(flat) power_cutoff: vec2<f32>,
+    @location(6) @interpolate(flat) flags: vec2<u32>,
+}
+
+@vertex
+fn vs_main(
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) material: u32,
+) -> VOut {
+    var o: VOut;
+    o.clip = camera.view_proj * vec4<f32>(position, 1.0);
+    o.world = position;
+    o.normal = normal;
+    o.uv = uv;
+    o.material = material;
+    let m = materials[material];
+    o.albedo = m.albedo;
+    o.power_cutoff = vec2<f32>(m.params.x, m.emission.w);
+    o.flags = m.flags.xy;
+    return o;
+}
+
+struct GBuffer {
+    @location(0) albedo: vec4<f32>,
+    @location(1) normal: vec4<f32>,
+    @location(2) geometry: vec4<f32>,
+    @location(3) depth: f32,
+}
+
+@fragment
+fn fs_opaque(v: VOut) -> GBuffer {
+    return gbuffer(v);
+}
+
+@fragment
+fn fs_alpha_tested(v: VOut) -> GBuffer {
+    let o = gbuffer(v);
+    let alpha = textureSample(alpha_tex, material_sampler, v.uv).a;
+    if v.flags.y != 0u && alpha < v.power_cutoff.y {
+        discard;
+    }
+    return o;
+}
+
+fn gbuffer(v: VOut) -> GBuffer {
+    let tex = textureSample(albedo_tex, material_sampler, v.uv);
+    let dx = dpdx(v.world);
+    let dy = dpdy(v.world);
+    // Specular anti-aliasing: across the pixel the normal turns by its screen derivatives, so
+    // the pixel sees the highlights of a range of normals. A Phong lobe of power p has an
+    // angular variance of about 1/p; the reflected direction's variance over a box pixel is
+    // 4 s2 (s2 = the normal's, |dn/dx|^2 / 12 + |dn/dy|^2 / 12). The widened lobe of power
+    // p / (1 + 4 p s2), still normalised, spreads a highlight's energy over the pixels it
+    // covers instead of point-sampling it. A still view's jittered samples average to the
+    // pixel's area themselves, so they widen by a small share of the variance (the camera's
+    // footprint scale, camera.footprint.x; the engine's jittered_footprint in
+    // crates/engine/src/state.rs has the figures): widening every sample by the whole pixel's
+    // variance would count it twice.
+    let shading = normalize(v.normal);
+    let dnx = dpdx(shading);
+    let dny = dpdy(shading);
+    let s2 = camera.footprint.x * (dot(dnx, dnx) + dot(dny, dny)) / 12.0;
+    let to_eye = camera.position.xyz - v.world;
+    var g = cross(dy, dx);
+    if dot(g, g) < 1e-20 {
+        g = v.normal;
+    }
+    g = normalize(g);
+    if dot(g, to_eye) < 0.0 {
+        g = -g;
+    }
+    var n = normalize(v.normal);
+    if dot(n, g) < 0.0 {
+        n = -n;
+    }
+    let albedo = v.albedo.rgb * select(vec3<f32>(1.0), tex.rgb, v.flags.x != 0u);
+    let power = v.power_cutoff.x;
+    var o: GBuffer;
+    o.albedo = vec4<f32>(albedo, v.albedo.w);
+    o.normal = vec4<f32>(n, power / (1.0 + 4.0 * power * s2));
+    o.geometry = vec4<f32>(g, f32(v.material));
+    o.depth = dot(v.world - camera.position.xyz, camera.forward.xyz);
+    return o;
+}
