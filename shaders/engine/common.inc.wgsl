@@ -16,8 +16,9 @@ struct Frame {
     // width, height, point-light count, flags (bit 0 sky, bit 1 Blinn-Phong, bit 2 one-bounce (LPV or RSM gather), bit 3 sky volume, bit 4 shadows, bits 5-6 unused, bit 7 sun glints, bit 8 the LPV's glossy lookup, bit 9 the mirrored sun)
     size: vec4<u32>,
     // SSAO radius (m), SSAO samples, sky-map size, the share of a pixel's normal variance the
-    // specular lobes are widened by (1; less for the jittered samples of a still view:
-    // jittered_footprint in crates/engine/src/state.rs)
+    // G-buffer's specular lobes are widened by (1; less for the jittered samples of a still
+    // view: jittered_footprint in crates/engine/src/state.rs; the G-buffer pass, scene::gpu,
+    // reads it from its own camera uniform)
     params: vec4<f32>,
     // cascades, shadow-map resolution, point-light cube-map size (0: cubes not rendered),
     // component shown (COMPONENT_*)

@@ -13,7 +13,7 @@
 //! | `sky volume` | sky-light irradiance volume, a few layers per frame | 5.3 | `sky_volume` |
 //! | `shadow maps` | stabilised cascades fitted to the camera, PCSS parameters (resident pass; only the cascades whose texel-snapped view moved) | 4.2 | `shadows` |
 //! | `point shadows` | one depth cube array for the shadow-casting point lights (resident pass) | 4.2 | `shadows` |
-//! | `g-buffer` | albedo + gloss, normal + power, geometry normal + material, depth | Table 3.1 | - |
+//! | `g-buffer` | albedo + gloss, normal + power (specular anti-aliasing), geometry normal + material, depth; a depth pre-pass shades each pixel once (resident pass) | Table 3.1 | `scene` |
 //! | `rsm + lpv` | sun RSM (and with `Settings::sky_bounce` the G-buffer's sky-bounce VPLs, `passes::sky_bounce`) → injection (from their textures on a GPU) + propagation in 3 cascades (indirect `lpv`) | 5.2, 5.3.7 | `shadows`, `lpv`, `sky_volume` |
 //! | `rsm (gather)` | the same sun RSM, kept on the GPU for the lighting pass's interleaved gather (indirect `rsm`) | seed 2 | `shadows`, `rsm_gi` |
 //! | `ray casting buffer` | quarter-res origins + reflection/refraction rays; the texels with rays listed and read back (resident pass) | 6.2.1 | `traced_effects` |

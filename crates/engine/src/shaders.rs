@@ -1,8 +1,8 @@
 //! The engine's WGSL (`shaders/engine/`), with the snippets each shader includes. The ray
-//! casting buffer's and the combination's are `traced_effects::gpu`'s.
+//! casting buffer's and the combination's are `traced_effects::gpu`'s, the G-buffer's
+//! `scene::gpu`'s.
 
 const COMMON_INC: &str = include_str!("../../../shaders/engine/common.inc.wgsl");
-const GBUFFER: &str = include_str!("../../../shaders/engine/gbuffer.wgsl");
 const LIGHTING: &str = include_str!("../../../shaders/engine/lighting.wgsl");
 const QUERIES: &str = include_str!("../../../shaders/engine/queries.wgsl");
 const SKY_VPLS: &str = include_str!("../../../shaders/engine/sky_vpls.wgsl");
@@ -13,17 +13,11 @@ const MIRRORED_SUN: &str = include_str!("../../../shaders/engine/mirrored_sun.in
 /// Every complete shader as `(name, source)`, for the pipelines and the naga test.
 pub fn all() -> Vec<(&'static str, String)> {
     vec![
-        ("gbuffer", gbuffer()),
         ("lighting", lighting()),
         ("queries", queries()),
         ("sky_vpls", sky_vpls()),
         ("traced", traced()),
     ]
-}
-
-pub fn gbuffer() -> String {
-    let common = common();
-    format!("{common}\n{GBUFFER}")
 }
 
 pub fn lighting() -> String {

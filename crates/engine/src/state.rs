@@ -4,7 +4,6 @@
 use crate::gpu::{GBufferTargets, Gpu, SceneBuffers, storage_buffer, uniform_buffer};
 use crate::passes::{
     display::{accumulate_pass, tone_map_pass},
-    gbuffer::GBufferPass,
     lighting::LightingPass,
     lpv::LpvState,
     point_shadows::{PointShadowPass, gpu_lights},
@@ -30,7 +29,8 @@ pub struct State {
     /// The scene's bounds (where the one-bounce techniques place their maps and caches).
     pub bounds: scene::Aabb,
     pub targets: GBufferTargets,
-    pub gbuffer: GBufferPass,
+    /// The G-buffer pass (`scene::gpu`).
+    pub gbuffer: scene::gpu::GBufferPass,
     pub shadow: ShadowPass,
     pub lighting: LightingPass,
     /// The ray casting buffer and the combination of the traced rays (`traced_effects`).
@@ -119,6 +119,13 @@ impl FrameCtx {
         }
     }
 
+    /// The camera the G-buffer is drawn from: the jittered view-projection, the camera's
+    /// position and forward axis (as the frame uniform has them) and [`FrameCtx::footprint`].
+    pub fn gbuffer_camera(&self) -> scene::gpu::GBufferCamera {
+        let (camera, vp) = (&self.camera, self.view_projection());
+        scene::gpu::GBufferCamera::new(vp, camera.position, camera.forward, self.footprint())
+    }
+
     /// The camera's view-projection moved by this frame's sub-pixel jitter: what the
     /// G-buffer is rasterised with and every pass that projects into the view uses.
     pub fn view_projection(&self) -> glam::Mat4 {
@@ -152,7 +159,8 @@ impl State {
             &[0u8; std::mem::size_of::<crate::frame::FrameUniform>()],
         );
         let state = Self {
-            gbuffer: GBufferPass::new(device, &buffers)?,
+            gbuffer: scene::gpu::GBufferPass::new(device, &buffers)
+                .map_err(|e| crate::gpu::shader_error("gbuffer", e))?,
             shadow: ShadowPass::new(device, &settings)?,
             lighting: LightingPass::new(device, &targets)?,
             raycast: RayCasting::new(device, targets.size())?,

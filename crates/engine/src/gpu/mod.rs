@@ -9,6 +9,6 @@ mod util;
 
 pub use context::{Gpu, check_capabilities};
 pub use scene::SceneBuffers;
-pub use targets::{GBUFFER_FORMATS, GBufferTargets, HDR_FORMAT};
+pub use targets::{GBufferTargets, HDR_FORMAT};
 pub use transfers::{TransferCounts, Transfers};
 pub(crate) use util::*;

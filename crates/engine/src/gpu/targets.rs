@@ -1,27 +1,14 @@
-//! The render targets of one view size: the G-buffer (thesis Table 3.1, formats for wgpu),
-//! the depth buffer, the lit HDR image, the combined HDR image and the still view's
-//! accumulated HDR image.
+//! The render targets of one view size: the G-buffer and its z-buffer (the `scene` crate's
+//! [`scene::gpu::GBuffer`], thesis Table 3.1), and the engine's own: the world positions, the
+//! lit HDR image, the combined HDR image and the still view's accumulated HDR image.
 
 /// HDR accumulation format (thesis 3.7).
 pub const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
-/// G-buffer formats in attachment order: albedo + glossiness, shading normal + specular
-/// power, geometry normal + material id, linear depth (0: nothing drawn).
-pub const GBUFFER_FORMATS: [wgpu::TextureFormat; 4] = [
-    wgpu::TextureFormat::Rgba8Unorm,
-    wgpu::TextureFormat::Rgba16Float,
-    wgpu::TextureFormat::Rgba16Float,
-    wgpu::TextureFormat::R32Float,
-];
-
+/// The engine's targets; derefs to the G-buffer ([`scene::gpu::GBuffer`]: its size, albedo,
+/// normal, geometry, depth and z-buffer).
 pub struct GBufferTargets {
-    pub width: u32,
-    pub height: u32,
-    pub albedo: wgpu::TextureView,
-    pub normal: wgpu::TextureView,
-    pub geometry: wgpu::TextureView,
-    pub depth: wgpu::TextureView,
-    pub zbuffer: wgpu::TextureView,
+    pub gbuffer: scene::gpu::GBuffer,
     /// World position per pixel (w 1; 0 for the background), written by the lookup queries
     /// pass for the techniques that read positions as a texture (the RSM gather).
     pub positions: wgpu::TextureView,
@@ -48,19 +35,11 @@ fn target(
 
 impl GBufferTargets {
     pub fn new(device: &wgpu::Device, width: u32, height: u32) -> Self {
-        let view =
-            |label, f| target(device, label, width, height, f).create_view(&Default::default());
         let combined_texture = target(device, "combined", width, height, HDR_FORMAT);
         let lit_texture = target(device, "lit", width, height, HDR_FORMAT);
         let accumulated_texture = target(device, "accumulated", width, height, HDR_FORMAT);
         Self {
-            width,
-            height,
-            albedo: view("albedo", GBUFFER_FORMATS[0]),
-            normal: view("normal", GBUFFER_FORMATS[1]),
-            geometry: view("geometry", GBUFFER_FORMATS[2]),
-            depth: view("linear depth", GBUFFER_FORMATS[3]),
-            zbuffer: view("z-buffer", wgpu::TextureFormat::Depth32Float),
+            gbuffer: scene::gpu::GBuffer::new(device, width, height),
             positions: super::util::texture_2d(
                 device,
                 "world positions",
@@ -89,7 +68,13 @@ impl GBufferTargets {
 
     /// The G-buffer as `traced_effects`' passes read it.
     pub fn traced_gbuffer(&self) -> traced_effects::gpu::GBufferViews<'_> {
-        let (normal, geometry, depth) = (&self.normal, &self.geometry, &self.depth);
-        traced_effects::gpu::GBufferViews { normal, geometry, depth }
+        (&self.gbuffer).into()
+    }
+}
+
+impl std::ops::Deref for GBufferTargets {
+    type Target = scene::gpu::GBuffer;
+    fn deref(&self) -> &scene::gpu::GBuffer {
+        &self.gbuffer
     }
 }

@@ -1,29 +1,14 @@
 //! The engine's side of the shared wgpu pieces (`gpu_harness`): pipelines created under a
-//! validation scope whose error names the shader, and the engine's own depth state and lookup
-//! dispatch.
+//! validation scope whose error names the shader.
 
 use crate::EngineError;
 pub(crate) use gpu_harness::{
     bind_entries, dispatch, empty_storage, init_buffer, storage_buffer, texture_2d, uniform_buffer,
 };
 
-fn shader_error(label: &str, e: gpu_harness::GpuError) -> EngineError {
+/// A shader's or pipeline's error as [`EngineError::Gpu`], naming the shader.
+pub(crate) fn shader_error(label: &str, e: gpu_harness::GpuError) -> EngineError {
     EngineError::Gpu(format!("shader {label}: {e}"))
-}
-
-/// A shader module; WGSL errors surface as [`EngineError::Gpu`] with the shader's name.
-pub(crate) fn shader(
-    device: &wgpu::Device,
-    label: &str,
-    source: &str,
-) -> Result<wgpu::ShaderModule, EngineError> {
-    gpu_harness::validated(device, || {
-        device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(label),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        })
-    })
-    .map_err(|e| shader_error(label, e))
 }
 
 /// A compute pipeline with an automatic layout.
@@ -62,15 +47,4 @@ pub(crate) fn depth_tested_fullscreen_pipeline(
         )
     })
     .map_err(|e| shader_error(label, e))
-}
-
-/// Depth test and write into a `Depth32Float` target (the G-buffer and shadow passes).
-pub(crate) fn depth_write_state() -> wgpu::DepthStencilState {
-    wgpu::DepthStencilState {
-        format: wgpu::TextureFormat::Depth32Float,
-        depth_write_enabled: Some(true),
-        depth_compare: Some(wgpu::CompareFunction::Less),
-        stencil: Default::default(),
-        bias: Default::default(),
-    }
 }

@@ -97,8 +97,10 @@ pub(super) fn gbuffer_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
             let c = io.ctx();
             let s = &c.state;
             write_frame_uniform(c, Bound::default());
+            let camera = c.gbuffer_camera();
             let mut enc = s.gpu.device.create_command_encoder(&Default::default());
-            s.gbuffer.record(&s.gpu.device, &mut enc, &s.targets, &s.frame, &s.scene);
+            let bytes = s.gbuffer.record(&s.gpu.queue, &mut enc, &s.targets, &s.scene, &camera);
+            s.gpu.transfers.uploaded(bytes);
             s.gpu.queue.submit([enc.finish()]);
             s.gpu.take_error()?;
             io.put(r.gbuf, GBufferView(c.camera))?;

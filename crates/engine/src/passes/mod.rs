@@ -2,7 +2,6 @@
 //! records or runs it.
 
 pub mod display;
-pub mod gbuffer;
 pub mod lighting;
 pub mod lpv;
 pub mod point_shadows;
