@@ -19,6 +19,13 @@
 //! scene calls for, and why ([`SceneNeeds`]), and what changed since the last frame
 //! ([`SceneChange`]).
 //!
+//! With the cargo feature `gpu`, `scene::gpu` uploads a scene for a wgpu rasterizer (vertex
+//! and index buffers, a draw per material, the material table and its WGSL struct, textures
+//! with a bind group per material) and draws it into that G-buffer (`scene::gpu::GBufferPass`,
+//! a resident pass: albedo + glossiness, shading normal + specular power widened for specular
+//! anti-aliasing, geometry normal + material id, linear depth; a depth pre-pass shades each
+//! pixel once).
+//!
 //! World frame: +Y up, +X east, -Z north, metres.
 //!
 //! References: the master's thesis describing the Serenity engine (3.5 linear-space lighting,
