@@ -49,7 +49,7 @@ pub use bind_cache::{BindGroupCache, CACHED_GROUPS, bind_groups_created, create_
 pub use context::{Binding, GpuContext, device_descriptor};
 pub use error::GpuError;
 pub use pipelines::{
-    clear_pass, color_pass, compute_pipeline, depth_attachment, depth_test,
+    clear_pass, color_attachment, color_pass, compute_pipeline, depth_attachment, depth_test,
     depth_tested_fullscreen_pipeline, depth_tested_pass, dispatch, draw_fullscreen,
     fullscreen_pipeline, geometry_pipeline, pipeline_layout,
 };

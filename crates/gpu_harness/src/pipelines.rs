@@ -157,6 +157,19 @@ pub fn color_pass<'e>(
     depth_tested_pass(encoder, label, target, load, None)
 }
 
+/// `view` as a color attachment that starts from `load` and stores what is drawn.
+pub fn color_attachment(
+    view: &wgpu::TextureView,
+    load: wgpu::LoadOp<wgpu::Color>,
+) -> Option<wgpu::RenderPassColorAttachment<'_>> {
+    Some(wgpu::RenderPassColorAttachment {
+        view,
+        depth_slice: None,
+        resolve_target: None,
+        ops: wgpu::Operations { load, store: wgpu::StoreOp::Store },
+    })
+}
+
 /// `view` as a depth attachment (no stencil) that starts from `load` and stores what is
 /// drawn.
 pub fn depth_attachment(
@@ -181,12 +194,7 @@ pub fn depth_tested_pass<'e>(
 ) -> wgpu::RenderPass<'e> {
     encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: Some(label),
-        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-            view: target,
-            depth_slice: None,
-            resolve_target: None,
-            ops: wgpu::Operations { load, store: wgpu::StoreOp::Store },
-        })],
+        color_attachments: &[color_attachment(target, load)],
         depth_stencil_attachment: depth.map(|view| depth_attachment(view, wgpu::LoadOp::Load)),
         timestamp_writes: None,
         occlusion_query_set: None,

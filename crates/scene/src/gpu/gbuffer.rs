@@ -242,15 +242,7 @@ impl GBufferPass {
         );
         self.record_depth(encoder, gbuffer, &frame_group, scene);
         let clear = |view| {
-            Some(wgpu::RenderPassColorAttachment {
-                view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                    store: wgpu::StoreOp::Store,
-                },
-            })
+            gpu_harness::color_attachment(view, wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT))
         };
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("gbuffer"),

@@ -149,17 +149,8 @@ impl ReflectiveShadowMap {
             };
             self.slots.write(queue, i as u32, bytemuck::bytes_of(&draw))?;
         }
-        let attachments = self.views.each_ref().map(|v| {
-            Some(wgpu::RenderPassColorAttachment {
-                view: v,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                    store: wgpu::StoreOp::Store,
-                },
-            })
-        });
+        let clear = wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT);
+        let attachments = self.views.each_ref().map(|v| gpu_harness::color_attachment(v, clear));
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("shadows rsm"),
             color_attachments: &attachments,
