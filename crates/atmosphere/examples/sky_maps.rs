@@ -13,8 +13,7 @@ fn tone_map(l: Vec3, exposure: f32) -> [u8; 3] {
     let srgb = |x: f32| {
         let x = x * exposure;
         let x = x / (1.0 + x);
-        let s = if x <= 0.0031308 { 12.92 * x } else { 1.055 * x.powf(1.0 / 2.4) - 0.055 };
-        (s.clamp(0.0, 1.0) * 255.0 + 0.5) as u8
+        (post::linear_to_srgb(x.clamp(0.0, 1.0)) * 255.0 + 0.5) as u8
     };
     [srgb(l.x), srgb(l.y), srgb(l.z)]
 }

@@ -6,9 +6,7 @@ mod common;
 use engine::{Channel, View};
 
 fn srgb8(c: f32) -> f32 {
-    let c = c.clamp(0.0, 1.0);
-    let v = if c <= 0.0031308 { c * 12.92 } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 };
-    v * 255.0
+    scene::linear_to_srgb(c.clamp(0.0, 1.0)) * 255.0
 }
 
 #[test]

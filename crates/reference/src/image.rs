@@ -58,9 +58,7 @@ impl Image {
     /// Tone-mapped 8-bit sRGB bytes (see [`Image::write_png`]).
     pub fn to_srgb8(&self, exposure: f32) -> Vec<u8> {
         let enc = |c: f32| {
-            let c = c.clamp(0.0, 1.0);
-            let s = if c <= 0.003_130_8 { 12.92 * c } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 };
-            (s * 255.0 + 0.5) as u8
+            (scene::linear_to_srgb(c.clamp(0.0, 1.0)) * 255.0 + 0.5) as u8
         };
         self.pixels
             .iter()
