@@ -6,6 +6,7 @@ use crate::lattice::{Lattice, corners, plan};
 use crate::light::{GatherParams, gather, moments};
 use crate::pool::{NONE, Pool};
 use crate::settings::Settings;
+use crate::summary::CacheSummary;
 use crate::vpls::PreparedVpls;
 use glam::{IVec3, Vec3};
 use kdtree_tracer::RayQuery;
@@ -197,6 +198,20 @@ impl RadianceCache {
             per_cascade,
             kept,
         }
+    }
+
+    /// One frame of the CPU path: [`RadianceCache::allocate`] for the `points` seen from
+    /// `camera`, then [`RadianceCache::update`] from `vpls` through `tracer`; what both did.
+    pub fn refresh(
+        &mut self,
+        camera: Vec3,
+        points: &[SurfacePoint],
+        vpls: &[Vpl],
+        tracer: &impl RayQuery,
+    ) -> CacheSummary {
+        let alloc = self.allocate(camera, points);
+        let lit = self.update(vpls, tracer);
+        CacheSummary::new(&alloc, &lit, self)
     }
 
     /// Lights at most `budget` allocated caches, never-lit and then the longest-unlit first

@@ -124,6 +124,16 @@ impl Settings {
         self.base_spacing * self.cascade_scale.powi(i as i32)
     }
 
+    /// How far around the camera the caches reach: half the diagonal of the coarsest
+    /// cascade's cube (`resolution` spacings a side), the sphere whose light the caches need
+    /// (the region an RSM's VPLs should cover). The cube is snapped to whole spacings, so a
+    /// corner cache may lie up to half a spacing's diagonal beyond it. In `f64`, as a
+    /// renderer places such regions.
+    pub fn reach(&self) -> f64 {
+        let coarsest = self.spacing(self.cascades.saturating_sub(1)) * self.resolution as f32;
+        0.5 * 3f64.sqrt() * coarsest as f64
+    }
+
     /// SH coefficients per channel (`bands²`).
     pub fn coefficients(&self) -> usize {
         (self.bands * self.bands) as usize

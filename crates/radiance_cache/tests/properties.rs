@@ -318,3 +318,53 @@ fn budget_oldest_first() {
         Err(radiance_cache::CacheError::InvalidSetting { name: "bands", .. })
     ));
 }
+
+/// `Settings::reach` bounds the coarsest cascade around the camera, tightly: every cache of
+/// it lies within the reach plus the half a cell's diagonal the snapping can add, and a
+/// corner lies beyond the reach less a cell's diagonal. Seeded camera positions.
+#[test]
+fn reach_bounds_the_coarsest_cascade() {
+    let mut seed = 0x2545_f491_4f6c_dd1du64;
+    let mut next = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 40) as f32 / (1u64 << 24) as f32 * 200.0 - 100.0
+    };
+    for s in [Settings::LOW, small(), Settings::DEFAULT] {
+        let mut c = RadianceCache::new(s).unwrap();
+        let reach = s.reach() as f32;
+        for _ in 0..16 {
+            let eye = Vec3::new(next(), next(), next());
+            c.allocate(eye, &[]);
+            let l = c.lattices().last().unwrap();
+            let cell = l.spacing() * 3f32.sqrt();
+            let far = (0..8u32)
+                .map(|k| glam::UVec3::new(k & 1, (k >> 1) & 1, k >> 2) * (l.res - 1))
+                .map(|corner| l.position(corner).distance(eye))
+                .fold(0.0f32, f32::max);
+            assert!(far <= reach + 0.5 * cell + 1e-3, "{far} beyond {reach} at {eye}");
+            assert!(far > reach - cell, "{far} well inside {reach}: the bound is loose");
+        }
+    }
+}
+
+/// `refresh` is `allocate` then `update`, summarised: the same caches, the same light.
+#[test]
+fn refresh_is_allocate_then_update() {
+    let pts: Vec<SurfacePoint> = (0..50)
+        .map(|i| SurfacePoint::new(Vec3::new(i as f32 * 0.07 - 1.7, 0.2, 0.3), Vec3::Y))
+        .collect();
+    let vpls = [Vpl { position: Vec3::new(0.0, 2.0, 0.0), normal: -Vec3::Y, flux: Vec3::ONE }];
+    let s = Settings { budget: 12, ..small() };
+    let (mut a, mut b) = (RadianceCache::new(s).unwrap(), RadianceCache::new(s).unwrap());
+    let tree = wall_x0();
+    for eye in [Vec3::ZERO, Vec3::new(0.4, 0.1, -0.3)] {
+        let summary = a.refresh(eye, &pts, &vpls, &tree);
+        let alloc = b.allocate(eye, &pts);
+        let lit = b.update(&vpls, &tree);
+        assert_eq!(a, b, "the same cache");
+        assert_eq!(summary, radiance_cache::CacheSummary::new(&alloc, &lit, &b));
+        assert_eq!(summary.lit, 12);
+    }
+}
