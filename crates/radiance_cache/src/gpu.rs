@@ -4,7 +4,9 @@
 //! the cache's GPU copy (tables, light, moments), rewritten in place from the CPU cache after
 //! each update; [`GpuLookup::bind`] binds it once to the caller's query and output buffers,
 //! and [`GpuLookup::record_bound`] records one dispatch into the caller's encoder, creating
-//! nothing. [`read_back`] is separate, for parity tests.
+//! nothing. [`ResidentCache`] is the three kept together, as a renderer uses them: made once,
+//! written after each update (re-bound when the copy grew), recorded every frame.
+//! [`read_back`] is separate, for parity tests.
 
 use crate::cache::RadianceCache;
 use crate::error::CacheError;
@@ -294,6 +296,117 @@ impl GpuLookup {
         .map_err(CacheError::Gpu)??;
         let v: Vec<[f32; 4]> = read_back(device, queue, &output)?;
         Ok(v.iter().take(points.len()).map(|c| glam::Vec3::new(c[0], c[1], c[2])).collect())
+    }
+}
+
+/// The caller's buffers a [`ResidentCache`] is bound to (kept to re-bind after a growth).
+struct Target {
+    queries: wgpu::Buffer,
+    output: wgpu::Buffer,
+    count: u32,
+}
+
+/// The lookup as one resident pass: the cache's GPU copy ([`GpuCacheData`]), the compiled
+/// kernel ([`GpuLookup`]) and its binding to the caller's query and output buffers
+/// ([`LookupBinding`]), kept consistent.
+///
+/// Made once from a device ([`ResidentCache::new`]); after each CPU update
+/// [`ResidentCache::write`] rewrites the copy in place (and re-binds when a buffer had to
+/// grow); [`ResidentCache::bind`] names the caller's buffers (a new binding only when they
+/// changed); [`ResidentCache::record`] records the bound lookup into the caller's encoder
+/// every frame, creating nothing. While the allocated caches stay within the buffers'
+/// capacity, a steady frame (write, bind, record) creates no buffer and no bind group.
+pub struct ResidentCache {
+    data: GpuCacheData,
+    lookup: GpuLookup,
+    binding: Option<LookupBinding>,
+    target: Option<Target>,
+}
+
+impl ResidentCache {
+    /// Buffers with room for `cache` as it is now (empty until the first
+    /// [`ResidentCache::write`]) and the compiled lookup; a shader or pipeline error is
+    /// [`CacheError::Gpu`].
+    pub fn new(device: &wgpu::Device, cache: &RadianceCache) -> Result<Self, CacheError> {
+        let data = GpuCacheData::with_capacity_of(device, cache);
+        let lookup = GpuLookup::new(device)?;
+        Ok(Self { data, lookup, binding: None, target: None })
+    }
+
+    /// Rewrites the GPU copy from `cache` (after each [`RadianceCache::allocate`] or
+    /// [`RadianceCache::update`]); what was uploaded ([`Written::bytes`]: a renderer counts
+    /// them). When a buffer had to grow, the lookup is bound again to the same caller's
+    /// buffers, so [`ResidentCache::record`] keeps working.
+    pub fn write(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        cache: &RadianceCache,
+    ) -> Written {
+        let written = self.data.write(device, queue, cache);
+        if written.grown {
+            self.rebind(device);
+        }
+        written
+    }
+
+    /// Binds the lookup of the first `count` [`GpuQuery`]s of `queries` into `output` (one
+    /// `vec4<f32>` per query, RGB irradiance). Idempotent: the same buffers and count as the
+    /// current binding make nothing; other ones replace it. True when a binding was made.
+    pub fn bind(
+        &mut self,
+        device: &wgpu::Device,
+        queries: &wgpu::Buffer,
+        output: &wgpu::Buffer,
+        count: u32,
+    ) -> bool {
+        let same = self
+            .target
+            .as_ref()
+            .is_some_and(|t| t.queries == *queries && t.output == *output && t.count == count);
+        let current = self.binding.as_ref().is_some_and(|b| b.is_current(&self.data));
+        if same && current {
+            return false;
+        }
+        self.target = Some(Target { queries: queries.clone(), output: output.clone(), count });
+        self.rebind(device);
+        true
+    }
+
+    fn rebind(&mut self, device: &wgpu::Device) {
+        if let Some(t) = &self.target {
+            self.binding =
+                Some(self.lookup.bind(device, &self.data, &t.queries, &t.output, t.count));
+        }
+    }
+
+    /// Whether the lookup is bound ([`ResidentCache::bind`] was called), so that
+    /// [`ResidentCache::record`] records it.
+    pub fn ready(&self) -> bool {
+        self.binding.is_some()
+    }
+
+    /// Records the bound lookup with the lattices of the last [`ResidentCache::write`]
+    /// (written to the binding's uniform through `queue`); `Ok(false)` and nothing recorded
+    /// when nothing is bound yet.
+    pub fn record(
+        &self,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+    ) -> Result<bool, CacheError> {
+        let Some(binding) = &self.binding else { return Ok(false) };
+        self.lookup.record_bound(queue, encoder, &self.data, binding)?;
+        Ok(true)
+    }
+
+    /// The GPU copy (its buffers' generation, for tests and tools).
+    pub fn data(&self) -> &GpuCacheData {
+        &self.data
+    }
+
+    /// The compiled lookup (for one-off lookups: [`GpuLookup::lookup_blocking`]).
+    pub fn lookup(&self) -> &GpuLookup {
+        &self.lookup
     }
 }
 

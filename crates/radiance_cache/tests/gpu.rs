@@ -142,3 +142,90 @@ fn resident_lookup_follows_the_cache_without_allocating() {
     }
     assert!(grew >= 1, "the test should exercise a regrowth");
 }
+
+/// `ResidentCache`, as a renderer uses it: bound to the caller's buffers before the first
+/// write, it records nothing until bound; each frame (update on the CPU, write, bind,
+/// record) matches the CPU lookup; a steady frame whose caches fit the buffers creates no
+/// buffer and no bind group; a frame that outgrows them re-binds by itself (record keeps
+/// working, no stale binding); binding other buffers moves the output there.
+#[test]
+fn resident_cache_keeps_its_binding_and_matches_the_cpu() {
+    use radiance_cache::gpu::ResidentCache;
+    let Some(ctx) = gpu_harness::gpu_test_context() else { return };
+    let (tree, vpls, pts) = wall_scene();
+    let s = Settings { resolution: 12, cascades: 2, budget: 150, ..Settings::DEFAULT };
+    let mut cache = RadianceCache::new(s).unwrap();
+    let mut resident = ResidentCache::new(&ctx.device, &cache).expect("pipeline");
+    assert!(!resident.ready());
+    let mut enc = ctx.device.create_command_encoder(&Default::default());
+    assert!(!resident.record(&ctx.queue, &mut enc).expect("nothing bound"), "nothing recorded");
+
+    let queries: Vec<GpuQuery> = pts.iter().map(|p| GpuQuery::new(p.position, p.normal)).collect();
+    let queries = ctx.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("queries"),
+        contents: bytemuck::cast_slice(&queries),
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    let output = || {
+        ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("output"),
+            size: pts.len() as u64 * 16,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        })
+    };
+    let (out_a, out_b) = (output(), output());
+    let n = pts.len() as u32;
+    let live = || {
+        let l = gpu_harness::live_objects(&ctx.device);
+        [l.buffers, l.bind_groups]
+    };
+    let check = |out: &wgpu::Buffer, cache: &RadianceCache, what: &str| {
+        let v: Vec<[f32; 4]> = read_back(&ctx.device, &ctx.queue, out).expect("read back");
+        let e_gpu: Vec<Vec3> = v.iter().map(|c| Vec3::new(c[0], c[1], c[2])).collect();
+        let (d, scale) = parity(&e_gpu, cache, &pts);
+        eprintln!("{} resident cache, {what}: max |gpu - cpu| / max cpu = {d:e}", ctx.describe());
+        assert!(scale > 0.0 && d < 1e-4, "{what}: lookup parity {d}");
+    };
+    // One frame: the caller's order (update, write, bind, record, submit).
+    let frame = |resident: &mut ResidentCache,
+                 cache: &mut RadianceCache,
+                 eye: Vec3,
+                 points: &[SurfacePoint],
+                 out: &wgpu::Buffer| {
+        let summary = cache.refresh(eye, points, &vpls, &tree);
+        assert_eq!(summary.allocated, cache.allocated());
+        let written = resident.write(&ctx.device, &ctx.queue, cache);
+        assert!(written.bytes > 0 && written.bytes <= cache.memory_bytes() as u64, "{written:?}");
+        let bound = resident.bind(&ctx.device, &queries, out, n);
+        let mut enc = ctx.device.create_command_encoder(&Default::default());
+        assert!(resident.record(&ctx.queue, &mut enc).expect("record"), "recorded");
+        ctx.queue.submit([enc.finish()]);
+        (written, bound)
+    };
+
+    // Few points first, so that a later frame outgrows the buffers.
+    let eye = Vec3::new(0.5, 1.0, 0.0);
+    let (_, bound) = frame(&mut resident, &mut cache, eye, &pts[..8], &out_a);
+    assert!(bound && resident.ready(), "the first bind makes the binding");
+    check(&out_a, &cache, "first frame");
+
+    // The same view again: relit in place, nothing created.
+    let before = live();
+    let (written, bound) = frame(&mut resident, &mut cache, eye, &pts[..8], &out_a);
+    assert!(!written.grown && !bound, "unchanged capacity and buffers: {written:?}, {bound}");
+    assert_eq!(live(), before, "a steady frame creates no buffer and no bind group");
+    check(&out_a, &cache, "steady frame");
+
+    // Every point from farther on: the buffers grow and the lookup is re-bound by `write`.
+    let generation = resident.data().generation();
+    let (written, bound) = frame(&mut resident, &mut cache, Vec3::new(2.9, 1.0, 0.8), &pts, &out_a);
+    assert!(written.grown && resident.data().generation() > generation, "{written:?}");
+    assert!(!bound, "write re-bound the same buffers already");
+    check(&out_a, &cache, "after growing");
+
+    // Another output buffer: bound anew, and the lookup lands there.
+    let (_, bound) = frame(&mut resident, &mut cache, Vec3::new(2.9, 1.0, 0.8), &pts, &out_b);
+    assert!(bound, "other buffers make a new binding");
+    check(&out_b, &cache, "other output");
+}
