@@ -16,7 +16,9 @@
 //!    `base_spacing * cascade_scale^i`, centred on the camera and snapped to whole spacings.
 //! 2. **Allocation** ([`RadianceCache::allocate`]): each G-buffer [`SurfacePoint`] marks
 //!    the caches its lookup interpolates (the corners with a positive trilinear weight of
-//!    each cascade with a positive blend weight); only those are allocated and lit.
+//!    each cascade with a positive blend weight); only those are allocated and lit. A
+//!    renderer without a G-buffer on the CPU finds the points with [`view_points`]: a grid
+//!    of [`Pinhole`] camera rays traced through the same [`kdtree_tracer::RayQuery`].
 //! 3. **Lighting** ([`RadianceCache::update`]): at most `budget` caches per frame, the
 //!    oldest first; each gathers `vpl_samples` VPLs importance-sampled by their unshadowed
 //!    contribution, each tested with a shadow ray through any [`kdtree_tracer::RayQuery`],
@@ -26,6 +28,10 @@
 //! 4. **Lookup** ([`RadianceCache::irradiance`]): trilinear x backface x Chebyshev over the
 //!    8 caches around the point moved `normal_bias` spacings along its normal, normalised;
 //!    cascades blended finest first over `blend_cells` at each border.
+//!
+//! [`RadianceCache::refresh`] is steps 2-3 for one frame and returns its [`CacheSummary`];
+//! [`Settings::reach`] is the sphere around the camera whose light the caches need (what a
+//! renderer's RSM should cover).
 //!
 //! **Measured** (`benches/gi_sweep.rs`, quick sweep: reference at 128 spp, 8 converging
 //! frames; 2 shared cores): the closed room of `two_rooms` reads 0.0013 of the lit room's
@@ -39,11 +45,14 @@
 //! caches x octahedral depth-moment fetch) costs about 260 ns per pixel on 2 threads.
 //!
 //! The CPU path is rayon-parallel and deterministic whatever the thread count. Feature
-//! `gpu` adds the lookup as a resident WGSL compute pass (`shaders/radiance_cache/lookup.wgsl`):
-//! [`gpu::GpuCacheData`] is the cache's GPU copy, rewritten in place after each update;
-//! [`gpu::GpuLookup::bind`] binds it once to the caller's query and output buffers and
-//! [`gpu::GpuLookup::record_bound`] records into the caller's encoder, creating nothing. The
-//! `engine` crate uses it for `--indirect cache`.
+//! `gpu` adds the lookup as a resident WGSL compute pass (`shaders/radiance_cache/lookup.wgsl`),
+//! [`gpu::ResidentCache`]: made once from a device, [`gpu::ResidentCache::write`] rewrites
+//! the cache's GPU copy in place after each update (and returns the bytes uploaded),
+//! [`gpu::ResidentCache::bind`] binds it to the caller's query and output buffers, and
+//! [`gpu::ResidentCache::record`] records into the caller's encoder every frame, creating
+//! nothing. Its parts ([`gpu::GpuCacheData`], [`gpu::GpuLookup`], [`gpu::LookupBinding`])
+//! stay public for tools and tests. The `engine` crate uses it for `--indirect cache`;
+//! `examples/view.rs` runs the CPU path from a camera.
 //!
 //! ```
 //! use glam::Vec3;
@@ -83,6 +92,7 @@ pub mod octa;
 mod pool;
 mod settings;
 mod summary;
+mod view;
 mod vpls;
 pub mod wgsl;
 
@@ -96,4 +106,5 @@ pub use light::{GatherParams, GatherResult, IRRADIANCE_FLOATS, MAX_COEFFS, gathe
 pub use lookup::{CRUSH_BELOW, VARIANCE_FLOOR, visibility_weight};
 pub use settings::Settings;
 pub use summary::CacheSummary;
+pub use view::{Pinhole, view_points};
 pub use vpls::PreparedVpls;
