@@ -1,22 +1,21 @@
 //! Indirect sunlight from dynamic radiance volumes (`radiance_cache`: Reich 2015 with the
-//! probe visibility of Majercik et al. 2019), `Indirect::Cache`:
+//! probe visibility of Majercik et al. 2019), `Indirect::Cache`. The technique is the
+//! crate's; this file wires it to the frame:
 //!
-//! 1. the sun's RSM over the coarsest cascade around the camera (the whole scene when it is
-//!    smaller) is rendered when that sphere or the sun moved, reduced on the GPU to at most
-//!    64² VPLs (`shadows::gpu::GpuVplReduction`, the twin of `Rsm::extract_vpls`) and only
-//!    those are read back (192 KiB);
-//! 2. a grid of at most `Settings::cache_points` camera rays traced on the CPU through the
-//!    scene's kd-tree finds the surface points the view sees, and they allocate the caches
-//!    their lookups interpolate;
-//! 3. the crate lights the `budget` oldest caches on the CPU, with shadow rays through the
-//!    same kd-tree (alpha-tested holes let light through), and the allocated caches are
-//!    uploaded again into their resident GPU copy (counted in the frame's uploads);
-//! 4. the lighting pass records the crate's lookup kernel over the per-pixel queries it
-//!    already writes for the LPV, into the buffer the lighting shader reads the bounce from.
+//! 1. the sun's RSM over the sphere the caches reach around the camera
+//!    (`radiance_cache::Settings::reach`; the whole scene when smaller) is rendered when that
+//!    sphere or the sun moved, and reduced on the GPU to at most 64² VPLs
+//!    (`shadows::gpu::GpuVplReduction`), the only thing read back (192 KiB);
+//! 2. `radiance_cache::view_points` traces `Settings::cache_points` camera rays through the
+//!    scene's kd-tree, and `RadianceCache::refresh` allocates the caches those points need
+//!    and lights the `budget` oldest with shadow rays through the same tree (alpha-tested
+//!    holes let light through);
+//! 3. its `gpu::ResidentCache` uploads them (counted in the frame's uploads), bound to the
+//!    lighting pass's per-pixel queries and bounce buffer;
+//! 4. the lighting pass records that lookup every frame.
 //!
 //! The frame graph runs steps 1-3 for `Settings::cache_frames` frames after the camera or the
-//! sun moved (an amortised pass), so a still view converges and then costs nothing. Traced
-//! hits look the CPU copy up directly.
+//! sun moved (an amortised pass); traced hits look the CPU copy up directly.
 
 use super::sun_rsm::{Region, SunRsm};
 use crate::gpu::{Gpu, SceneBuffers};
@@ -24,9 +23,8 @@ use crate::state::SunLight;
 use crate::trace::TraceScene;
 use crate::{EngineError, Settings};
 use glam::{DVec3, Vec3};
-use radiance_cache::gpu::{GpuCacheData, GpuLookup, LookupBinding};
-use radiance_cache::{CacheSummary, RadianceCache, SurfacePoint};
-use rayon::prelude::*;
+use radiance_cache::gpu::ResidentCache;
+use radiance_cache::{CacheSummary, Pinhole, RadianceCache, view_points};
 use shadows::Vpl;
 
 /// VPLs per side of the RSM at most (the `radiance_cache` sweep's 256² map in 4² blocks).
@@ -41,9 +39,7 @@ pub struct CacheState {
     /// The RSM's VPLs, and the sphere and sun direction they were read back for.
     vpls: Vec<Vpl>,
     vpls_for: Option<((DVec3, f64), Vec3)>,
-    data: GpuCacheData,
-    lookup: GpuLookup,
-    binding: Option<LookupBinding>,
+    resident: ResidentCache,
     points: (u32, u32),
     /// What the last update did.
     last: Option<CacheSummary>,
@@ -53,43 +49,6 @@ fn tech(e: radiance_cache::CacheError) -> EngineError {
     EngineError::technique("radiance_cache", e)
 }
 
-/// Unit directions of a `cols x rows` grid of camera rays through pixel centres.
-fn camera_rays(
-    camera: &scene::Camera,
-    cols: u32,
-    rows: u32,
-) -> impl IndexedParallelIterator<Item = Vec3> + '_ {
-    let forward = camera.forward.normalize_or_zero();
-    let right = forward.cross(camera.up).normalize_or_zero();
-    let up = right.cross(forward);
-    let tan_y = (camera.fov_y_deg.to_radians() * 0.5).tan();
-    let tan_x = tan_y * camera.aspect;
-    (0..cols * rows).into_par_iter().map(move |i| {
-        let x = ((i % cols) as f32 + 0.5) / cols as f32 * 2.0 - 1.0;
-        let y = 1.0 - ((i / cols) as f32 + 0.5) / rows as f32 * 2.0;
-        (forward + right * (x * tan_x) + up * (y * tan_y)).normalize_or_zero()
-    })
-}
-
-/// The surface points the camera sees through a `cols x rows` grid of rays (normals facing
-/// the camera); rays that leave the scene give none.
-pub fn view_points(
-    trace: &TraceScene,
-    camera: &scene::Camera,
-    (cols, rows): (u32, u32),
-) -> Vec<SurfacePoint> {
-    use kdtree_tracer::{Ray, RayQuery};
-    let eye = camera.position;
-    camera_rays(camera, cols, rows)
-        .filter_map(|d| {
-            let h = RayQuery::intersect(trace, &Ray::new(eye, d), camera.far)?;
-            let n = trace.geometric_normal(&h);
-            let n = if n.dot(d) > 0.0 { -n } else { n };
-            Some(SurfacePoint::new(eye + d * h.t, n))
-        })
-        .collect()
-}
-
 impl CacheState {
     pub fn new(
         gpu: &Gpu,
@@ -97,21 +56,16 @@ impl CacheState {
         buffers: &SceneBuffers,
         settings: &Settings,
     ) -> Result<Self, EngineError> {
-        let s = settings.radiance_cache;
-        let cache = RadianceCache::new(s).map_err(tech)?;
-        let coarsest = s.spacing(s.cascades - 1) * s.resolution as f32;
-        let region = Region::of(bounds, 0.5 * 3f64.sqrt() * coarsest as f64);
+        let cache = RadianceCache::new(settings.radiance_cache).map_err(tech)?;
         let rsm = SunRsm::new(gpu, buffers, settings)?;
         let reduction = rsm.vpl_reduction(gpu, (rsm.resolution() / VPLS_PER_SIDE).max(1))?;
         Ok(Self {
             rsm,
             reduction,
-            region,
+            region: Region::of(bounds, cache.settings().reach()),
             vpls: Vec::new(),
             vpls_for: None,
-            data: GpuCacheData::with_capacity_of(&gpu.device, &cache),
-            lookup: GpuLookup::new(&gpu.device).map_err(tech)?,
-            binding: None,
+            resident: ResidentCache::new(&gpu.device, &cache).map_err(tech)?,
             points: (
                 settings.cache_points.0.min(settings.width),
                 settings.cache_points.1.min(settings.height),
@@ -158,15 +112,20 @@ impl CacheState {
         (queries, output, count): (&wgpu::Buffer, &wgpu::Buffer, u32),
     ) -> Result<(), EngineError> {
         self.refresh_vpls(gpu, scene, camera.position, sun)?;
-        let points = view_points(trace, camera, self.points);
-        let alloc = self.cache.allocate(camera.position, &points);
-        let lit = self.cache.update(&self.vpls, trace);
-        let written = self.data.write(&gpu.device, &gpu.queue, &self.cache);
+        let pinhole = Pinhole {
+            eye: camera.position,
+            forward: camera.forward,
+            up: camera.up,
+            fov_y: camera.fov_y_deg.to_radians(),
+            aspect: camera.aspect,
+            far: camera.far,
+        };
+        let points = view_points(trace, |h| trace.geometric_normal(h), &pinhole, self.points);
+        let summary = self.cache.refresh(camera.position, &points, &self.vpls, trace);
+        let written = self.resident.write(&gpu.device, &gpu.queue, &self.cache);
         gpu.transfers.uploaded(written.bytes);
-        if written.grown || self.binding.is_none() {
-            self.binding = Some(self.lookup.bind(&gpu.device, &self.data, queries, output, count));
-        }
-        self.last = Some(CacheSummary::new(&alloc, &lit, &self.cache));
+        self.resident.bind(&gpu.device, queries, output, count);
+        self.last = Some(summary);
         Ok(())
     }
 
@@ -177,7 +136,7 @@ impl CacheState {
 
     /// The cache has been updated (and its lookup bound) at least once.
     pub fn ready(&self) -> bool {
-        self.binding.is_some()
+        self.resident.ready()
     }
 
     /// Step 4: records the lookup into the buffers given to [`CacheState::update`]; false
@@ -187,8 +146,6 @@ impl CacheState {
         gpu: &Gpu,
         enc: &mut wgpu::CommandEncoder,
     ) -> Result<bool, EngineError> {
-        let Some(binding) = &self.binding else { return Ok(false) };
-        self.lookup.record_bound(&gpu.queue, enc, &self.data, binding).map_err(tech)?;
-        Ok(true)
+        self.resident.record(&gpu.queue, enc).map_err(tech)
     }
 }
