@@ -3,10 +3,9 @@
 //! process. Same arithmetic as [`crate::propagate_step`] up to float summation order.
 
 use crate::grid::{COEFFS, Grid, Volume};
-use crate::inject::{InjectStats, lobe_scalar};
+use crate::inject::{InjectStats, OUT, lobe_scalar, prepare};
 use crate::propagate::{AXIS_COEF, C00, C0A, CA0, CAA, CPP, PERP};
 use crate::vpl::Vpl;
-use glam::Vec3;
 use rayon::prelude::*;
 
 fn four(s: &mut [f32], n: usize) -> [&mut [f32]; 4] {
@@ -98,26 +97,7 @@ pub fn propagate_step_per_direction(src: &Volume, dst: &mut Volume, accum: &mut 
 #[doc(hidden)]
 pub fn inject_scattered(grid: &Grid, vpls: &[Vpl], volume: &mut Volume) -> InjectStats {
     debug_assert_eq!(volume.res, grid.res);
-    const SKIP: u32 = u32::MAX;
-    const OUT: u32 = u32::MAX - 1;
-    let prepared: Vec<(u32, Vec3, Vec3)> = vpls
-        .par_iter()
-        .map(|v| match v.sanitized() {
-            None => (SKIP, Vec3::ZERO, Vec3::ZERO),
-            Some((n, flux)) => match grid.cell_of(v.position + 0.5 * grid.cell_size * n) {
-                Some(c) => (grid.linear(c) as u32, n, flux),
-                None => (OUT, n, flux),
-            },
-        })
-        .collect();
-    let mut stats = InjectStats::default();
-    for (c, _, _) in &prepared {
-        match *c {
-            SKIP => stats.skipped += 1,
-            OUT => stats.outside += 1,
-            _ => stats.injected += 1,
-        }
-    }
+    let (prepared, stats) = prepare(grid, vpls);
     let n = grid.res as usize;
     let n2 = n * n;
     let slices_per_chunk = n.div_ceil(rayon::current_num_threads().max(1));

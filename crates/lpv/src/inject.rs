@@ -45,16 +45,14 @@ pub(crate) fn lobe_scalar(n: Vec3) -> Sh2 {
     Sh2::new([Y00, b * n.y, b * n.z, b * n.x])
 }
 
-/// Injects `vpls` into `volume` (adding to what is there) on `grid`.
-///
-/// Each VPL is moved half a cell along its (normalised) normal and lands in the one cell
-/// that contains that point (half-open cells, so a point on a shared face lands in exactly
-/// one); outside the cascade it is dropped. Deterministic: every cell sums its VPLs in input
-/// order, whatever the thread count.
-pub fn inject(grid: &Grid, vpls: &[Vpl], volume: &mut Volume) -> InjectStats {
-    debug_assert_eq!(volume.res, grid.res);
-    const SKIP: u32 = u32::MAX;
-    const OUT: u32 = u32::MAX - 1;
+/// A prepared VPL's cell for one that is skipped (no flux or no normal).
+const SKIP: u32 = u32::MAX;
+/// A prepared VPL's cell for one outside the grid.
+pub(crate) const OUT: u32 = u32::MAX - 1;
+
+/// Each VPL's linear cell (or [`OUT`] and above when it lands nowhere), unit normal and flux,
+/// in input order, and what will become of them: the first step of both injections.
+pub(crate) fn prepare(grid: &Grid, vpls: &[Vpl]) -> (Vec<(u32, Vec3, Vec3)>, InjectStats) {
     let prepared: Vec<(u32, Vec3, Vec3)> = vpls
         .par_iter()
         .map(|v| match v.sanitized() {
@@ -73,6 +71,18 @@ pub fn inject(grid: &Grid, vpls: &[Vpl], volume: &mut Volume) -> InjectStats {
             _ => stats.injected += 1,
         }
     }
+    (prepared, stats)
+}
+
+/// Injects `vpls` into `volume` (adding to what is there) on `grid`.
+///
+/// Each VPL is moved half a cell along its (normalised) normal and lands in the one cell
+/// that contains that point (half-open cells, so a point on a shared face lands in exactly
+/// one); outside the cascade it is dropped. Deterministic: every cell sums its VPLs in input
+/// order, whatever the thread count.
+pub fn inject(grid: &Grid, vpls: &[Vpl], volume: &mut Volume) -> InjectStats {
+    debug_assert_eq!(volume.res, grid.res);
+    let (prepared, stats) = prepare(grid, vpls);
     let n = grid.res as usize;
     let n2 = n * n;
     let slices_per_chunk = n.div_ceil(rayon::current_num_threads().max(1));
