@@ -4,7 +4,9 @@
 // a texel with a zero normal is empty): one invocation per texel, each texel one VPL. With
 // the geometry volume on, the texel is also a surfel of area texel_area / max(|n.l|, 0.2)
 // whose blocking SH is added to the corner nearest to it (CPU twin: src/geometry.rs
-// `GeometryVolume::build`), in fixed point (`limits.y` per unit).
+// `GeometryVolume::build`), in fixed point (`limits.y` per unit). The texels as VPLs and
+// surfels on the CPU: src/rsm.rs (`rsm_vpls`, `rsm_surfels`; the 0.2 is its
+// `SURFEL_MIN_COS`, a test checks that this file still says so).
 
 struct RsmInject {
     // xyz unit direction towards the light, w the texel's area across the light (world²)

@@ -9,11 +9,15 @@
 //!
 //! 1. **Cascades** ([`Lpv`], [`Grid`]): `cascades` nested volumes of `resolution³` cells
 //!    whose cell size grows by `cascade_scale`; [`Lpv::follow`] centres them on the camera,
-//!    snapped to whole cells so the lighting does not swim.
+//!    snapped to whole cells so the lighting does not swim; [`Lpv::bounce_region`] is the
+//!    sphere around the coarsest one that a light's reflective shadow map must cover.
 //! 2. **Injection** ([`inject`]): each [`Vpl`] (position, normal, flux; from a reflective
 //!    shadow map, or a sky-lit G-buffer with [`pixel_footprint_area`] compensation) is moved
 //!    half a cell along its normal and added to the cell containing it as a 2-band SH lobe
 //!    (4 coefficients per colour). VPLs outside a cascade are dropped, never wrapped.
+//!    [`rsm_vpls`] and [`rsm_surfels`] (module `rsm`) turn a reflective shadow map's texels
+//!    into VPLs and geometry-volume surfels (area [`surfel_area`]): the CPU twin of the GPU
+//!    path's injection straight from RSM textures.
 //! 3. **Propagation** ([`propagate`], [`propagate_step`]): every cell gathers from its 6 face
 //!    neighbours the flux they send through its 5 visible faces (solid angles
 //!    [`FACE_SOLID_ANGLE_MAIN`] and [`FACE_SOLID_ANGLE_SIDE`]) and re-emits it towards those
@@ -90,6 +94,7 @@ mod inject;
 mod lookup;
 mod lpv;
 mod propagate;
+mod rsm;
 pub mod scenes;
 mod settings;
 mod vpl;
@@ -104,5 +109,6 @@ pub use inject::{InjectStats, inject, vpl_lobe};
 pub use lookup::{cascade_weight, irradiance_from, radiance_from, sample_trilinear};
 pub use lpv::{Cascade, Lpv, UpdateStats};
 pub use propagate::{FACE_SOLID_ANGLE_MAIN, FACE_SOLID_ANGLE_SIDE, propagate, propagate_step};
+pub use rsm::{SURFEL_MIN_COS, rsm_surfels, rsm_vpls, surfel_area};
 pub use settings::LpvSettings;
 pub use vpl::{Surfel, Vpl, pixel_footprint_area, sky_bounce_vpl};

@@ -81,6 +81,16 @@ impl Lpv {
         }
     }
 
+    /// The sphere around the coarsest cascade (centre, radius: half its diagonal), in `f64`:
+    /// the region a light's reflective shadow map must cover for this LPV after it
+    /// [`Lpv::follow`]ed the camera (texels outside it would be dropped by every cascade).
+    pub fn bounce_region(&self) -> (glam::DVec3, f64) {
+        let grid = self.cascades.last().expect("validated settings have a cascade").grid;
+        let half = grid.extent() as f64 * 0.5;
+        let center = grid.origin.as_dvec3() + glam::DVec3::splat(half);
+        (center, half * 3f64.sqrt())
+    }
+
     /// Rebuilds the light of every cascade: injects `vpls`, builds the geometry volume from
     /// `surfels` (when the setting is on), and propagates `iterations` steps.
     pub fn update(&mut self, vpls: &[Vpl], surfels: &[Surfel]) -> UpdateStats {

@@ -5,10 +5,19 @@
 use glam::Vec3;
 use lpv::gpu::*;
 use lpv::scenes::BoxScene;
-use lpv::{Lpv, LpvSettings};
+
+mod common;
+use common::{rel_diff, rsm_textures, updated_on_cpu};
 
 fn validate(src: &str) {
     gpu_harness::validate_wgsl(src).unwrap_or_else(|e| panic!("{e}"));
+}
+
+/// The shader's texels-as-surfels use the CPU twin's clamp (`lpv::surfel_area`).
+#[test]
+fn the_rsm_injection_clamps_surfels_at_the_cpu_twins_cosine() {
+    let clamp = format!("max(abs(dot(n, rsm.to_light.xyz)), {:?})", lpv::SURFEL_MIN_COS);
+    assert!(INJECT_RSM_WGSL.contains(&clamp), "inject_rsm.wgsl lost {clamp}");
 }
 
 #[test]
@@ -16,28 +25,6 @@ fn shaders_validate_with_naga() {
     for s in [INJECT_WGSL, INJECT_RSM_WGSL, FACES_WGSL, RESOLVE_WGSL, PROPAGATE_WGSL, LOOKUP_WGSL] {
         validate(s);
     }
-}
-
-fn rel_diff(a: &[f32], b: &[f32]) -> f32 {
-    let scale = b.iter().fold(0.0f32, |m, v| m.max(v.abs())).max(1e-30);
-    a.iter().zip(b).fold(0.0f32, |m, (x, y)| m.max((x - y).abs())) / scale
-}
-
-/// The parity tests' LPV (16³, 2 cascades around the two rooms, 6 iterations): its settings,
-/// the CPU path's update of `vpls` and `surfels`, and a copy not updated yet for the GPU.
-fn updated_on_cpu(gv: bool, vpls: &[lpv::Vpl], surfels: &[lpv::Surfel]) -> (LpvSettings, Lpv, Lpv) {
-    let s = LpvSettings {
-        resolution: 16,
-        cascades: 2,
-        iterations: 6,
-        geometry_volume: gv,
-        ..LpvSettings::DEFAULT
-    };
-    let mut cpu = Lpv::new(s).unwrap();
-    cpu.follow(Vec3::new(4.0, 1.5, 2.0));
-    let on_gpu = cpu.clone();
-    cpu.update(vpls, surfels);
-    (s, cpu, on_gpu)
 }
 
 #[test]
@@ -83,38 +70,6 @@ fn gpu_update_and_lookup_match_the_cpu() {
     }
 }
 
-/// An RSM as three `Rgba32Float` textures whose texels are `texels` (position, normal, flux),
-/// row-major over `width` columns, the rest empty (zero normal).
-fn rsm_textures(
-    ctx: &gpu_harness::GpuContext,
-    texels: &[(Vec3, Vec3, Vec3)],
-    width: u32,
-) -> ([wgpu::TextureView; 3], u32) {
-    use wgpu::util::DeviceExt;
-    let height = (texels.len() as u32).div_ceil(width);
-    let plane = |f: &dyn Fn(&(Vec3, Vec3, Vec3)) -> Vec3| {
-        let mut data: Vec<[f32; 4]> = texels.iter().map(|t| f(t).extend(0.0).to_array()).collect();
-        data.resize((width * height) as usize, [0.0; 4]);
-        let t = ctx.device.create_texture_with_data(
-            &ctx.queue,
-            &wgpu::TextureDescriptor {
-                label: Some("test rsm"),
-                size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: wgpu::TextureFormat::Rgba32Float,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING,
-                view_formats: &[],
-            },
-            wgpu::util::TextureDataOrder::LayerMajor,
-            bytemuck::cast_slice(&data),
-        );
-        t.create_view(&Default::default())
-    };
-    ([plane(&|t| t.2), plane(&|t| t.1), plane(&|t| t.0)], height)
-}
-
 /// The resident LPV injects straight from RSM textures (each texel a VPL and, with the
 /// geometry volume, a surfel of area texel_area / max(|n.l|, 0.2)) and propagates on the
 /// GPU: the same volumes as the CPU path fed the same VPLs and surfels, whether the texels
@@ -127,6 +82,13 @@ fn resident_update_from_rsm_textures_matches_the_cpu() {
     let scene = BoxScene::two_rooms(24);
     let mut texels: Vec<(Vec3, Vec3, Vec3)> =
         scene.vpls.iter().map(|v| (v.position, v.normal, v.flux)).collect();
+    // Texels edge-on to the light (n.l = 0: their surfels' area is the clamped
+    // texel_area / SURFEL_MIN_COS, five times a texel's), a patch inside the rooms.
+    let edge_on = Vec3::new(0.9, -0.3, 0.0).normalize();
+    for i in 0..64 {
+        let p = Vec3::new(0.5 + (i % 16) as f32 * 0.25, 0.3 + (i / 16) as f32 * 0.25, 1.5);
+        texels.push((p, edge_on, Vec3::splat(0.02)));
+    }
     // Empty texels (zero normal), a dark texel, one outside every cascade.
     texels.push((Vec3::ONE, Vec3::ZERO, Vec3::ONE));
     texels.push((Vec3::ONE, Vec3::Y, Vec3::ZERO));
@@ -140,14 +102,10 @@ fn resident_update_from_rsm_textures_matches_the_cpu() {
         max_texel_flux: max_flux(t),
     };
     let vpls: Vec<lpv::Vpl> = texels.iter().map(|&(p, n, f)| lpv::Vpl::new(p, n, f)).collect();
+    // The CPU twin of the shader's texels-as-surfels (the normals here are unit already).
     let surfels_of = |t: &[(Vec3, Vec3, Vec3)]| -> Vec<lpv::Surfel> {
-        t.iter()
-            .filter(|t| t.1 != Vec3::ZERO)
-            .map(|&(p, n, _)| {
-                let n = n.normalize();
-                lpv::Surfel::new(p, n, 0.05 / n.dot(to_light).abs().max(0.2))
-            })
-            .collect()
+        let (p, n): (Vec<Vec3>, Vec<Vec3>) = t.iter().map(|t| (t.0, t.1)).unzip();
+        lpv::rsm_surfels(&p, &n, 0.05, to_light)
     };
     let split = texels.len() * 2 / 3;
     let (sun, sky) = texels.split_at(split);

@@ -32,7 +32,7 @@ pub struct RsmTextures<'a> {
     pub width: u32,
     pub height: u32,
     /// Whether the texels are also the geometry volume's surfels (area
-    /// `texel_area / max(|n.l|, 0.2)`): true for a light's view of the scene; false for VPLs
+    /// `texel_area / max(|n.l|, 0.2)`, [`crate::surfel_area`]): true for a light's view of the scene; false for VPLs
     /// whose surfaces a light's RSM already holds (a camera's G-buffer used as an RSM), which
     /// would block twice.
     pub surfels: bool,
