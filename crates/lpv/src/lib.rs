@@ -39,8 +39,11 @@
 //! adds them plane by plane, the no-occlusion step computes all 6 directions of a row in one
 //! fused pass, and the lookup reads a cell-major copy of each cascade (12 contiguous floats
 //! per cell). Feature `gpu` adds the same inject, propagate and lookup as WGSL compute
-//! shaders (`shaders/lpv/`), module `gpu`. Module [`scenes`] holds small box scenes and an
-//! exact VPL-gather reference used by the tests.
+//! shaders (`shaders/lpv/`), module `gpu`, with `gpu::LpvPass` for renderers: one resident
+//! type over either path (updated on the GPU from RSM textures, or on the CPU with its
+//! volumes uploaded), the per-pixel lookups, and the read-back when the CPU needs the
+//! volumes, every transfer reported for the renderer's accounting. Module [`scenes`] holds
+//! small box scenes and an exact VPL-gather reference used by the tests.
 //!
 //! **What limits accuracy** (measured by `benches/gi_sweep.rs` against the `reference` path
 //! tracer's one-bounce sunlight on the `scene` crate's `cornell_window`, `two_rooms` and

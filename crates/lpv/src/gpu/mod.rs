@@ -3,7 +3,11 @@
 //! the 3D volume directly, so the thesis's 2D unwrapping (a workaround for rendering into
 //! 3D textures) is not needed.
 //!
-//! Three ways in:
+//! Four ways in:
+//! - [`LpvPass`] (for renderers): the LPV either path updates ([`ResidentLpv`] on the GPU, or
+//!   [`Lpv`] on the CPU with its volumes uploaded), the per-pixel lookups over its volumes,
+//!   and the read-back for CPU lookups when the GPU path updated them; every transfer it makes
+//!   is returned for the caller's accounting.
 //! - [`ResidentLpv`] (for renderers): built once over the caller's RSM textures, records the
 //!   whole update into the caller's encoder, keeps the volumes on the GPU; the geometry volume
 //!   is built on the GPU from the RSM's texels.
@@ -27,9 +31,11 @@ use glam::Vec3;
 use gpu_harness::{dispatch, storage_buffer, uniform_buffer};
 
 mod lookup;
+mod pass;
 mod resident;
 
 pub use lookup::{Lookup, ResidentLookup};
+pub use pass::{LpvPass, LpvPath, Transferred};
 pub use resident::{ResidentLpv, RsmFrame, RsmTextures};
 
 macro_rules! shader {
