@@ -3,7 +3,7 @@
 //! Every engine call that moves data counts itself here; the renderer takes the counts at the
 //! end of each frame for the report. Not counted: the timestamp queries' own read-back (16
 //! bytes per timed pass, instrumentation) and transfers inside a crate's GPU path that the
-//! engine cannot see (`lpv::gpu::GpuLpv` when the LPV runs on the GPU).
+//! engine cannot see (the resident LPV's own uniforms when it runs on the GPU).
 
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -40,6 +40,13 @@ impl Transfers {
 
     /// What a `traced_effects` pass moved.
     pub fn traced(&self, t: traced_effects::gpu::Transferred) {
+        self.uploaded(t.uploaded);
+        self.read_back.fetch_add(t.read_back, Ordering::Relaxed);
+        self.waits.fetch_add(t.reads as u64, Ordering::Relaxed);
+    }
+
+    /// What the LPV (`lpv::gpu::LpvPass`) moved.
+    pub fn lpv(&self, t: lpv::gpu::Transferred) {
         self.uploaded(t.uploaded);
         self.read_back.fetch_add(t.read_back, Ordering::Relaxed);
         self.waits.fetch_add(t.reads as u64, Ordering::Relaxed);

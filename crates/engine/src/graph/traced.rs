@@ -67,7 +67,7 @@ pub(super) fn trace_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
             let sky_fn = |d: Vec3| sky.map_or(Vec3::ZERO, |k| k.radiance(d));
             let ambient = |p: Vec3, n: Vec3| {
                 sky.map_or(Vec3::ZERO, |k| k.irradiance(p, n))
-                    + lpv.map_or(Vec3::ZERO, |l| l.lpv.irradiance(p, n))
+                    + lpv.map_or(Vec3::ZERO, |l| l.lpv().irradiance(p, n))
                     + cache.map_or(Vec3::ZERO, |k| k.cache.irradiance(p, n))
             };
             let lighting = TraceLighting {

@@ -176,8 +176,9 @@ impl LightingPass {
         }
         Ok(match inputs.indirect {
             IndirectSource::Lpv(lpv) => {
-                lpv.record_lookup(gpu, enc, &self.lpv_q, &self.lpv_out, self.pixels);
-                lpv.record_glossy(gpu, enc, &self.glossy_q, &self.glossy_out, self.pixels);
+                let (irradiance, glossy) =
+                    ((&self.lpv_q, &self.lpv_out), (&self.glossy_q, &self.glossy_out));
+                lpv.record_lookups(gpu, enc, irradiance, Some(glossy), self.pixels);
                 &self.lpv_out
             }
             IndirectSource::Rsm(rsm, view_proj) => rsm.record_gather(gpu, enc, view_proj)?,

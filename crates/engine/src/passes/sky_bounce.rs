@@ -125,14 +125,34 @@ impl SkyBounce {
         })
     }
 
-    /// Cells across and down: the RSM's size.
-    pub fn cells(&self) -> (u32, u32) {
-        self.cells
+    /// The targets as the LPV injects them on the GPU, beside the sun's RSM (VPLs only: the
+    /// sun's RSM holds their surfaces' surfels already).
+    pub fn lpv_textures(&self) -> lpv::gpu::RsmTextures<'_> {
+        let [flux, normal, position] = &self.views;
+        let (width, height) = self.cells;
+        lpv::gpu::RsmTextures { flux, normal, position, width, height, surfels: false }
     }
 
-    /// Flux, normal and position targets.
-    pub fn views(&self) -> &[wgpu::TextureView; 3] {
-        &self.views
+    /// Records the VPLs (submitted at once) for an LPV whose RSM covers the sphere `(center,
+    /// radius)`, and returns their frame for its injection; with no sky, a frame that
+    /// injects nothing (its flux bound 0).
+    pub fn record_frame(
+        &self,
+        gpu: &Gpu,
+        camera: &scene::Camera,
+        (center, radius): (glam::DVec3, f64),
+        sky: Option<SkyLight<'_>>,
+    ) -> lpv::gpu::RsmFrame {
+        let mut frame =
+            lpv::gpu::RsmFrame { to_light: Vec3::Y, texel_area: 0.0, max_texel_flux: 0.0 };
+        if let Some(sky) = sky {
+            let reach = (camera.position.as_dvec3() - center).length() + radius;
+            frame.max_texel_flux = self.max_texel_flux(camera, sky.max_irradiance(), reach as f32);
+            let mut enc = gpu.device.create_command_encoder(&Default::default());
+            self.record(gpu, &mut enc, sky, frame.max_texel_flux);
+            gpu.queue.submit([enc.finish()]);
+        }
+        frame
     }
 
     /// A bound on one VPL's flux per channel (the LPV's fixed-point bound; VPLs above it are

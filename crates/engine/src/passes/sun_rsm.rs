@@ -78,6 +78,14 @@ impl SunRsm {
         &self.views
     }
 
+    /// The targets as the LPV injects them on the GPU (a light's view of the scene: its
+    /// texels are also the geometry volume's surfels).
+    pub fn lpv_textures(&self) -> lpv::gpu::RsmTextures<'_> {
+        let [flux, normal, position] = &self.views;
+        let (width, height) = (self.resolution(), self.resolution());
+        lpv::gpu::RsmTextures { flux, normal, position, width, height, surfels: true }
+    }
+
     /// The largest flux one texel can carry under `irradiance` at `texel_area` (the brightest
     /// albedo's).
     pub fn max_texel_flux(&self, irradiance: Vec3, texel_area: f32) -> f32 {

@@ -173,7 +173,7 @@ impl TracedLightingPass {
                 ],
             );
             dispatch(&mut enc, &self.queries, &queries, groups);
-            lpv.record_lookup(gpu, &mut enc, &b.lpv_q, &b.lpv_out, count);
+            lpv.record_lookups(gpu, &mut enc, (&b.lpv_q, &b.lpv_out), None, count);
         }
         let (sky_probes, sky_lookup) = self.sky_volume.buffers(inputs.sky.as_ref(), &b.hits);
         let tv = wgpu::BindingResource::TextureView;
