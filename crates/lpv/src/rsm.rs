@@ -1,9 +1,10 @@
 //! A reflective shadow map's texels as the LPV's inputs on the CPU: every covered texel a
 //! [`Vpl`] and, for the geometry volume, a [`Surfel`]. This is the CPU twin of the GPU path's
 //! injection straight from an RSM's textures (`shaders/lpv/inject_rsm.wgsl`, used by
-//! [`crate::gpu::ResidentLpv`]): a renderer that reads its RSM back and updates the [`Lpv`]
-//! on the CPU feeds [`Lpv::update`] with [`rsm_vpls`] and [`rsm_surfels`] and gets the volumes
-//! the GPU path computes from the same texels (to rounding; `tests/gpu.rs` checks it).
+//! `gpu::ResidentLpv`, feature `gpu`): a renderer that reads its RSM back and updates the
+//! [`Lpv`] on the CPU feeds [`Lpv::update`] with [`rsm_vpls`] and [`rsm_surfels`] and gets
+//! the volumes the GPU path computes from the same texels (to rounding; `tests/gpu.rs`
+//! checks it).
 //!
 //! The texels come as plain slices of the same length (row-major, any size): world
 //! positions, normals (a zero normal is an empty texel; others need not be unit) and, for

@@ -8,9 +8,9 @@
 //!   [`Lpv`] on the CPU with its volumes uploaded), the per-pixel lookups over its volumes,
 //!   and the read-back for CPU lookups when the GPU path updated them; every transfer it makes
 //!   is returned for the caller's accounting.
-//! - [`ResidentLpv`] (for renderers): built once over the caller's RSM textures, records the
-//!   whole update into the caller's encoder, keeps the volumes on the GPU; the geometry volume
-//!   is built on the GPU from the RSM's texels.
+//! - [`ResidentLpv`] (the GPU path alone, which [`LpvPass`] wraps): built once over the
+//!   caller's RSM textures, records the whole update into the caller's encoder, keeps the
+//!   volumes on the GPU; the geometry volume is built on the GPU from the RSM's texels.
 //! - [`ResidentLookup`] (for renderers that update the LPV on the CPU, or look a
 //!   [`ResidentLpv`]'s volumes up into their own buffers): the per-pixel irradiance and
 //!   glossy lookups over any buffer of volumes, bound once to the caller's query and output
