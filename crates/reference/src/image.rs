@@ -57,9 +57,7 @@ impl Image {
 
     /// Tone-mapped 8-bit sRGB bytes (see [`Image::write_png`]).
     pub fn to_srgb8(&self, exposure: f32) -> Vec<u8> {
-        let enc = |c: f32| {
-            (scene::linear_to_srgb(c.clamp(0.0, 1.0)) * 255.0 + 0.5) as u8
-        };
+        let enc = |c: f32| (scene::linear_to_srgb(c.clamp(0.0, 1.0)) * 255.0 + 0.5) as u8;
         self.pixels
             .iter()
             .flat_map(|&p| {

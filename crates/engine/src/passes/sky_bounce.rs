@@ -191,18 +191,11 @@ impl SkyBounce {
 
     /// Reads the targets back as VPLs (the LPV's CPU path): one per cell that sees a surface.
     pub fn read_back(&self, gpu: &Gpu) -> Result<Vec<lpv::Vpl>, EngineError> {
-        let texels = |t: &wgpu::Texture| -> Result<Vec<[f32; 4]>, EngineError> {
-            Ok(bytemuck::pod_collect_to_vec(&gpu.read_texture(t, 16)?))
+        let texels = |t: &wgpu::Texture| -> Result<Vec<Vec3>, EngineError> {
+            let texels: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&gpu.read_texture(t, 16)?);
+            Ok(texels.iter().map(|t| Vec3::new(t[0], t[1], t[2])).collect())
         };
         let [flux, normal, position] = &self.textures;
-        let (flux, normal, position) = (texels(flux)?, texels(normal)?, texels(position)?);
-        let v3 = |t: &[f32; 4]| Vec3::new(t[0], t[1], t[2]);
-        Ok(flux
-            .iter()
-            .zip(&normal)
-            .zip(&position)
-            .filter(|((_, n), _)| v3(n) != Vec3::ZERO)
-            .map(|((f, n), p)| lpv::Vpl::new(v3(p), v3(n), v3(f)))
-            .collect())
+        Ok(lpv::rsm_vpls(&texels(position)?, &texels(normal)?, &texels(flux)?))
     }
 }
