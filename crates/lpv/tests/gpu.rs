@@ -7,7 +7,7 @@ use lpv::gpu::*;
 use lpv::scenes::BoxScene;
 
 mod common;
-use common::{rel_diff, rsm_textures, updated_on_cpu};
+use common::{query_buffer, rel_diff, rsm_textures, updated_on_cpu};
 
 fn validate(src: &str) {
     gpu_harness::validate_wgsl(src).unwrap_or_else(|e| panic!("{e}"));
@@ -181,14 +181,7 @@ fn resident_lookups_match_the_cpu_and_allocate_nothing_per_record() {
     let volumes = gpu_harness::storage_buffer(device, "volumes", bytemuck::cast_slice(&volumes));
     let pts: Vec<(Vec3, Vec3)> =
         scene.receivers(0.5).iter().map(|r| (r.position, r.normal)).collect();
-    let queries: Vec<GpuQuery> = pts
-        .iter()
-        .map(|(p, n)| GpuQuery {
-            position: p.extend(1.0).to_array(),
-            normal: n.extend(0.0).to_array(),
-        })
-        .collect();
-    let q = gpu_harness::storage_buffer(device, "queries", bytemuck::cast_slice(&queries));
+    let q = query_buffer(&ctx, &pts);
     let out = [0, 1].map(|_| gpu_harness::empty_storage(device, "light", pts.len() as u64 * 16));
     let lookup = ResidentLookup::new(device);
     let grids: Vec<lpv::Grid> = cpu.cascades().iter().map(|c| c.grid).collect();

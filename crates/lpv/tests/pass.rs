@@ -5,21 +5,10 @@
 
 mod common;
 
-use common::{rel_diff, rsm_textures, updated_on_cpu};
+use common::{query_buffer, rel_diff, rsm_textures, updated_on_cpu};
 use glam::Vec3;
 use lpv::gpu::*;
 use lpv::scenes::BoxScene;
-/// The queries (position, normal) of `pts` as the lookup kernels read them.
-fn query_buffer(ctx: &gpu_harness::GpuContext, pts: &[(Vec3, Vec3)]) -> wgpu::Buffer {
-    let queries: Vec<GpuQuery> = pts
-        .iter()
-        .map(|(p, n)| GpuQuery {
-            position: p.extend(1.0).to_array(),
-            normal: n.extend(0.0).to_array(),
-        })
-        .collect();
-    gpu_harness::storage_buffer(&ctx.device, "queries", bytemuck::cast_slice(&queries))
-}
 
 /// The rgb of a lookup's output buffer.
 fn read_rgb(ctx: &gpu_harness::GpuContext, b: &wgpu::Buffer) -> Vec<f32> {

@@ -62,3 +62,15 @@ pub fn rsm_textures(
     };
     ([plane(&|t| t.2), plane(&|t| t.1), plane(&|t| t.0)], height)
 }
+
+/// The queries (position, normal) of `pts` as the lookup kernels read them.
+pub fn query_buffer(ctx: &gpu_harness::GpuContext, pts: &[(Vec3, Vec3)]) -> wgpu::Buffer {
+    let queries: Vec<lpv::gpu::GpuQuery> = pts
+        .iter()
+        .map(|(p, n)| lpv::gpu::GpuQuery {
+            position: p.extend(1.0).to_array(),
+            normal: n.extend(0.0).to_array(),
+        })
+        .collect();
+    gpu_harness::storage_buffer(&ctx.device, "queries", bytemuck::cast_slice(&queries))
+}
