@@ -102,9 +102,10 @@ impl LpvState {
         if let (Some(bounce), Some(_)) = (&self.sky_bounce, sky) {
             vpls.extend(bounce.read_back(gpu)?);
         }
-        let surfels = match self.pass.lpv().settings().geometry_volume {
-            true => lpv::rsm_surfels(&rsm.position, &rsm.normal, texel_area, sun.dir),
-            false => Vec::new(),
+        let surfels = if self.pass.lpv().settings().geometry_volume {
+            lpv::rsm_surfels(&rsm.position, &rsm.normal, texel_area, sun.dir)
+        } else {
+            Vec::new()
         };
         let moved = self.pass.update_on_cpu(&gpu.queue, &vpls, &surfels).map_err(lpv_err)?;
         gpu.transfers.lpv(moved);
