@@ -10,7 +10,7 @@
 // (a zero direction elsewhere, which the lookup skips). Each query buffer is written only
 // when the frame's flags say its lookup runs.
 
-struct LpvQuery {
+struct LookupQuery {
     position: vec4<f32>,
     normal: vec4<f32>,
 }
@@ -18,9 +18,9 @@ struct LpvQuery {
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var normal_t: texture_2d<f32>;
 @group(0) @binding(2) var depth_t: texture_2d<f32>;
-@group(0) @binding(3) var<storage, read_write> lpv_q: array<LpvQuery>;
+@group(0) @binding(3) var<storage, read_write> lookup_q: array<LookupQuery>;
 @group(0) @binding(4) var positions: texture_storage_2d<rgba32float, write>;
-@group(0) @binding(5) var<storage, read_write> glossy_q: array<LpvQuery>;
+@group(0) @binding(5) var<storage, read_write> glossy_q: array<LookupQuery>;
 @group(0) @binding(6) var albedo_t: texture_2d<f32>;
 
 @compute @workgroup_size(8, 8)
@@ -45,10 +45,10 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     // Only the queries this frame's lookups read: each is a full-screen buffer.
     let flags = frame.size.w;
     if (flags & FLAG_VOLUME_QUERIES) != 0u {
-        lpv_q[i] = LpvQuery(vec4<f32>(p, 1.0), vec4<f32>(n, 0.0));
+        lookup_q[i] = LookupQuery(vec4<f32>(p, 1.0), vec4<f32>(n, 0.0));
     }
     if (flags & FLAG_LPV_GLOSSY) != 0u {
-        glossy_q[i] = LpvQuery(vec4<f32>(p, 1.0), vec4<f32>(r, 0.0));
+        glossy_q[i] = LookupQuery(vec4<f32>(p, 1.0), vec4<f32>(r, 0.0));
     }
     textureStore(positions, vec2<i32>(id.xy), vec4<f32>(p, albedo));
 }

@@ -149,7 +149,7 @@ pub(crate) const TABLE_7_3_RAY_TRACING: &str = "not tabulated; §7.3: ray-traced
 pub(crate) fn thesis_pass_for(engine_pass: &str) -> Option<&'static ThesisPass> {
     let id = match engine_pass {
         "sky volume" => "sky_volume_layer",
-        "rsm + lpv" => "lpv_update",
+        "lpv" => "lpv_update",
         "ray tracing" => "cpu_ray_tracing",
         "lighting" => return Some(&MAIN_LIGHTING),
         _ => return None,

@@ -13,7 +13,8 @@ pub enum Effect {
     SunShadows,
     /// The sky map and sky-light volume.
     SkyLighting,
-    /// One bounce of sunlight (the LPV or the RSM gather, `Settings::indirect`).
+    /// One bounce of sunlight (the LPV, the RSM gather or the radiance cache,
+    /// `Settings::indirect`).
     IndirectLight,
     /// Traced mirror reflections (and the reflected part of glass).
     Reflections,
@@ -60,7 +61,7 @@ impl Effect {
             Self::SunLighting => vec![&mut needs.sun_lighting],
             Self::SunShadows => vec![&mut needs.sun_shadows],
             Self::SkyLighting => vec![&mut needs.sky_lighting],
-            Self::IndirectLight => vec![&mut needs.indirect_lpv],
+            Self::IndirectLight => vec![&mut needs.indirect],
             Self::Reflections => vec![&mut needs.reflections],
             Self::Refractions => vec![&mut needs.refractions],
             Self::PointLightShadows => vec![&mut needs.point_light_shadows],

@@ -33,8 +33,9 @@ pub struct SceneNeeds {
     pub sun_shadows: Need,
     /// Atmosphere sky map and the sky-light irradiance volume.
     pub sky_lighting: Need,
-    /// Indirect sun light through light propagation volumes.
-    pub indirect_lpv: Need,
+    /// One bounce of indirect sun light, by whichever technique the renderer uses (light
+    /// propagation volumes, the RSM gather or the radiance cache).
+    pub indirect: Need,
     /// Ray-traced mirror reflections.
     pub reflections: Need,
     /// Ray-traced refractions.
@@ -158,16 +159,12 @@ impl SceneNeeds {
                 )),
             }
         };
-        let indirect_lpv = if !sun_lighting.needed {
+        let indirect = if !sun_lighting.needed {
             Need::no(format!("no sun light to bounce ({})", sun_lighting.reason))
         } else if s.diffuse_triangles == 0 {
             Need::no("no diffuse surface to bounce sun light".into())
         } else {
-            Need::yes(format!(
-                "LPV: sun light bounces off {} diffuse triangles, {} cascades",
-                s.diffuse_triangles,
-                scene.lpv.cell_sizes.len()
-            ))
+            Need::yes(format!("sun light bounces off {} diffuse triangles", s.diffuse_triangles))
         };
         let rt = |what: &str, kind: &str, (total, visible): (usize, usize)| {
             let text = format!(
@@ -224,7 +221,7 @@ impl SceneNeeds {
             sun_lighting,
             sun_shadows,
             sky_lighting,
-            indirect_lpv,
+            indirect,
             reflections,
             refractions,
             point_light_shadows,
@@ -237,7 +234,7 @@ impl SceneNeeds {
             ("sun_lighting", &self.sun_lighting),
             ("sun_shadows", &self.sun_shadows),
             ("sky_lighting", &self.sky_lighting),
-            ("indirect_lpv", &self.indirect_lpv),
+            ("indirect", &self.indirect),
             ("reflections", &self.reflections),
             ("refractions", &self.refractions),
             ("point_light_shadows", &self.point_light_shadows),

@@ -36,7 +36,7 @@ fn sun_without_meshes_and_sun_below_the_horizon() {
         "{}",
         n.sun_lighting.reason
     );
-    assert!(!n.sun_shadows.needed && !n.indirect_lpv.needed);
+    assert!(!n.sun_shadows.needed && !n.indirect.needed);
     assert!(n.sky_lighting.needed, "twilight: {}", n.sky_lighting.reason);
     p.sun = Some(Sun::from_direction(Vec3::new(0.0, -0.5, 1.0)));
     let n = p.needs();
@@ -89,10 +89,7 @@ fn plain_scenes_need_no_ray_tracing_and_point_light_shadows_need_a_caster_in_ran
     let mut p = scene::plane_box(0);
     let n = p.needs();
     assert!(
-        n.sun_lighting.needed
-            && n.sun_shadows.needed
-            && n.indirect_lpv.needed
-            && n.sky_lighting.needed
+        n.sun_lighting.needed && n.sun_shadows.needed && n.indirect.needed && n.sky_lighting.needed
     );
     assert!(!n.reflections.needed && !n.refractions.needed && !n.point_light_shadows.needed);
     p.point_lights.push(PointLight::new("far", Vec3::new(500.0, 1.0, 0.0), Vec3::ONE, 3.0));
@@ -111,9 +108,9 @@ fn plain_scenes_need_no_ray_tracing_and_point_light_shadows_need_a_caster_in_ran
 fn furnace_and_indoor_scenes() {
     let f = Generated::Furnace.build(0);
     let n = f.needs();
-    assert!(!n.sun_lighting.needed && !n.sky_lighting.needed && !n.indirect_lpv.needed);
+    assert!(!n.sun_lighting.needed && !n.sky_lighting.needed && !n.indirect.needed);
     let c = Generated::CornellWindow.build(0).needs();
-    assert!(c.sun_lighting.needed && c.indirect_lpv.needed && !c.reflections.needed);
+    assert!(c.sun_lighting.needed && c.indirect.needed && !c.reflections.needed);
 }
 
 #[test]

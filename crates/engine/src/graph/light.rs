@@ -195,7 +195,7 @@ pub(super) fn indirect_source<'a>(
     r: Resources,
 ) -> IndirectSource<'a> {
     let c = io.ctx();
-    if !c.needs.indirect_lpv.needed {
+    if !c.needs.indirect.needed {
         return IndirectSource::None;
     }
     let source = match c.indirect {

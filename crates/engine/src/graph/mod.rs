@@ -76,7 +76,7 @@ pub mod pass {
     pub const SHADOW_MAPS: &str = "shadow maps";
     pub const POINT_SHADOWS: &str = "point shadows";
     pub const GBUFFER: &str = "g-buffer";
-    pub const LPV: &str = "rsm + lpv";
+    pub const LPV: &str = "lpv";
     pub const SUN_RSM: &str = "rsm (gather)";
     pub const RADIANCE_CACHE: &str = "rsm + radiance cache";
     pub const RAY_CASTING: &str = "ray casting buffer";
@@ -121,7 +121,7 @@ fn write_frame_uniform(c: &FrameCtx, bound: Bound) {
     if sky_needed(c) {
         flags |= FLAG_SKY | FLAG_SKY_VOLUME;
     }
-    if c.needs.indirect_lpv.needed && c.indirect != Indirect::None {
+    if c.needs.indirect.needed && c.indirect != Indirect::None {
         flags |= FLAG_INDIRECT;
         if matches!(c.indirect, Indirect::Lpv | Indirect::Cache) {
             flags |= FLAG_VOLUME_QUERIES;
@@ -133,7 +133,7 @@ fn write_frame_uniform(c: &FrameCtx, bound: Bound) {
     if set.sun_glints {
         flags |= FLAG_SUN_GLINTS;
     }
-    if set.lpv_glossy > 0 && c.needs.indirect_lpv.needed && c.indirect == Indirect::Lpv {
+    if set.lpv_glossy > 0 && c.needs.indirect.needed && c.indirect == Indirect::Lpv {
         flags |= FLAG_LPV_GLOSSY;
     }
     if set.mirrored_sun {
@@ -240,7 +240,7 @@ fn sky_needed(c: &FrameCtx) -> bool {
 
 const BOUNCE_NEEDED: &str = "the sun lights diffuse surfaces (one indirect bounce)";
 fn bounce_needed(c: &FrameCtx) -> bool {
-    c.needs.indirect_lpv.needed && c.sun.is_some()
+    c.needs.indirect.needed && c.sun.is_some()
 }
 
 const RAYS_NEEDED: &str = "a mirror or glass surface is in view";

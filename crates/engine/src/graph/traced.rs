@@ -61,7 +61,7 @@ pub(super) fn trace_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
             let b = io.read(r.batch)?;
             let sky = sky_light(io, r).filter(|_| c.needs.sky_lighting.needed);
             // The RSM gather is per pixel of the view: traced hits get no bounce from it.
-            let bounce = c.needs.indirect_lpv.needed;
+            let bounce = c.needs.indirect.needed;
             let lpv = io.try_read(r.lpv).filter(|_| bounce && c.indirect == Indirect::Lpv);
             let cache = io.try_read(r.cache).filter(|_| bounce && c.indirect == Indirect::Cache);
             let sky_fn = |d: Vec3| sky.map_or(Vec3::ZERO, |k| k.radiance(d));
@@ -147,7 +147,7 @@ pub(super) fn traced_gbuffer_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) 
                 );
             };
             let osm = io.try_read(r.osm).filter(|_| c.needs.sun_shadows.needed);
-            let bounce = c.needs.indirect_lpv.needed && c.indirect == Indirect::Lpv;
+            let bounce = c.needs.indirect.needed && c.indirect == Indirect::Lpv;
             let sky = sky_light(io, r).filter(|_| c.needs.sky_lighting.needed);
             let cubes = io.try_read(r.cubes).is_some();
             write_frame_uniform(c, Bound { shadows: None, cubes, sky_map_size: 0 });

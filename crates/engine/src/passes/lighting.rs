@@ -27,11 +27,14 @@ pub struct LightingPass {
     /// Made once, again only when what it binds changes.
     queries_group: gpu_harness::BindGroupCache,
     lighting_group: gpu_harness::BindGroupCache,
-    lpv_q: wgpu::Buffer,
+    /// The one-bounce lookup queries, one per pixel (position, normal), that the LPV's or the
+    /// radiance cache's lookup kernel reads.
+    lookup_q: wgpu::Buffer,
     /// The LPV's glossy lookup: per pixel (position, mirror direction), and the radiance.
     glossy_q: wgpu::Buffer,
     glossy_out: wgpu::Buffer,
-    pub lpv_out: wgpu::Buffer,
+    /// The one-bounce irradiance per pixel the lookup writes and the lighting shader reads.
+    pub indirect_out: wgpu::Buffer,
     /// The sky volume the shader's lookup snippet reads.
     sky_volume: SkyVolumeBinding,
     /// The frame's reflectors (`LightingInputs::reflectors`), a uniform.
@@ -95,10 +98,10 @@ impl LightingPass {
             )?,
             positions_group: Default::default(),
             pipeline,
-            lpv_q: empty_storage(device, "lpv queries", n * 32),
+            lookup_q: empty_storage(device, "lookup queries", n * 32),
             glossy_q: empty_storage(device, "lpv glossy queries", n * 32),
             glossy_out: empty_storage(device, "lpv glossy light", n * 16),
-            lpv_out: empty_storage(device, "lpv light", n * 16),
+            indirect_out: empty_storage(device, "indirect light", n * 16),
             sky_volume: SkyVolumeBinding::new(device),
             reflectors: uniform_buffer(
                 device,
@@ -113,7 +116,7 @@ impl LightingPass {
     /// LPV), the buffer the lighting shader reads the bounce from, and the pixel count: what a
     /// lookup kernel of a one-bounce technique binds to.
     pub fn lookup_io(&self) -> (&wgpu::Buffer, &wgpu::Buffer, u32) {
-        (&self.lpv_q, &self.lpv_out, self.pixels)
+        (&self.lookup_q, &self.indirect_out, self.pixels)
     }
 
     /// Records the queries and lookups the frame's one bounce needs, and the lighting.
@@ -165,7 +168,7 @@ impl LightingPass {
                         inputs.frame.as_entire_binding(),
                         tv(&targets.normal),
                         tv(&targets.depth),
-                        self.lpv_q.as_entire_binding(),
+                        self.lookup_q.as_entire_binding(),
                         tv(&targets.positions),
                         self.glossy_q.as_entire_binding(),
                         tv(&targets.albedo),
@@ -177,16 +180,16 @@ impl LightingPass {
         Ok(match inputs.indirect {
             IndirectSource::Lpv(lpv) => {
                 let (irradiance, glossy) =
-                    ((&self.lpv_q, &self.lpv_out), (&self.glossy_q, &self.glossy_out));
+                    ((&self.lookup_q, &self.indirect_out), (&self.glossy_q, &self.glossy_out));
                 lpv.record_lookups(gpu, enc, irradiance, Some(glossy), self.pixels);
-                &self.lpv_out
+                &self.indirect_out
             }
             IndirectSource::Rsm(rsm, view_proj) => rsm.record_gather(gpu, enc, view_proj)?,
             IndirectSource::Cache(cache) => {
                 cache.record_lookup(gpu, enc)?;
-                &self.lpv_out
+                &self.indirect_out
             }
-            IndirectSource::None => &self.lpv_out,
+            IndirectSource::None => &self.indirect_out,
         })
     }
 
