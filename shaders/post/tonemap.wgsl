@@ -1,5 +1,5 @@
-// HDR to display on the GPU (thesis 3.7): the log-average luminance of the frame (Reinhard et
-// al. 2002, with their small delta), eye adaptation towards it over frames, Reinhard's global
+// HDR to display on the GPU (thesis 3.4.2-3.4.3; sRGB, 3.5.1): the log-average luminance of
+// the frame (Reinhard et al. 2002, with their small delta), eye adaptation towards it over frames, Reinhard's global
 // operator on luminance with the colour ratio kept, and the sRGB transfer function into an
 // RGBA8 target. The WGSL twin of `post::ToneMapper` (crates/post/src/tonemap.rs), kept equal
 // by a GPU/CPU parity test (crates/post/tests/gpu.rs). Three entry points, dispatched in order

@@ -1,4 +1,4 @@
-// Sun visibility in stabilised cascaded shadow maps (thesis 4.2): the WGSL twin of
+// Sun visibility in stabilised cascaded shadow maps (thesis 4.3.1, 4.4): the WGSL twin of
 // crates/shadows/src/csm_lookup.rs (`csm_visibility`), kept equal by a CPU/GPU parity test.
 // Include after pcss.inc.wgsl. The including shader provides
 //   fn csm_count() -> i32                  // cascades in use

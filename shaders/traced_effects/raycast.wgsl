@@ -2,7 +2,7 @@
 // include: traced_effects/fresnel.inc.wgsl
 // include: traced_effects/screen.inc.wgsl
 // include: traced_effects/common.inc.wgsl
-// The ray casting buffer (thesis 6.2.1, Table 6.1) at quarter resolution (half width, half
+// The ray casting buffer (thesis 6.2.6, Table 6.1) at quarter resolution (half width, half
 // height): for every 2x2 block the pixel with a mirror or glass material nearest the block's
 // centre writes its origin, view depth, and the reflection and refraction directions with
 // their weights (reflect: reflectivity + transparency * Fresnel; refract: transparency *

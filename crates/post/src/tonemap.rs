@@ -1,6 +1,6 @@
-//! HDR to display on the CPU (thesis 3.7): Reinhard's global operator with the log-average
-//! luminance (with the small bias that keeps black pixels from sending it to zero), eye
-//! adaptation over frames, and the sRGB transfer function: the twin of
+//! HDR to display on the CPU (thesis 3.4.2-3.4.3; sRGB, 3.5.1): Reinhard's global operator
+//! with the log-average luminance (with the small bias that keeps black pixels from sending
+//! it to zero), eye adaptation over frames, and the sRGB transfer function: the twin of
 //! `gpu::ToneMapPass` (`shaders/post/tonemap.wgsl`), for tests and tools that hold an
 //! HDR image (`tests/gpu.rs` keeps the two equal).
 

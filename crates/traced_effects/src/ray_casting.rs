@@ -1,4 +1,4 @@
-//! The ray casting buffer (thesis 6.2.1, Table 6.1): at quarter resolution (one texel per 2x2
+//! The ray casting buffer (thesis 6.2.6, Table 6.1): at quarter resolution (one texel per 2x2
 //! block of pixels), the first pixel of the block with a mirror or glass material writes its
 //! world position and view depth, and its reflection and refraction directions with their
 //! weights (reflection: `reflectivity + transparency * F`; refraction: `transparency *

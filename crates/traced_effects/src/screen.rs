@@ -36,7 +36,7 @@ impl ScreenView {
         }
     }
 
-    /// The size of the ray casting buffer (thesis 6.2.1): half the width by half the height,
+    /// The size of the ray casting buffer (thesis 6.2.4, 6.2.6): half the width by half the height,
     /// rounded up (one texel per 2x2 block of pixels).
     pub fn quarter(&self) -> (u32, u32) {
         (self.width.div_ceil(2), self.height.div_ceil(2))

@@ -2,7 +2,7 @@
 //! [`scene::gpu::GBuffer`], thesis Table 3.1), and the engine's own: the world positions, the
 //! lit HDR image, the combined HDR image and the still view's accumulated HDR image.
 
-/// HDR accumulation format (thesis 3.7).
+/// HDR accumulation format (thesis 3.4.1).
 pub const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
 /// The engine's targets; derefs to the G-buffer ([`scene::gpu::GBuffer`]: its size, albedo,

@@ -1,4 +1,4 @@
-//! Tone mapping and still-view accumulation (`post`: thesis 3.7, and the jittered frames a
+//! Tone mapping and still-view accumulation (`post`: thesis 3.4, and the jittered frames a
 //! still view averages) wired to the engine's HDR targets: the three images the display can
 //! show, each bound once by `post::gpu::ToneMapPass`, and the two a still view averages into
 //! the accumulated target.

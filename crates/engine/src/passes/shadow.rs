@@ -1,4 +1,4 @@
-//! Sun shadow maps (thesis 4.2): stabilised cascades fitted by `shadows` to the camera each
+//! Sun shadow maps (thesis 4.3.1, 4.4): stabilised cascades fitted by `shadows` to the camera each
 //! frame and rendered by its resident pass over the scene's own buffers; the lighting pass
 //! reads them through `shaders/shadows/csm.inc.wgsl`. The cascades snap to their texels, so a
 //! map whose view did not move is not rendered again (`CascadeShadows::record_moved`; the

@@ -1,4 +1,4 @@
-//! Sky light (thesis 4.3 and 5.3): the paraboloid sky map from `atmosphere`, rebuilt only when
+//! Sky light (thesis 3.6.2 and 5.3): the paraboloid sky map from `atmosphere`, rebuilt only when
 //! the sun moved, and the sky-light irradiance volume from `sky_volume`, filled layer by
 //! layer over frames and looked up per pixel by its own WGSL kernel. Both are the frame
 //! graph's resources ([`SkyMapState`], [`SkyVolumeState`]), made by their passes on first

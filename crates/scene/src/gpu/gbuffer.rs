@@ -1,4 +1,4 @@
-//! The G-buffer of the Serenity engine (thesis 3.2, Table 3.1) and the resident pass that
+//! The G-buffer of the Serenity engine (thesis 3.3.2, Table 3.1) and the resident pass that
 //! rasterizes a [`GpuScene`] into it.
 //!
 //! What each pixel holds ([`GBUFFER_FORMATS`], in attachment order):
