@@ -55,25 +55,10 @@ impl FromStr for Preset {
 /// The one-bounce indirect sunlight technique.
 ///
 /// The presets gather the bounce from the RSM instead of propagating it through the LPV,
-/// because the component ledger says so (`cargo xtask render --reference 16 --components
-/// --indirect lpv|rsm|cache`, 320x180, 2 cores, lavapipe). One-bounce image rel RMS against
-/// the reference at the default preset, LPV / RSM gather / radiance cache: city 1.88 / 0.686
-/// / 0.688 (luminance ratio 2.5 / 0.57 / 0.57), `cornell_window` 3.08 / 1.43 / 0.925 (ratio
-/// 5.3 / 2.9 / 1.8: the gather has no occlusion, the sunlit ground lights the green wall
-/// through the wall); whole frame (clamped) city 0.349 / 0.346 / 0.345, `cornell_window`
-/// 0.310 / 0.219 / 0.204; `two_rooms`' closed room (black truth) gets 0.0073 / 0.0002 /
-/// 0.0000 mean luminance of leaked bounce. The city's figures are after the RSM's flux took
-/// the albedo textures' mean (`scene::gpu::GpuScene::diffuse_albedo`; before, the asphalt reflected
-/// as if white and every technique was 3-13x too bright there: 8.97 / 2.81 / 3.61). The
-/// gather's price: traced hits get no bounce (the city's reflections ratio 0.71 -> 0.54).
-///
-/// The radiance cache is the most accurate of the three (also in `rsm_gi`'s sweep on its
-/// pixels: cornell_window 0.56-0.68 against the gather's 5.2 and the LPV's best 1.16, city
-/// 0.48-0.60 against 0.84 and 1.12), but not the presets' choice yet: on lavapipe its frame
-/// costs more (city 1600x900, idle, last frame of 24: 2.07 s against the gather's 1.20 s;
-/// its CPU pass 37 ms, the per-pixel lookup heavier than the half-resolution gather, and a
-/// still camera re-lights the view for `cache_frames` frames while it converges). To be
-/// measured again on a hardware GPU, where those costs are a few milliseconds.
+/// because the component ledger says so: against the reference, the gather's one-bounce
+/// error is a half to a third of the LPV's at the same or less time, and the radiance cache,
+/// the most accurate of the three, costs more on a software adapter while it converges. The
+/// figures: `docs/differences.md` ("The one-bounce technique").
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Indirect {
@@ -175,7 +160,8 @@ pub struct Settings {
     pub width: u32,
     pub height: u32,
     pub preset: Preset,
-    /// Sun cascades and their resolution (thesis 4.2: 4 x 1024²).
+    /// Sun cascades and their resolution (thesis 4.3.1, which gives neither; its Fig. 4.1
+    /// draws three).
     pub csm_cascades: u32,
     pub csm_resolution: u32,
     /// PCSS blocker-search and PCF taps (0 PCF taps: hard shadows).
@@ -187,7 +173,7 @@ pub struct Settings {
     /// one layer per frame).
     pub sky_samples: usize,
     pub sky_layers_per_frame: u32,
-    /// Sky map resolution (thesis 4.3: 256²).
+    /// Sky map resolution (thesis 3.6.2: 256²).
     pub sky_map_size: u32,
     /// The one-bounce technique at the start (the renderer can switch it per frame).
     pub indirect: Indirect,
@@ -205,29 +191,23 @@ pub struct Settings {
     /// Inject and propagate the LPV on the GPU, resident (`lpv::gpu::ResidentLpv`: straight
     /// from the RSM's textures, nothing read back but the volumes when traced rays need them).
     /// `None`: on a hardware GPU yes; on a software adapter the crate's multi-threaded CPU
-    /// path, which is faster than Mesa's emulation of the kernels (city 320x180 on lavapipe:
-    /// the LPV pass 56 ms CPU + 31 ms GPU against 25 + 298 ms resident).
+    /// path, which is faster than Mesa's emulation of the kernels (`docs/differences.md`).
     pub lpv_on_gpu: Option<bool>,
     /// LPV: sky-bounce VPLs across the view (thesis 5.3.7; rows follow the aspect ratio):
     /// the G-buffer sampled on that grid of cells is an RSM of sky light, injected beside the
     /// sun's (`passes::sky_bounce`); the LPV then carries sky light bounced once, in the
-    /// `sun_indirect_diffuse` component. 0: off (the presets): against a 128-spp reference
-    /// at 320x180 with `--indirect lpv` it buys nothing measurable (city whole frame rel RMS
-    /// 0.8032 -> 0.8032, clamped 0.3036 -> 0.3032, luminance ratio 0.855 -> 0.858) and costs
-    /// on `cornell_window` (0.2930 -> 0.2953; its LPV already over-delivers, ratio 1.20), and
-    /// it makes the LPV view-dependent: it reruns whenever the camera moves (cornell_window,
-    /// lavapipe: 35 ms CPU + 31 ms GPU per moving frame, where it was reused). The bench's
-    /// `engine/sky_bounce_*` entries track it.
+    /// `sun_indirect_diffuse` component. 0: off (the presets): against the reference it buys
+    /// nothing measurable, and it makes the LPV view-dependent (it reruns whenever the camera
+    /// moves); `docs/differences.md` has the figures, the bench's `engine/sky_bounce_*`
+    /// entries track it.
     pub sky_bounce: u32,
     /// LPV: the glossy lookup (thesis 5.2.7, "diffuse + glossy reflections"): glossy
     /// surfaces reflect the LPV's radiance arriving from their mirror direction, marched
     /// over this many cells (`lpv::Lpv::glossy`); full frame only (the reference's
-    /// one-bounce component is diffuse). 0: off (the presets): with 2 steps at 320x180
-    /// against a 128-spp reference (`--indirect lpv`) the city's whole frame goes 0.8032 ->
-    /// 0.8025 (clamped 0.3036 -> 0.2976, luminance ratio 0.855 -> 0.866: its glossy windows
-    /// and metal) for 30 ms more lighting on lavapipe (70-73 -> 100-102 ms); scenes without
-    /// glossy materials pay nothing measurable (the lookup skips non-glossy pixels). The
-    /// bench's `engine/lpv_glossy_*` entries track it.
+    /// one-bounce component is diffuse). 0: off (the presets): it barely moves the error
+    /// against the reference and costs lighting time on glossy pixels (non-glossy pixels skip
+    /// it); `docs/differences.md` has the figures, the bench's `engine/lpv_glossy_*` entries
+    /// track it.
     pub lpv_glossy: u32,
     /// Radiance cache (`Indirect::Cache`): cascades, SH bands, shadow rays per lighting,
     /// caches lit per frame.
@@ -277,7 +257,7 @@ pub struct Settings {
     /// camera restarts it every frame: its frames are first frames, shown as they were lit,
     /// so the average costs it nothing and buys it nothing.
     pub still_samples: u32,
-    /// Reinhard key (middle grey) and eye adaptation rate per second (thesis 3.7).
+    /// Reinhard key (middle grey) and eye adaptation rate per second (thesis 3.4.2-3.4.3).
     pub key: f32,
     pub adaptation_per_s: f32,
 }

@@ -1,11 +1,6 @@
-//! Cascaded light propagation volumes: one bounce of indirect diffuse light (and a glossy
-//! approximation) from virtual point lights, in real time.
+#![doc = include_str!("../README.md")]
 //!
-//! The technique is Kaplanyan's (CryEngine 3, SIGGRAPH 2009 course "Light Propagation
-//! Volumes in CryEngine 3") with the cascades, the cell-to-cell propagation and the geometry
-//! volume of Kaplanyan & Dachsbacher ("Cascaded Light Propagation Volumes for Real-Time
-//! Indirect Illumination", I3D 2010), as the Serenity thesis used it (sections 5.2 and 5.3.7)
-//! plus the geometry volume the thesis left out:
+//! ## Contents
 //!
 //! 1. **Cascades** ([`Lpv`], [`Grid`]): `cascades` nested volumes of `resolution³` cells
 //!    whose cell size grows by `cascade_scale`; [`Lpv::follow`] centres them on the camera,
@@ -45,48 +40,8 @@
 //! volumes, every transfer reported for the renderer's accounting. Module [`scenes`] holds
 //! small box scenes and an exact VPL-gather reference used by the tests.
 //!
-//! **What limits accuracy** (measured by `benches/gi_sweep.rs` against the `reference` path
-//! tracer's one-bounce sunlight on the `scene` crate's `cornell_window`, `two_rooms` and
-//! city, with VPLs from a CPU RSM of the whole scene; see its entries):
-//! - *Units are right*: an exact gather over the same RSM VPLs (with the path tracer's
-//!   visibility) matches the reference to its noise (best-fit scale 0.99); the LPV's error
-//!   is the volume's.
-//! - *Propagation is diffusive*: of the flux a cell sends, only about 32% reaches the
-//!   neighbour the lobe points at, 4 x 17% go sideways and 1.4% back (2-band lobes cannot be
-//!   narrower than the cardioid without going negative). Summed over iterations the light
-//!   behaves more like diffusion (density about `1/r`) than transport (`1/r²`), so the error
-//!   grows with the iteration count; it is inherent to 2-band LPVs, not a bug, and is why
-//!   iterations must stay near the distance light should travel, in cells.
-//! - *Self-illumination*: a lobe's back half lights the surface it came from, about
-//!   `albedo E_sun / 12` on a fully lit cell, where the truth is often near zero (a sunlit
-//!   box top facing an unlit ceiling reads 0.089 against 0).
-//! - *Leaking*: the RSM sees the outside of closed rooms (roof, sunlit outer walls: about
-//!   20x the flux that enters `cornell_window` through its window); without the geometry
-//!   volume that light propagates straight through the walls.
-//!
-//! ```
-//! use glam::Vec3;
-//! use lpv::{Lpv, LpvSettings, Vpl};
-//!
-//! // A sunlit patch of floor: 16 x 16 VPLs facing up, 1 W each in total per channel.
-//! let vpls: Vec<Vpl> = (0..256)
-//!     .map(|i| {
-//!         let p = Vec3::new((i % 16) as f32 * 0.1, 0.0, (i / 16) as f32 * 0.1);
-//!         Vpl::new(p, Vec3::Y, Vec3::splat(1.0 / 256.0))
-//!     })
-//!     .collect();
-//! let mut lpv = Lpv::new(LpvSettings::DEFAULT).unwrap();
-//! lpv.follow(Vec3::new(0.8, 1.0, 0.8));
-//! let stats = lpv.update(&vpls, &[]);
-//! assert_eq!(stats.injected[0].injected, 256);
-//! lpv.validate().unwrap();
-//! // A ceiling 2 m above the patch, facing down, receives light; the floor's back does not
-//! // create any; nothing is negative.
-//! let ceiling = lpv.irradiance(Vec3::new(0.8, 2.0, 0.8), -Vec3::Y);
-//! assert!(ceiling.x > 0.0 && ceiling.is_finite());
-//! // The exact irradiance from a 1 W diffuse patch 2 m straight below is about 1/(pi 4) = 0.08.
-//! assert!(ceiling.x > 0.01 && ceiling.x < 0.5, "{ceiling}");
-//! ```
+//! What limits the accuracy (diffusive propagation, self-illumination, leaking), with the
+//! measurements: `docs/accuracy.md`.
 
 #[doc(hidden)]
 pub mod baseline;

@@ -1,9 +1,9 @@
-//! Post-processing of an HDR renderer's frames: tone mapping with eye adaptation, and the
-//! still-view anti-aliasing that averages jittered frames. CPU twins of everything, and behind
-//! feature `gpu` the resident wgpu passes a renderer records every frame.
+#![doc = include_str!("../README.md")]
 //!
-//! **Tone mapping** (the Serenity thesis, section 3.7): Reinhard's global operator
-//! (Reinhard, Stark, Shirley, Ferwerda, "Photographic tone reproduction for digital images",
+//! ## Contents
+//!
+//! **Tone mapping** (the Serenity thesis, sections 3.4.2 and 3.4.3; the sRGB encoding,
+//! 3.5.1): Reinhard's global operator (Reinhard, Stark, Shirley, Ferwerda, "Photographic tone reproduction for digital images",
 //! SIGGRAPH 2002). The frame's log-average luminance `exp(mean(ln(delta + L)))` (with their
 //! small `delta`, [`LOG_DELTA`], so that black pixels do not send it to zero) is the scene's
 //! key; the eye adapts towards it over frames (`a += (target - a) (1 - exp(-dt rate))`,
@@ -27,44 +27,7 @@
 //! (its G-buffer may widen specular lobes by the whole pixel's normal variance); samples
 //! `1..=n` are the average's ([`average_index`], [`last_sample`]).
 //!
-//! What accumulation buys is measured by `benches/gi_sweep.rs` (`cargo xtask bench`): an
-//! analytic image made to alias (a sharp, slightly rotated edge, wires a quarter of a pixel
-//! wide, a grating finer than the pixels) is point-sampled at the crate's jitter offsets and
-//! averaged by `gpu::AccumulatePass` (in the renderer's half-float target), against the
-//! same image box-filtered with 1024 stratified samples per pixel. Entry
-//! `post/accumulate_{n}spp` has the relative RMS error of the image after `n` samples
-//! (`1`: the centre alone, the image without anti-aliasing) and, as its time, the
-//! milliseconds one frame of the accumulation pass costs at 1600x900 (a full-screen blend;
-//! the view reaches that error after `n` such frames, plus `n` frames of rendering). The
-//! errors are 0.51, 0.24, 0.079 and 0.028 at 1, 4, 16 and 64 samples: they fall about as
-//! `n^-0.75`, faster than the `n^-0.5` of independent random offsets, because the Halton
-//! points stratify the pixel. `post/accumulate_f32_{n}spp` is the CPU twin's `f32` average
-//! beside it: the half-float target costs nothing measurable up to 64 samples and 0.021
-//! against 0.017 at 128. One frame of the pass is about 5 ms on lavapipe (2 cores: a CPU
-//! figure, like the CPU twin's).
-//!
-//! ```
-//! use post::{Accumulator, Exposure, ToneMapper, frame_jitter};
-//! // Tone mapping: a bright sky over a dim ground, 4x2 pixels, shown as the first frame.
-//! let sky = [[4.0, 4.0, 5.0, 1.0]; 4];
-//! let ground = [[0.05, 0.04, 0.03, 1.0]; 4];
-//! let hdr: Vec<[f32; 4]> = sky.into_iter().chain(ground).collect();
-//! let mut eye = ToneMapper::default();
-//! let first = Exposure { dt: 0.0, rate: 1.5, key: 0.18, reset: true, raw: false };
-//! let ldr = eye.tone_map(&hdr, &first);
-//! assert_eq!(ldr.len(), 8 * 4);
-//! assert!(ldr[0] > ldr[4 * 4], "the sky is brighter than the ground");
-//! assert!(ldr[2] < 255, "and not burnt out: the exposure adapted to the frame");
-//!
-//! // Accumulation: a pixel half covered by a vertical edge, sampled at the jittered
-//! // offsets of 64 still samples and averaged, converges to its covered half.
-//! let mut still = Accumulator::new(1);
-//! for sample in 1..=64 {
-//!     let covered = if frame_jitter(sample).x < 0.0 { 1.0 } else { 0.0 };
-//!     still.add(&[[covered; 4]], sample).unwrap();
-//! }
-//! assert!((still.pixels()[0][0] - 0.5).abs() < 0.02, "{:?}", still.pixels());
-//! ```
+//! What accumulation buys, measured: `docs/measured.md`.
 
 mod accumulate;
 mod error;

@@ -38,8 +38,8 @@ pub struct Settings {
     /// normal bias), so a cache inside the wall the point lies on is not trusted.
     pub normal_bias: f32,
     /// A VPL closer to a cache than this many spacings counts as this far (the `1/d²` clamp;
-    /// 1.0 at the default preset measured better than 0.5 on `cornell_window`, 0.61 against
-    /// 0.78 relative RMS, and `two_rooms`, 0.48 against 0.55).
+    /// 1.0 at the default preset measured better than 0.5 on `cornell_window` and
+    /// `two_rooms`: `docs/measured.md`).
     pub min_distance: f32,
 }
 

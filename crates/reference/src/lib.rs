@@ -1,4 +1,6 @@
-//! # reference
+#![doc = include_str!("../README.md")]
+//!
+//! ## Contents
 //!
 //! The ground truth every real-time approximation of the workspace is measured against: a
 //! CPU Monte Carlo path tracer (J. Kajiya, "The Rendering Equation", SIGGRAPH 1986) over
@@ -49,32 +51,7 @@
 //!
 //! With the `scene` crate's scenes: [`world_from_scene`] and [`camera_from_scene`].
 //!
-//! **Where the time goes** (the city at 320x180 with caustic photons, `perf record` of the
-//! `caustics` example, release, 2 cores): the kd-tree's closest-hit traversal 40% of the
-//! samples and its shadow rays 11%, the rest of the path tracer (materials, MIS, Russian
-//! roulette) 13%, photon tracing 12% and density estimates 8%, albedo textures 5%, the sky
-//! map 2%. Taken from it: shadow rays through alpha-tested leaves stop at the first opaque
-//! hit ([`World::occluded`]), the photon grid hashes with Fx instead of SipHash, texel
-//! reads wrap without a division; 32 spp in 2.4 s instead of 2.9-3.1 s (interleaved runs,
-//! images bit for bit the same). The traversal itself is `kdtree_tracer`'s.
-//!
-//! ```
-//! use glam::Vec3;
-//! use reference::{Component, Material, QueryPoint, QuerySettings, World, irradiance};
-//!
-//! // A grey ground plane under a constant sky of radiance 1: irradiance pi.
-//! let mut b = World::builder();
-//! let grey = b.material(Material::diffuse(Vec3::splat(0.5)));
-//! b.quad(Vec3::new(-10.0, 0.0, 10.0), Vec3::new(20.0, 0.0, 0.0), Vec3::new(0.0, 0.0, -20.0), grey);
-//! b.sky(|_| Vec3::ONE);
-//! let world = b.build()?;
-//! world.validate()?;
-//!
-//! let points = [QueryPoint::new(Vec3::ZERO, Vec3::Y)];
-//! let e = irradiance(&world, Component::SkyIrradiance, &points, &QuerySettings::low())?;
-//! assert!((e[0].mean.x - std::f32::consts::PI).abs() < 1e-4);
-//! # Ok::<(), reference::Error>(())
-//! ```
+//! Where the time goes (a profile): `docs/profile.md`.
 
 // `!(a > b)` is used on purpose: it is also true when either side is NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]

@@ -17,7 +17,7 @@
 //! where no coarse pixel fits) fills the full image, as the CPU path does. The upsampling
 //! lists the pixels no coarse pixel fits and a second, indirect dispatch gathers them, 64 to
 //! a workgroup: gathered in place, each held its SIMD group of neighbours for the whole
-//! pattern (on lavapipe, a third of the upsampling's time on the city). The first pass keeps
+//! pattern (`docs/measured.md` has what it cost). The first pass keeps
 //! each pixel of its grid as (unit normal, view depth) in one buffer, which the blur and the
 //! upsampling read for the neighbours: one `vec4` where they read two textures and
 //! projected the position.

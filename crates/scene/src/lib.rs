@@ -1,10 +1,12 @@
-//! # scene
+#![doc = include_str!("../README.md")]
+//!
+//! ## Contents
 //!
 //! The scene description every renderer of the workspace reads: triangle meshes with
 //! tangent frames, mip-mapped linear textures, the material model of the Serenity engine's
 //! G-buffer (the Serenity master's thesis, a hybrid GPU rasterization + CPU ray tracing
-//! real-time GI engine, Table 3.1: albedo, glossiness, Phong specular power, normal maps) extended
-//! with what its ray tracer needs (mirror reflectivity, transparency with an index of
+//! real-time GI engine, 3.3.2 and Table 3.1: albedo, glossiness, Phong specular power, normal
+//! maps) extended with what its ray tracer needs (mirror reflectivity, transparency with an index of
 //! refraction, alpha testing), the sun (a direction, or a date, time and place through
 //! [`atmosphere::solar_position`]), point lights, occlusion quads (thesis 5.3.3, with the
 //! opacity and tint its future work proposes; derived from the geometry for scenes that
@@ -33,31 +35,6 @@
 //! IEC 61966-2-1 (sRGB transfer function); Khronos glTF 2.0 specification; Lengyel,
 //! "Computing tangent space basis vectors for an arbitrary mesh" (2001); Gribb & Hartmann,
 //! "Fast extraction of viewing frustum planes" (2001).
-//!
-//! ```
-//! use scene::{Generated, SceneChange};
-//!
-//! let mut city = Generated::City.build(1);
-//! city.validate().unwrap();
-//! let stats = city.stats();
-//! assert!(stats.triangles > 17_000 && stats.occlusion_quads >= 32);
-//!
-//! let needs = city.needs();
-//! assert!(needs.sun_lighting.needed && needs.reflections.needed);
-//! println!("{needs}");
-//!
-//! // Plain world-space triangles for an acceleration structure.
-//! let tris = city.triangles();
-//! assert_eq!(tris.indices.len(), stats.triangles);
-//!
-//! // What changed: move the sun by an hour.
-//! let before = city.state();
-//! if let Some(scene::Sun { position: scene::SunPosition::Time { utc_hours, .. }, .. }) = &mut city.sun {
-//!     *utc_hours += 1.0;
-//! }
-//! let change = SceneChange::between(&before, &city.state());
-//! assert!(change.sun_moved_deg > 5.0 && !change.geometry_changed());
-//! ```
 
 mod bounds;
 mod camera;

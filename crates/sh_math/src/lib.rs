@@ -1,35 +1,15 @@
-//! Real spherical harmonics for lighting: evaluate, project, convolve, rotate and window.
+#![doc = include_str!("../README.md")]
 //!
-//! Light propagation volumes store 2 bands (4 coefficients per colour), irradiance volumes 3
-//! bands (9), references and tests up to 5 bands (25). This crate gives fixed-size coefficient
-//! types for 1..=5 bands ([`Sh`], [`ShRgb`]), closed-form basis polynomials for bands 0..=4
-//! with the associated-Legendre recurrence as their reference, projection over weighted point
-//! sets (Saff-Kuijlaars, spherical Fibonacci, Hammersley, seeded random), clamped-cosine
-//! convolution (Ramamoorthi & Hanrahan 2001, "An Efficient Representation for Irradiance
-//! Environment Maps"), deringing windows (Hann, Lanczos, and Sloan 2008, "Stupid Spherical
-//! Harmonics (SH) Tricks"), rotation, and the same evaluation in WGSL
-//! (`shaders/sh_math/sh.inc.wgsl`, exposed as [`WGSL`]).
+//! ## Contents
 //!
-//! **Names.** A *band* is one value of `l`; an SH with `b` bands has `b²` *coefficients*
-//! (`C` in the types). [`Sh3`] has 3 bands and 9 coefficients. The word "order" is not used.
-//!
-//! **Convention.** Real, orthonormal SH **without** the Condon-Shortley phase, polar axis +Z:
-//! `Y(1,-1), Y(1,0), Y(1,1) = 0.488603 (y, z, x)`. Coefficient `i = l(l+1) + m`. Directions are
-//! normalised; a zero (or non-finite) direction evaluates to the band-0 term alone, the
-//! average of the basis over the sphere, so nothing returns NaN.
-//!
-//! ```
-//! use glam::Vec3;
-//! use sh_math::{irradiance, project_fn, saff_kuijlaars_sphere, Sh3};
-//! use std::f32::consts::PI;
-//!
-//! // Project a sky of constant radiance 2.0 with 400 Saff-Kuijlaars points...
-//! let points = saff_kuijlaars_sphere(400);
-//! let sky: Sh3 = project_fn(&points, |_dir| 2.0);
-//! // ...and the irradiance at any normal is pi * L.
-//! let e = irradiance(&sky, Vec3::new(0.3, 0.9, -0.1));
-//! assert!((e - PI * 2.0).abs() < 1e-3 * PI * 2.0);
-//! ```
+//! - [`Sh`], [`ShRgb`] and their aliases: the coefficient types; [`sh_index`], [`bands_for`].
+//! - [`eval_basis`] (closed form) and [`eval_basis_recurrence`] (its reference).
+//! - [`PointSet`] and its constructors: weighted directions for projection.
+//! - [`project_fn`], [`project_fn_rgb`], [`project_direction`], [`project_clamped_cosine`],
+//!   [`project_constant`].
+//! - [`ZonalKernel`]: [`CLAMPED_COSINE`], the windows; [`irradiance`], [`evaluate`].
+//! - [`ShRotation`].
+//! - [`WGSL`]: the shader twin.
 
 mod basis;
 mod coeffs;

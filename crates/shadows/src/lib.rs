@@ -1,6 +1,6 @@
-//! Shadow techniques for real-time global illumination, on the CPU and (feature `gpu`) on wgpu.
+#![doc = include_str!("../README.md")]
 //!
-//! What the Serenity engine (thesis chapter 4 and section 6.3.1) uses for direct light:
+//! ## Contents
 //!
 //! - **Stabilised cascaded shadow maps** for the sun ([`CascadedShadowMap`]): split distances
 //!   blending uniform and logarithmic splits; each cascade fit to the *tightest bounding
@@ -26,24 +26,6 @@
 //!   behind feature `gpu` resident wgpu passes that record into the caller's encoder over
 //!   the caller's buffers (alpha-tested casters with their masks), with the WGSL snippets
 //!   their consumers include (module `gpu`).
-//!
-//! ```
-//! use shadows::{PcssSettings, Pcss, plane_box::PlaneBox};
-//! // The `plane_box` scene: a box on a plane under the sun (angular radius 0.004675 rad).
-//! let scene = PlaneBox::DEFAULT;
-//! let view = scene.shadow_view(512);
-//! let map = scene.depth_map(&view);
-//! let pcss = Pcss::directional(&view, scene.sun_angular_radius, &PcssSettings::DEFAULT).unwrap();
-//! let points = scene.receivers(16);
-//! let lit: Vec<f32> = scene
-//!     .map_receivers(&view, &points)
-//!     .iter()
-//!     .map(|r| pcss.pcss(&map, r))
-//!     .collect();
-//! let truth = scene.reference_image(16, 256);
-//! let mae = lit.iter().zip(&truth).map(|(a, b)| (a - b).abs()).sum::<f32>() / lit.len() as f32;
-//! assert!(mae < 0.05, "mean visibility error {mae}");
-//! ```
 
 mod csm;
 mod csm_lookup;

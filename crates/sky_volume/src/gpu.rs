@@ -6,9 +6,8 @@
 //! radiance SH) as IEEE half floats, two to a word, then zeros ([`SkyVolume::gpu_probe_bytes`],
 //! [`pack_probe`]), so that the lookup reads a point in four loads. Halves keep a coefficient
 //! to 1 part in 2048 (the lookup's result within about 1e-3 of the CPU's, which keeps `f32`);
-//! with 32-bit floats the lookup took seven loads a point, and on lavapipe a load per lane is
-//! what the lookup's time is made of: sky lighting cost `engine`'s city at 1600x900 105 ms of
-//! lighting with seven loads, 65 with four (`crates/app/examples/lighting_cost.rs`, 2 cores).
+//! with 32-bit floats the lookup took seven loads a point, and on a software adapter the
+//! loads are what the lookup's time is made of (`docs/figures.md`).
 //! Coefficients beyond a half's range are clamped to +-65504. Bindings
 //! are listed at the top of each shader. [`ResidentSkyVolume`] runs both as resident passes (the
 //! fill layer by layer, the lookup bound once to the caller's buffers).

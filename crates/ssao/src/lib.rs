@@ -1,33 +1,11 @@
-//! Screen-space ambient occlusion (thesis 5.3.8; Mittring, "Finding next gen: CryEngine 2",
-//! SIGGRAPH 2007 course): how open the hemisphere above a pixel's surface is, estimated from
-//! the depth buffer alone.
+#![doc = include_str!("../README.md")]
 //!
-//! For a pixel at world point `p` with geometry normal `n`, `samples` points are placed in the
-//! hemisphere of `n` (a golden-angle spiral rotated per pixel by a hash, distances growing from
-//! 0.2 to 1 times `radius`), projected into the view, and each counts as blocked when the depth
-//! buffer there is in front of it by more than [`DEPTH_BIAS`] but by less than
-//! [`RANGE_FACTOR`] radii (the range check that keeps a distant foreground object from
-//! darkening the background). The occlusion is the fraction of open samples.
+//! ## Contents
 //!
-//! The truth is ray-traced ambient occlusion over the same radius
-//! (`reference::ambient_occlusion`: the cosine-weighted open fraction of the hemisphere); the
-//! `gi_sweep` bench measures the gap for each sample count and radius.
-//!
-//! The same arithmetic exists twice: [`occlusion`] on the CPU and `ssao` in
-//! [`SSAO_INC_WGSL`] (`shaders/ssao/ssao.inc.wgsl`), which a lighting shader includes; a
-//! parity test keeps them equal.
-//!
-//! ```
-//! use glam::{UVec2, Vec3};
-//! use ssao::{ScreenView, SsaoSettings, occlusion};
-//! // A camera 2 m above an empty depth buffer: nothing can block, the point is open.
-//! let proj = glam::camera::rh::proj::directx::perspective(1.0, 1.0, 0.1, 100.0);
-//! let view = glam::camera::rh::view::look_to_mat4(Vec3::new(0.0, 2.0, 0.0), Vec3::NEG_Y, Vec3::Z);
-//! let screen = ScreenView::new(proj * view, Vec3::new(0.0, 2.0, 0.0), Vec3::NEG_Y, 64, 64).unwrap();
-//! let depth = vec![0.0; 64 * 64];
-//! let ao = occlusion(&screen, &depth, UVec2::new(32, 32), Vec3::ZERO, Vec3::Y, &SsaoSettings::DEFAULT);
-//! assert_eq!(ao, 1.0);
-//! ```
+//! [`occlusion`] (one pixel) and [`image`] (a G-buffer) over a [`ScreenView`] and its linear
+//! depths, with [`SsaoSettings`]; the WGSL twin [`SSAO_INC_WGSL`] with [`GpuSsaoParams`]. The
+//! truth is ray-traced ambient occlusion over the same radius (`reference::ambient_occlusion`:
+//! the cosine-weighted open fraction of the hemisphere).
 
 mod error;
 mod estimator;

@@ -4,7 +4,7 @@
 //! caller's textures once ([`gpu_harness::BindGroupCache`]: a steady frame creates nothing)
 //! and records into the caller's encoder.
 //!
-//! - [`RayCasting`]: the ray casting buffer (thesis 6.2.1, Table 6.1) written from the
+//! - [`RayCasting`]: the ray casting buffer (thesis 6.2.6, Table 6.1) written from the
 //!   G-buffer at quarter resolution, the texels that have a ray listed beside it, and the list
 //!   read back as the [`RayBatch`](crate::ray_casting::RayBatch) to trace
 //!   ([`RayCasting::run`]). The buffer itself stays on the GPU for the combination.
@@ -14,8 +14,8 @@
 //!   through the depth-aware 3x3 gather (thesis 6.3.4-6.3.5, [`Combine::record`]): the lit
 //!   view is copied into the output, and the gather is drawn over the scene's mirror and
 //!   glass draws alone (depth test `Equal` against the caller's z-buffer), not over the whole
-//!   screen (on lavapipe a full-screen pass cost ~38 ms of the city's 1600x900 frame, nearly
-//!   all of it on pixels it left unchanged).
+//!   screen: a full-screen pass spends nearly all its time on pixels it leaves unchanged
+//!   (`docs/measured.md`).
 //!
 //! ## What the passes read
 //! - [`TracedView`], the passes' uniform (each pass writes its own from the caller's value):
