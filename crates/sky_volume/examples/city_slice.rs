@@ -61,6 +61,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             }
         }
     }
+    std::fs::create_dir_all(&out_dir)?;
     let path = std::path::Path::new(&out_dir).join("sky_volume_slice.png");
     img.save(&path)?;
     let centre = grid.position(grid.dims / 2);
