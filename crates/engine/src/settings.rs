@@ -236,15 +236,9 @@ pub struct Settings {
     /// sun (a Gaussian of the sun disk's, the pixel's and the normal's angular variance), so
     /// a glint far smaller than a pixel (the chrome statue's) is spread over the pixels that
     /// see it instead of missed. Energy: a flat mirror returns `0.97 R E_sun` over the image
-    /// (`tests/glint.rs`). The ledger (city 320x180, default preset, against 128 spp):
-    /// `statue west` full-frame ratio 0.55 -> 1.18, but the whole frame's unclamped rel RMS
-    /// 0.803 -> 0.904 (clamped 0.301 -> 0.302): the spread glints sit a pixel or two from the
-    /// reference's, and at one pixel where the reference has none, so the per-pixel error of
-    /// the misplaced energy outweighs the energy found. Supersampled 4x4 against 64 spp
-    /// (`serein-render --supersample 4`, so that placement within a pixel does not count) it
-    /// is no better: 0.697 -> 1.001 unclamped, and `statue west`'s reflections go 0.30 ->
-    /// 1.64 of the reference's, so on the curved statue the glints carry too much energy,
-    /// not only misplaced energy. Off until both match.
+    /// (`tests/glint.rs`). Off: on the ledger the spread glints sit a pixel or two from the
+    /// reference's, and on the curved statue they carry too much energy, so the frame's error
+    /// grows (`docs/differences.md` has the figures). Off until both match.
     pub sun_glints: bool,
     /// The sun mirrored by the scene's large planar reflectors (glass walls, mirrors) onto
     /// the surfaces in front of them ([`crate::mirrored_sun`]), in the full frame.
@@ -264,10 +258,8 @@ pub struct Settings {
 
 /// The LPV lookup offset, in cells along the normal, of the default and high presets (their
 /// cells are half a metre; the low preset's metre cells keep the crate's half cell): a
-/// surface sees less of the bounce it injected itself. `cornell_window`, default preset, LPV
-/// one-bounce rel RMS against the reference 4.08 -> 3.08 at 320x180 (16 spp), 5.53 -> 4.15 at
-/// 160x90 (64 spp; `crates/app/tests/indirect_choice.rs`); its whole frame 0.374 -> 0.311;
-/// the city's street under the LPV 77x -> 52x the truth.
+/// surface sees less of the bounce it injected itself, and the ledger's LPV error falls by
+/// about a quarter (`docs/differences.md`; `crates/app/tests/indirect_choice.rs` checks it).
 pub const ENGINE_LPV_LOOKUP_OFFSET: f32 = 1.5;
 
 impl Settings {
