@@ -328,7 +328,8 @@ impl RayQuery for EmbreeScene<'_> {
     /// `Hit::mesh` is 0: the triangle index is the mesh's, its mesh id is `Mesh::mesh_of`.
     #[inline]
     fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        if !ray.is_valid() || !(ray.t_min.max(0.0) <= t_max) {
+        let in_order = ray.t_min.max(0.0) <= t_max;
+        if !ray.is_valid() || !in_order {
             return None;
         }
         let mut rh = Self::ray_hit(ray, t_max);
@@ -345,7 +346,8 @@ impl RayQuery for EmbreeScene<'_> {
 
     #[inline]
     fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
-        if !ray.is_valid() || !(ray.t_min.max(0.0) <= t_max) {
+        let in_order = ray.t_min.max(0.0) <= t_max;
+        if !ray.is_valid() || !in_order {
             return false;
         }
         let mut rh = Self::ray_hit(ray, t_max);
