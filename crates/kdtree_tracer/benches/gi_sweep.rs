@@ -4,7 +4,11 @@
 //! and primary rays (the primary rays also as an image through `trace_tiles`, packets against
 //! single rays and against obvhs); the thesis's reflection buffer (mirror reflections of an
 //! 800x450 view) and the worst-case incoherent one, each also raced packets against single
-//! rays; the 1M-triangle build, and the SAH settings sweep.
+//! rays; the 1M-triangle build, and the SAH settings sweep. Embree (the system library, when
+//! it opens) races the kd-tree on the city, the three meshes and a scanned-style mesh from 1k
+//! to 1.3M triangles, robust and default modes, one and two threads (`embree_races`).
+
+mod embree;
 
 use std::time::Instant;
 
@@ -165,6 +169,8 @@ fn main() -> std::io::Result<()> {
         }
     }
     drop(extra);
+
+    embree_races(&mut sweep, rays, rounds);
 
     // Coherent rays: the primary rays of a 1600x900 view of the city.
     let primary = test_util::camera_rays(&cam, 1600, 900);
@@ -419,4 +425,130 @@ fn main() -> std::io::Result<()> {
         );
     }
     sweep.finish().map(|_| ())
+}
+
+/// Embree against the kd-tree: incoherent rays on the city (`city_rays`), the blob, the cable,
+/// the atrium and the scanned-style mesh at four sizes; both Embree modes, one and two
+/// threads, interleaved; every ray's hit checked against the kd-tree's first. Entries
+/// `kdtree_tracer/vs_embree_{robust,default}_incoherent_{1t,2t}_<mesh>`, the build race
+/// `kdtree_tracer/vs_embree_build_{1t,2t}_<mesh>` (against the robust build), and per mode and
+/// thread count the worst mesh as `kdtree_tracer/vs_embree_{mode}_incoherent_{1t,2t}`.
+/// Without the library: a message, no entries.
+fn embree_races(sweep: &mut Sweep, city_rays: &[Ray], rounds: usize) {
+    use embree::{Agreement, Embree, Mode};
+    let Some(devices) =
+        [1usize, 2].into_iter().map(Embree::or_explain).collect::<Option<Vec<Embree>>>()
+    else {
+        return;
+    };
+    let quick = sweep.quick();
+    let n = if quick { 40_000 } else { 200_000 };
+    let build_reps = if quick { 1 } else { 3 };
+    let mut meshes: Vec<(String, Mesh, String)> = vec![
+        ("city".into(), test_util::city_block(1, 20_000), "20k-triangle city block".into()),
+        ("blob".into(), test_util::blob(6), "closed organic blob".into()),
+        ("cable".into(), test_util::cable(2000, 12), "long thin cable".into()),
+        ("atrium".into(), test_util::atrium(), "architectural atrium".into()),
+    ];
+    for (label, level) in [("1k", 3u32), ("20k", 5), ("330k", 7), ("1m", 8)] {
+        meshes.push((
+            format!("scan_{label}"),
+            test_util::scan(level),
+            "scanned-style closed mesh with very uneven triangle sizes".into(),
+        ));
+    }
+    // Per (mode, threads): the worst mesh so far.
+    let mut worst: Vec<((Mode, usize), Comparison, String)> = Vec::new();
+    for (name, mesh, what) in &meshes {
+        sweep.stage(&format!("{name}: kd-tree and Embree builds"));
+        let kd = KdTree::build(mesh, &Settings::DEFAULT).expect("build");
+        let rays: Vec<Ray> = if name == "city" {
+            city_rays[..n.min(city_rays.len())].to_vec()
+        } else {
+            test_util::surface_rays(mesh, n, 7)
+        };
+        // The build race: kd-tree and Embree robust on the same thread count, interleaved.
+        for (t, dev) in [1usize, 2].into_iter().zip(&devices) {
+            let (ours, theirs) = pool(t).install(|| {
+                interleaved(
+                    build_reps,
+                    || {
+                        std::hint::black_box(KdTree::build(mesh, &Settings::DEFAULT).ok());
+                    },
+                    || {
+                        std::hint::black_box(dev.scene(mesh, Mode::Robust).ok());
+                    },
+                )
+            });
+            sweep.comparison(
+                Comparison::new(
+                    format!("kdtree_tracer/vs_embree_build_{t}t_{name}"),
+                    ours,
+                    theirs,
+                    "ms",
+                    false,
+                )
+                .note(format!(
+                    "build of the {}-triangle {what}: the kd-tree (Settings::DEFAULT, rayon pool                      of {t}) against {} in robust mode; interleaved, median of {build_reps}",
+                    mesh.triangle_count(),
+                    embree::describe(dev)
+                )),
+            );
+        }
+        for mode in Mode::ALL {
+            let scene = devices[1].scene(mesh, mode).expect("Embree scene");
+            let check = Agreement::of(&kd, &scene, &rays);
+            if !check.exact() {
+                eprintln!("embree {} on {name}: {}", mode.name(), check.describe());
+            }
+            for threads in [1usize, 2] {
+                sweep
+                    .stage(&format!("{name}: race vs Embree {}, {threads} thread(s)", mode.name()));
+                let (ours, theirs) = race(threads, rounds, &rays, &kd, &scene);
+                let c = Comparison::new(
+                    format!(
+                        "kdtree_tracer/vs_embree_{}_incoherent_{threads}t_{name}",
+                        mode.name()
+                    ),
+                    ours,
+                    theirs,
+                    "Mrays/s",
+                    true,
+                )
+                .note(format!(
+                    "{} incoherent rays ({}) on the {}-triangle {what}; {} in {} mode; {};                      interleaved, median of {rounds}",
+                    rays.len(),
+                    if name == "city" {
+                        "random hemisphere from the visible surface points of an 800x450 view"
+                    } else {
+                        "random points of random triangles, random hemisphere on a random side"
+                    },
+                    mesh.triangle_count(),
+                    embree::describe(&devices[1]),
+                    mode.name(),
+                    check.describe()
+                ));
+                let key = (mode, threads);
+                match worst.iter_mut().find(|(k, _, _)| *k == key) {
+                    Some((_, w, m)) if c.ratio < w.ratio => (*w, *m) = (c.clone(), name.clone()),
+                    Some(_) => {}
+                    None => worst.push((key, c.clone(), name.clone())),
+                }
+                sweep.comparison(c);
+            }
+        }
+    }
+    for ((mode, threads), c, mesh) in worst {
+        let note = format!("the worst mesh of the race: {mesh} ({})", c.note.unwrap_or_default());
+        sweep.comparison(
+            Comparison::new(
+                format!("kdtree_tracer/vs_embree_{}_incoherent_{threads}t", mode.name()),
+                c.ours,
+                c.theirs,
+                "Mrays/s",
+                true,
+            )
+            .note(note),
+        );
+    }
 }

@@ -1,9 +1,15 @@
-//! kdbench: builds the kd-tree and obvhs BVHs over an OBJ file (or a generated scene) and
-//! reports build time, memory, and Mrays/s for primary, incoherent and shadow rays, plus hit
-//! mismatches against brute force on a sample of rays.
+//! kdbench: builds the kd-tree, obvhs BVHs and (when the system library opens) Embree in its
+//! robust and default modes over an OBJ file (or a generated scene) and reports build time,
+//! memory, and Mrays/s for primary, incoherent and shadow rays, plus hit mismatches against
+//! brute force on a sample of rays and Embree's agreement with the kd-tree on all of them.
 //!
 //! cargo run --release -p kdtree_tracer --example kdbench -- MESH.obj [--rays N] [--json]
-//! cargo run --release -p kdtree_tracer --example kdbench -- --scene city|sphere|soup|cornell|blob|cable|atrium
+//! cargo run --release -p kdtree_tracer --example kdbench -- --scene city|sphere|soup|cornell|blob|cable|atrium|scan
+//!
+//! `--scan-level L` sets the scanned-style mesh's size (`20 * 4^L` triangles, default 5).
+
+#[path = "../benches/embree/mod.rs"]
+mod embree;
 
 use std::time::Instant;
 
@@ -77,6 +83,7 @@ fn main() -> Result<()> {
     let mut json = false;
     let mut build_only = false;
     let mut settings = Settings::DEFAULT;
+    let mut scan_level = 5u32;
     let mut i = 0;
     while i < args.len() {
         match args[i].as_str() {
@@ -89,6 +96,10 @@ fn main() -> Result<()> {
                 scene = Some(args.get(i).context("--scene needs a name")?.clone());
             }
             "--json" => json = true,
+            "--scan-level" => {
+                i += 1;
+                scan_level = args.get(i).context("--scan-level needs a number")?.parse()?;
+            }
             "--build-only" => build_only = true,
             "--settings" => {
                 i += 1;
@@ -102,7 +113,7 @@ fn main() -> Result<()> {
             }
             "-h" | "--help" => {
                 println!(
-                    "kdbench MESH.obj [--rays N] [--json] [--build-only] [--settings low|default|high|reference] | --scene city|sphere|soup|cornell|blob|cable|atrium"
+                    "kdbench MESH.obj [--rays N] [--json] [--build-only] [--settings low|default|high|reference] | --scene city|sphere|soup|cornell|blob|cable|atrium|scan [--scan-level L]"
                 );
                 return Ok(());
             }
@@ -122,6 +133,7 @@ fn main() -> Result<()> {
         (None, Some("blob")) => ("blob_82k".into(), test_util::blob(6)),
         (None, Some("cable")) => ("cable_48k".into(), test_util::cable(2000, 12)),
         (None, Some("atrium")) => ("atrium".into(), test_util::atrium()),
+        (None, Some("scan")) => (format!("scan_level{scan_level}"), test_util::scan(scan_level)),
         (None, Some(s)) => bail!("unknown scene {s}"),
     };
     let n_tris = mesh.triangle_count();
@@ -146,6 +158,15 @@ fn main() -> Result<()> {
     let t = Instant::now();
     let b2 = BvhAccel::build(&mesh, BvhKind::Bvh2, BvhPreset::MediumBuild)?;
     let b2_build = t.elapsed().as_secs_f64() * 1e3;
+    let em = embree::Embree::or_explain(rayon::current_num_threads());
+    let mut em_scenes = Vec::new();
+    for mode in embree::Mode::ALL {
+        if let Some(e) = &em {
+            let t = Instant::now();
+            let scene = e.scene(&mesh, mode).map_err(anyhow::Error::msg)?;
+            em_scenes.push((mode, scene, t.elapsed().as_secs_f64() * 1e3));
+        }
+    }
 
     let (lo, hi) = mesh.bounds().context("empty bounds")?;
     let c = (lo + hi) * 0.5;
@@ -184,7 +205,31 @@ fn main() -> Result<()> {
     let mut rows = Vec::new();
     for (label, rays, any) in sets {
         let s = &rays[..sample.min(rays.len())];
+        let mut peers = serde_json::Map::new();
+        for (mode, scene, _) in &em_scenes {
+            let agree = if any {
+                // Any-hit: only hit/miss can be compared.
+                let differ = rays
+                    .par_iter()
+                    .filter(|(r, tm)| kd.occluded(r, *tm) != scene.occluded(r, *tm))
+                    .count();
+                serde_json::json!({"rays": rays.len(), "hit_miss": differ})
+            } else {
+                let plain: Vec<Ray> = rays.iter().map(|(r, _)| *r).collect();
+                let a = embree::Agreement::of(&kd, scene, &plain);
+                serde_json::json!({"rays": a.rays, "hit_miss": a.hit_miss, "t_beyond": a.t_beyond, "max_rel_t": a.max_rel_t})
+            };
+            peers.insert(
+                format!("embree_{}", mode.name()),
+                serde_json::json!({
+                    "mrays": mrays(scene, rays, any),
+                    "mismatches": mismatches(scene, &brute, s, any),
+                    "vs_kdtree": agree,
+                }),
+            );
+        }
         rows.push(serde_json::json!({
+            "embree": peers,
             "rays": label,
             "kdtree_mrays": mrays(&kd, rays, any),
             "cwbvh_mrays": mrays(&cw, rays, any),
@@ -202,6 +247,10 @@ fn main() -> Result<()> {
                    "leaves": st.leaves, "references": st.references, "max_depth": st.max_depth},
         "cwbvh_medium": {"build_ms": cw_build, "bytes_per_triangle": cw.bytes() as f64 / n_tris as f64},
         "bvh2_medium": {"build_ms": b2_build, "bytes_per_triangle": b2.bytes() as f64 / n_tris as f64},
+        "embree": {
+            "version": em.as_ref().map(|e| e.version().to_owned()),
+            "build_ms": em_scenes.iter().map(|(m, _, ms)| (m.name().to_owned(), serde_json::json!(ms))).collect::<serde_json::Map<_, _>>(),
+        },
         "queries": rows,
     });
     if json {
@@ -216,6 +265,13 @@ fn main() -> Result<()> {
         st.max_depth,
         cw.bytes() as f64 / n_tris as f64
     );
+    for (mode, _, ms) in &em_scenes {
+        println!(
+            "build   Embree {} {}: {ms:8.1} ms",
+            em.as_ref().map_or("", |e| e.version()),
+            mode.name()
+        );
+    }
     for r in &out["queries"].as_array().cloned().unwrap_or_default() {
         println!(
             "{:<10} kd-tree {:7.2}  CWBVH {:7.2}  BVH2 {:7.2} Mrays/s   mismatches kd {} cw {} of {}",
@@ -227,6 +283,21 @@ fn main() -> Result<()> {
             r["cwbvh_mismatches"],
             r["checked"],
         );
+        for mode in embree::Mode::ALL {
+            let e = &r["embree"][format!("embree_{}", mode.name())];
+            if e.is_object() {
+                println!(
+                    "{:<10} Embree {:7} {:7.2} Mrays/s (kd-tree / Embree {:.3})   mismatches {} of {}   vs kd-tree {}",
+                    "",
+                    mode.name(),
+                    e["mrays"].as_f64().unwrap_or(0.0),
+                    r["kdtree_mrays"].as_f64().unwrap_or(0.0) / e["mrays"].as_f64().unwrap_or(1.0),
+                    e["mismatches"],
+                    r["checked"],
+                    e["vs_kdtree"],
+                );
+            }
+        }
     }
     Ok(())
 }

@@ -1,20 +1,27 @@
-//! kdrace: the kd-tree raced against obvhs's CWBVH (medium build), interleaved in one process,
-//! on several generated meshes; prints kd-tree / CWBVH throughput ratios (load cancels out).
+//! kdrace: the kd-tree raced against obvhs's CWBVH (medium build) and, when the system library
+//! opens, Embree in its robust and default modes, interleaved in one process, on several
+//! generated meshes; prints kd-tree / peer throughput ratios (load cancels out), each peer's
+//! geometric mean and worst mesh, and how Embree's hits agree with the kd-tree's.
 //! A development tool for tuning: settings come from the environment (`KD_KI`, `KD_KT`,
 //! `KD_BONUS`, `KD_LEAF`, `KD_PERFECT=1`), rays per mesh from `--rays N`, threads `--threads T`,
 //! rounds `--rounds R` (default 15), `--kd-only` to trace with the kd-tree alone (see
-//! `kd_rounds`),
+//! `kd_rounds`), `--embree-only robust|default` to trace with Embree alone (`embree_rounds`),
+//! `--no-embree` to leave Embree out,
 //! the obvhs build from `--preset NAME` (default `medium_build`; the full bench sweep races the
 //! fastest-tracing preset, often a slower build, so its ratios can be lower).
 //!
 //! Meshes: `city` (incoherent rays of the 800x450 view), `mirror` (the same view's
 //! mirror-reflection rays, coherent), `blob` (and `blob5`, `blob4`: the same shape at 20k and
-//! 5k triangles), `cable`, `atrium`, `soup`; and `refl`, which
+//! 5k triangles), `cable`, `atrium`, `soup`, `scan1k`, `scan20k`, `scan330k`, `scan1m` (the
+//! scanned-style closed mesh with very uneven triangle sizes); and `refl`, which
 //! races `trace_tiles` (packets) against tiles of single rays on the city's two 800x450
 //! reflection buffers and its 1600x900 primary rays (times in ms as well as the ratio).
 //!
 //! cargo run --release -p kdtree_tracer --example kdrace -- [--rays N] [--threads T]
-//! [--rounds R] [--preset NAME] [MESH...]
+//! [--rounds R] [--preset NAME] [--no-embree] [MESH...]
+
+#[path = "../benches/embree/mod.rs"]
+mod embree;
 
 use std::time::Instant;
 
@@ -45,6 +52,17 @@ fn kd_rounds(kd: &KdTree, rays: &[Ray], rounds: usize) -> usize {
     let mut hits = 0;
     for _ in 0..rounds {
         hits += rays.iter().filter(|r| kd.intersect(r, f32::INFINITY).is_some()).count();
+    }
+    std::hint::black_box(hits)
+}
+
+/// Embree alone over `rays`, `rounds` times on this thread (`--embree-only MODE`: the same
+/// workload as [`kd_rounds`] for callgrind, `--toggle-collect='*embree_rounds*'`).
+#[inline(never)]
+fn embree_rounds(scene: &embree::EmbreeScene, rays: &[Ray], rounds: usize) -> usize {
+    let mut hits = 0;
+    for _ in 0..rounds {
+        hits += rays.iter().filter(|r| scene.intersect(r, f32::INFINITY).is_some()).count();
     }
     std::hint::black_box(hits)
 }
@@ -100,6 +118,10 @@ fn mesh(name: &str) -> Option<Mesh> {
         "cable" => test_util::cable(2000, 12),
         "atrium" => test_util::atrium(),
         "soup" => test_util::random_soup(1, 100_000, 0.02),
+        "scan1k" => test_util::scan(3),
+        "scan20k" => test_util::scan(5),
+        "scan330k" => test_util::scan(7),
+        "scan1m" => test_util::scan(8),
         _ => return None,
     })
 }
@@ -109,6 +131,8 @@ fn main() -> Result<()> {
     let (mut n, mut threads, mut rounds, mut names) = (100_000usize, 1usize, 15usize, Vec::new());
     let mut preset = BvhPreset::MediumBuild;
     let mut kd_only = false;
+    let mut embree_only = None;
+    let mut use_embree = true;
     let mut i = 0;
     while i < args.len() {
         match args[i].as_str() {
@@ -121,6 +145,15 @@ fn main() -> Result<()> {
                 rounds = args.get(i).context("--rounds R")?.parse()?;
             }
             "--kd-only" => kd_only = true,
+            "--no-embree" => use_embree = false,
+            "--embree-only" => {
+                i += 1;
+                embree_only = Some(match args.get(i).map(String::as_str) {
+                    Some("robust") => embree::Mode::Robust,
+                    Some("default") => embree::Mode::Default,
+                    other => anyhow::bail!("--embree-only robust|default, not {other:?}"),
+                });
+            }
             "--threads" => {
                 i += 1;
                 threads = args.get(i).context("--threads T")?.parse()?;
@@ -138,7 +171,9 @@ fn main() -> Result<()> {
         i += 1;
     }
     if names.is_empty() {
-        names = ["city", "blob", "cable", "atrium"].map(String::from).to_vec();
+        names = ["city", "blob", "cable", "atrium", "scan1k", "scan20k", "scan330k", "scan1m"]
+            .map(String::from)
+            .to_vec();
     }
     let s = Settings {
         traversal_cost: env_f32("KD_KT", Settings::DEFAULT.traversal_cost),
@@ -149,7 +184,18 @@ fn main() -> Result<()> {
         perfect_splits: env_f32("KD_PERFECT", Settings::DEFAULT.perfect_splits as u32 as f32) > 0.5,
     };
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build()?;
-    let mut log = 0.0;
+    let em = if use_embree || embree_only.is_some() {
+        embree::Embree::or_explain(threads)
+    } else {
+        None
+    };
+    if let Some(e) = &em {
+        println!("peers: obvhs CWBVH {}, {}", preset.name(), embree::describe(e));
+    }
+    // Per peer (CWBVH, Embree robust, Embree default): sum of log ratios, worst (ratio, mesh).
+    let mut log = [0.0f64; 3];
+    let mut worst: [(f64, String); 3] = std::array::from_fn(|_| (f64::INFINITY, String::new()));
+    let mut raced = 0usize;
     for name in &names {
         if name == "refl" {
             reflections(&pool, &s, rounds)?;
@@ -175,20 +221,37 @@ fn main() -> Result<()> {
             println!("{name:8} {} rays x {rounds} rounds, {hits} hits", rays.len());
             continue;
         }
+        if let Some(mode) = embree_only {
+            let e = em.as_ref().context("--embree-only: Embree did not open")?;
+            let scene = e.scene(&m, mode).map_err(anyhow::Error::msg)?;
+            let hits = embree_rounds(&scene, &rays, rounds);
+            println!("{name:8} {} rays x {rounds} rounds, {hits} hits (Embree)", rays.len());
+            continue;
+        }
+        let race = |peer: &dyn RayQuery| {
+            pool.install(|| {
+                interleaved(
+                    rounds,
+                    || {
+                        std::hint::black_box(trace_all(&kd, &rays));
+                    },
+                    || {
+                        std::hint::black_box(trace_all(peer, &rays));
+                    },
+                )
+            })
+        };
         let cw = BvhAccel::build(&m, BvhKind::Cwbvh, preset)?;
-        let (a, b) = pool.install(|| {
-            interleaved(
-                rounds,
-                || {
-                    std::hint::black_box(trace_all(&kd, &rays));
-                },
-                || {
-                    std::hint::black_box(trace_all(&cw, &rays));
-                },
-            )
-        });
+        let (a, b) = race(&cw);
         let st = kd.stats();
-        log += (b / a).ln();
+        raced += 1;
+        let mut note = |peer: usize, ratio: f64| {
+            log[peer] += ratio.ln();
+            if ratio < worst[peer].0 {
+                worst[peer] = (ratio, name.clone());
+            }
+        };
+        note(0, b / a);
         println!(
             "{name:8} {:7} tris  kd {:6.2} Mrays/s  cw {:6.2}  ratio {:.3}  build {build:6.0} ms  refs/tri {:.2} leaves {} depth {}",
             m.triangle_count(),
@@ -199,7 +262,35 @@ fn main() -> Result<()> {
             st.leaves,
             st.max_depth
         );
+        if let (Some(e), true) = (&em, use_embree) {
+            for (peer, mode) in [(1, embree::Mode::Robust), (2, embree::Mode::Default)] {
+                let t = Instant::now();
+                let scene = e.scene(&m, mode).map_err(anyhow::Error::msg)?;
+                let em_build = t.elapsed().as_secs_f64() * 1e3;
+                let check = embree::Agreement::of(&kd, &scene, &rays);
+                let (a, b) = race(&scene);
+                note(peer, b / a);
+                println!(
+                    "{:8} embree {:7} {:6.2} Mrays/s  kd {:6.2}  ratio {:.3}  build {em_build:6.0} ms  {}",
+                    "",
+                    mode.name(),
+                    rays.len() as f64 / b / 1e3,
+                    rays.len() as f64 / a / 1e3,
+                    b / a,
+                    if check.exact() { "hits agree".to_owned() } else { check.describe() }
+                );
+            }
+        }
     }
-    println!("geomean ratio {:.3}", (log / names.len() as f64).exp());
+    for (peer, label) in ["CWBVH", "Embree robust", "Embree default"].iter().enumerate() {
+        if worst[peer].0.is_finite() {
+            println!(
+                "vs {label:15} geomean ratio {:.3}  worst {:.3} ({})",
+                (log[peer] / raced.max(1) as f64).exp(),
+                worst[peer].0,
+                worst[peer].1
+            );
+        }
+    }
     Ok(())
 }

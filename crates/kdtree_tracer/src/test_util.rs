@@ -7,7 +7,7 @@ use glam::{Vec2, Vec3};
 use crate::mesh::Mesh;
 use crate::ray::{Hit, Ray, RayQuery};
 
-pub use crate::test_meshes::{atrium, blob, cable};
+pub use crate::test_meshes::{atrium, blob, cable, scan};
 
 /// A small seeded generator (PCG32), so scenes are identical on every machine.
 #[derive(Clone, Debug)]
