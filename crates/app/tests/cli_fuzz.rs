@@ -90,4 +90,42 @@ proptest! {
             Err(e) => prop_assert!(false, "{time:?} {date:?} {utc_offset_h}: unexpected {e}"),
         }
     }
+
+    /// The success path: an unmutated size parses to exactly its numbers, whatever the case
+    /// of the separator and spaces around the numbers (a parser that returned a fixed size,
+    /// swapped the axes or dropped a digit fails here).
+    #[test]
+    fn valid_sizes_parse_to_their_numbers(w in 1u32..100_000, h in 1u32..100_000, upper in any::<bool>(), pad in any::<bool>()) {
+        let sep = if upper { "X" } else { "x" };
+        let s = if pad { format!(" {w} {sep} {h} ") } else { format!("{w}{sep}{h}") };
+        prop_assert_eq!(parse_size(&s).map_err(|e| e.to_string()), Ok((w, h)), "{:?}", s);
+    }
+
+    /// The success path of times, dates and offsets: the sun is placed at exactly the
+    /// local time less the offset, on exactly the date given (hand-computed, not through
+    /// the parser).
+    #[test]
+    fn valid_times_and_dates_place_the_sun(
+        hh in 0u32..24, mm in 0u32..60, y in 1900i32..2100, mo in 1u32..=12, d in 1u32..=28,
+        off in -12i32..=12,
+    ) {
+        let job = RenderJob {
+            scene: "plane_box".into(),
+            time: Some(format!("{hh:02}:{mm:02}")),
+            date: Some(format!("{y}-{mo:02}-{d:02}")),
+            utc_offset_h: off as f64,
+            ..RenderJob::default()
+        };
+        let scene = load_scene(&job).map_err(|e| e.to_string());
+        prop_assert!(scene.is_ok(), "{:?}", scene);
+        let sun = scene.unwrap().sun.expect("a time of day gives a sun");
+        match sun.position {
+            scene::SunPosition::Time { date, utc_hours, .. } => {
+                prop_assert_eq!(date, scene::CivilDate::new(y, mo, d));
+                let want = hh as f64 + mm as f64 / 60.0 - off as f64;
+                prop_assert!((utc_hours - want).abs() < 1e-9, "{} vs {}", utc_hours, want);
+            }
+            other => prop_assert!(false, "expected a sun placed by time, got {:?}", other),
+        }
+    }
 }

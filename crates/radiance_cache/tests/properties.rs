@@ -189,6 +189,24 @@ proptest! {
         for &(cascade, key) in c.allocated_keys() {
             prop_assert!(needs(cascade, key), "cascade {} key {} marked but not needed", cascade, key);
         }
+        // The other direction: every cache some point needs is marked (an allocator that marks
+        // nothing, or only the nearest corner, fails here). The candidates are the 8 lattice
+        // corners around each point's biased position in each cascade: `needs` asks for a key
+        // less than one spacing away along every axis, so no other key can be needed.
+        let marked: std::collections::HashSet<(u32, IVec3)> = c.allocated_keys().iter().copied().collect();
+        for p in points.iter().filter(|p| p.position.is_finite()) {
+            let n = p.normal.try_normalize().unwrap_or(Vec3::ZERO);
+            for (cascade, l) in c.lattices().iter().enumerate() {
+                let base = l.to_lattice(p.position + n * (s.normal_bias * l.spacing())).floor().as_ivec3();
+                for corner in 0..8 {
+                    let key = base + IVec3::new(corner & 1, (corner >> 1) & 1, corner >> 2) + l.origin_key;
+                    if needs(cascade as u32, key) {
+                        prop_assert!(marked.contains(&(cascade as u32, key)), "cascade {} key {} needed but not marked", cascade, key);
+                    }
+                }
+            }
+        }
+        prop_assert_eq!(a.allocated, marked.len());
         prop_assert!(a.allocated <= 8 * s.cascades as usize * points.len());
     }
 
@@ -359,12 +377,25 @@ fn refresh_is_allocate_then_update() {
     let s = Settings { budget: 12, ..small() };
     let (mut a, mut b) = (RadianceCache::new(s).unwrap(), RadianceCache::new(s).unwrap());
     let tree = wall_x0();
-    for eye in [Vec3::ZERO, Vec3::new(0.4, 0.1, -0.3)] {
+    // The summary is checked field by field against what the two calls report and against
+    // values derived by hand from the settings, not rebuilt with the crate's constructor.
+    let full_grid = (s.cascades * s.resolution.pow(3)) as usize;
+    for (frame, eye) in [Vec3::ZERO, Vec3::new(0.4, 0.1, -0.3)].into_iter().enumerate() {
         let summary = a.refresh(eye, &pts, &vpls, &tree);
         let alloc = b.allocate(eye, &pts);
         let lit = b.update(&vpls, &tree);
         assert_eq!(a, b, "the same cache");
-        assert_eq!(summary, radiance_cache::CacheSummary::new(&alloc, &lit, &b));
-        assert_eq!(summary.lit, 12);
+        assert_eq!(summary.allocated, b.allocated_keys().len());
+        assert_eq!(summary.allocated, alloc.allocated);
+        assert_eq!(summary.full_grid, full_grid, "cascades x resolution^3");
+        assert!(summary.allocated > 12, "the 50 points need more caches than the budget");
+        assert_eq!(summary.lit, 12, "the budget");
+        assert_eq!(summary.never_lit, lit.never_lit);
+        if frame == 0 {
+            assert_eq!(summary.never_lit, summary.allocated - 12, "only the budget's caches lit");
+            assert_eq!(summary.oldest_age_frames, 0, "every lit cache was lit this frame");
+        }
+        assert_eq!(summary.oldest_age_frames, lit.oldest_age_frames);
+        assert_eq!(summary.memory_bytes, b.memory_bytes());
     }
 }

@@ -10,7 +10,7 @@ use glam::{Mat4, Vec3};
 use rsm_gi::gpu::{
     BLUR_WGSL, GATHER_WGSL, GpuGBuffer, GpuGather, GpuRsm, SPLAT_WGSL, UPSAMPLE_WGSL,
 };
-use rsm_gi::{GBuffer, Interleave, RsmGi, RsmInput, Sampling, Settings};
+use rsm_gi::{GBuffer, Interleave, RsmGi, RsmGiError, RsmInput, Sampling, Settings};
 
 fn validate(src: &str) {
     gpu_harness::validate_wgsl(src).unwrap_or_else(|e| panic!("{e}"));
@@ -144,7 +144,12 @@ fn gpu_gather_and_blur_match_the_cpu() {
     let gi = RsmGi::new(Settings::DEFAULT).unwrap();
     let gather = GpuGather::new(&ctx.device, &gi, 8, 8, 64).unwrap();
     let mut encoder = ctx.device.create_command_encoder(&Default::default());
-    assert!(gather.record(&ctx.device, &ctx.queue, &mut encoder, &gpu_rsm, &gpu_g, true).is_err());
+    let e =
+        gather.record(&ctx.device, &ctx.queue, &mut encoder, &gpu_rsm, &gpu_g, true).unwrap_err();
+    assert!(
+        matches!(e, RsmGiError::SizeMismatch { width: 8, height: 8, got, .. } if got == (W * H) as usize),
+        "{e}"
+    );
 }
 
 /// The splat: the same VPLs splatted on the GPU (per pixel, its cell's VPLs in order) and on
@@ -191,20 +196,20 @@ fn gpu_splat_matches_the_cpu() {
         }
         let too_many = vec![vpls[0]; 257];
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
-        assert!(
-            splat
-                .record_splat(&ctx.device, &ctx.queue, &mut encoder, &too_many, &gpu_g, true)
-                .is_err()
-        );
-        assert!(
-            splat.record(&ctx.device, &ctx.queue, &mut encoder, &gpu_rsm, &gpu_g, true).is_err()
-        );
+        let e = splat
+            .record_splat(&ctx.device, &ctx.queue, &mut encoder, &too_many, &gpu_g, true)
+            .unwrap_err();
+        assert!(matches!(e, RsmGiError::SizeMismatch { got: 257, width: 256, .. }), "{e}");
+        let e = splat
+            .record(&ctx.device, &ctx.queue, &mut encoder, &gpu_rsm, &gpu_g, true)
+            .unwrap_err();
+        assert!(matches!(e, RsmGiError::Misuse(m) if m.contains("splats")), "{e}");
     }
     let low = RsmGi::new(Settings { low_res: 2, ..Settings::DEFAULT }).unwrap();
-    assert!(
-        GpuGather::splat(&ctx.device, &low, w, h, 16).is_err(),
-        "the GPU splat is full resolution"
-    );
+    let e = GpuGather::splat(&ctx.device, &low, w, h, 16)
+        .err()
+        .expect("the GPU splat is full resolution");
+    assert!(matches!(e, RsmGiError::InvalidSetting { name: "low_res", .. }), "{e}");
 }
 
 /// A gather and a splat bound once and recorded frame after frame (the camera moving) give

@@ -89,11 +89,14 @@ proptest! {
         let s = Settings { vpls: 256, pattern: Interleave::NONE, r_max: 1.0, sampling, vpl_offset: 0.05, ..Settings::DEFAULT };
         let gi = RsmGi::new(s).unwrap();
         let out = gi.gather(&rsm, &g).unwrap();
-        // The samples landing in the texel, each standing for pi R² / K texels (Poisson) or
-        // 2 pi r R² / K (polar), R = 1 texel.
+        // The samples landing in the texel, each standing for pi R² / K texels (Poisson's
+        // uniform density over the unit disc) or 2 pi r R² / K (polar: r and phi uniform, so
+        // the density in the disc is 1 / (2 pi r)), R = 1 texel. The weights are derived here
+        // from each sample's position, not read from the crate's own `inv_density`.
+        let weight = |o: glam::Vec2| if polar { std::f32::consts::TAU * o.length() } else { std::f32::consts::PI };
         let covered: f32 = gi.samples().iter()
             .filter(|s| s.offset.x.abs() < 0.5 && s.offset.y.abs() < 0.5)
-            .map(|s| s.inv_density / 256.0)
+            .map(|s| weight(s.offset) / 256.0)
             .sum();
         let moved = Vec3::ZERO - np * 0.05;
         let expect = form_factor(x[0], n[0], moved, np, phi) * covered;

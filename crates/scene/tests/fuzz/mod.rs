@@ -3,7 +3,10 @@
 //! time budget is spent) and what it measured (inputs, failures, peak memory).
 //!
 //! Environment: `SEREIN_FUZZ_SEED` = a number (replay) or `random` (a new seed per run,
-//! printed); `SEREIN_FUZZ_CASES` (inputs per target and batch, default 40);
+//! printed); unset, the run uses the fixed [`FIXED_SEED`] and then a fresh seed (printed), so
+//! CI is reproducible and still explores; `SEREIN_FUZZ_CASES` (inputs per target, seed and
+//! batch, default 250); `SEREIN_FUZZ_INPUT_MS` (the time one load may take before it counts
+//! as a failure, default [`INPUT_MS`]);
 //! `SEREIN_FUZZ_SECONDS` (keep running batches per target for this long);
 //! `SEREIN_FUZZ_TARGET` (one target by name); `SEREIN_FUZZ_SUMMARY` (write a JSON summary).
 #![allow(dead_code)]
@@ -21,6 +24,14 @@ use std::time::Instant;
 
 /// Peak resident memory a run may reach (the loaders' budgets keep it far below this).
 pub const PEAK_BOUND_MIB: f64 = 1024.0;
+
+/// The seed every plain test run starts with (then a fresh one): a failure in CI replays.
+pub const FIXED_SEED: u64 = 20_261_207;
+
+/// One load slower than this (ms) is a failure carrying its seed: the loaders' size budgets
+/// keep every valid or mutated input of these small files to milliseconds even in a debug
+/// build, so seconds mean a loop that does far more work than its input asks for.
+pub const INPUT_MS: f64 = 5_000.0;
 
 /// A loader under test: writes the mutated input (and what it references) into a folder and
 /// returns the file to load.
@@ -52,8 +63,11 @@ pub struct Outcome {
 
 /// The run's budget and seed, from the environment.
 pub struct Plan {
-    pub seed: u64,
+    /// The seeds to run, one after the other.
+    pub seeds: Vec<u64>,
     pub cases: u32,
+    /// [`INPUT_MS`] unless the environment sets another bound.
+    pub input_ms: f64,
     pub seconds: Option<f64>,
     pub only: Option<String>,
 }
@@ -61,17 +75,21 @@ pub struct Plan {
 impl Plan {
     pub fn from_env() -> Self {
         let var = |k: &str| std::env::var(k).ok().filter(|v| !v.is_empty());
-        // A new seed every run (printed, and in every failure's message); a number replays.
-        let seed = match var("SEREIN_FUZZ_SEED").as_deref() {
-            None | Some("random") => {
-                let t = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH);
-                t.map_or(1, |d| d.as_nanos() as u64 ^ u64::from(std::process::id()))
-            }
-            Some(s) => s.parse().expect("SEREIN_FUZZ_SEED: a number or `random`"),
+        // The fixed seed then a new one (printed, and in every failure's message); `random`
+        // only a new one; a number replays.
+        let fresh = || {
+            let t = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH);
+            t.map_or(1, |d| d.as_nanos() as u64 ^ u64::from(std::process::id()))
+        };
+        let seeds = match var("SEREIN_FUZZ_SEED").as_deref() {
+            None => vec![FIXED_SEED, fresh()],
+            Some("random") => vec![fresh()],
+            Some(s) => vec![s.parse().expect("SEREIN_FUZZ_SEED: a number or `random`")],
         };
         Self {
-            seed,
-            cases: var("SEREIN_FUZZ_CASES").and_then(|v| v.parse().ok()).unwrap_or(500),
+            seeds,
+            cases: var("SEREIN_FUZZ_CASES").and_then(|v| v.parse().ok()).unwrap_or(250),
+            input_ms: var("SEREIN_FUZZ_INPUT_MS").and_then(|v| v.parse().ok()).unwrap_or(INPUT_MS),
             seconds: var("SEREIN_FUZZ_SECONDS").and_then(|v| v.parse().ok()),
             only: var("SEREIN_FUZZ_TARGET"),
         }
@@ -82,8 +100,8 @@ fn steps() -> impl Strategy<Value = Vec<Step>> {
     prop::collection::vec((any::<u8>(), any::<u64>(), any::<u64>()), 1..8)
 }
 
-/// Runs one target under the plan.
-pub fn run(t: &Target, plan: &Plan) -> Outcome {
+/// Runs one target under the plan from `seed`.
+pub fn run(t: &Target, plan: &Plan, seed: u64) -> Outcome {
     let dir = std::env::temp_dir().join(format!("serein_fuzz_{}_{}", t.name, std::process::id()));
     let opts = LoadOptions::default();
     reset_peak();
@@ -92,10 +110,10 @@ pub fn run(t: &Target, plan: &Plan) -> Outcome {
     let mut failures = Vec::new();
     for batch in 0u64.. {
         // Each batch's seed is printed: `SEREIN_FUZZ_SEED=<it>` replays that batch first.
-        let seed = plan.seed.wrapping_add(batch.wrapping_mul(0x9E37_79B9_7F4A_7C15));
+        let batch_seed = seed.wrapping_add(batch.wrapping_mul(0x9E37_79B9_7F4A_7C15));
         let mut bytes = [0u8; 32];
         for (k, c) in bytes.chunks_mut(8).enumerate() {
-            c.copy_from_slice(&(seed ^ k as u64).to_le_bytes());
+            c.copy_from_slice(&(batch_seed ^ k as u64).to_le_bytes());
         }
         let config = Config {
             cases: plan.cases,
@@ -112,7 +130,14 @@ pub fn run(t: &Target, plan: &Plan) -> Outcome {
             inputs.set(inputs.get() + 1);
             let t0 = Instant::now();
             let r = scene::load_with(&path, &opts);
-            slowest.set(slowest.get().max(t0.elapsed().as_secs_f64() * 1e3));
+            let ms = t0.elapsed().as_secs_f64() * 1e3;
+            slowest.set(slowest.get().max(ms));
+            if ms > plan.input_ms {
+                return Err(TestCaseError::fail(format!(
+                    "slow input: {ms:.0} ms, over the {:.0} ms bound",
+                    plan.input_ms
+                )));
+            }
             check(r)
         });
         if let Err(e) = result {
@@ -121,7 +146,7 @@ pub fn run(t: &Target, plan: &Plan) -> Outcome {
                 TestError::Abort(why) => format!("aborted: {why}"),
             };
             failures.push(format!(
-                "{}: SEREIN_FUZZ_SEED={seed} SEREIN_FUZZ_TARGET={}: {what}",
+                "{}: SEREIN_FUZZ_SEED={batch_seed} SEREIN_FUZZ_TARGET={}: {what}",
                 t.name, t.name
             ));
             break;
@@ -133,7 +158,7 @@ pub fn run(t: &Target, plan: &Plan) -> Outcome {
     let _ = std::fs::remove_dir_all(&dir);
     Outcome {
         target: t.name,
-        seed: plan.seed,
+        seed,
         inputs: inputs.get(),
         failures,
         peak_mib: peak_mib(),
