@@ -2,8 +2,8 @@
 //! reports build time, memory, and Mrays/s for primary, incoherent and shadow rays, plus hit
 //! mismatches against brute force on a sample of rays.
 //!
-//! cargo run --release -p kdtree_tracer --example kdbench -- MESH.obj [--rays N] [--json]
-//! cargo run --release -p kdtree_tracer --example kdbench -- --scene city|sphere|soup|cornell|blob|cable|atrium
+//! cargo run --release -p serein-kdtree-tracer --example kdbench -- MESH.obj [--rays N] [--json]
+//! cargo run --release -p serein-kdtree-tracer --example kdbench -- --scene city|sphere|soup|cornell|blob|cable|atrium
 
 use std::time::Instant;
 

@@ -5,7 +5,7 @@
 //!
 //! The normal test run spends a short budget with a new seed each run; `cargo xtask fuzz
 //! [--minutes N] [--target NAME]` runs longer. A failure prints `SEREIN_FUZZ_SEED=...`:
-//! `SEREIN_FUZZ_SEED=<seed> SEREIN_FUZZ_TARGET=<name> cargo test -p scene --test
+//! `SEREIN_FUZZ_SEED=<seed> SEREIN_FUZZ_TARGET=<name> cargo test -p serein-scene --test
 //! fuzz_structured -- --nocapture` reproduces it. One `#[test]` runs the targets one after the
 //! other so that each target's peak memory is its own.
 
