@@ -49,7 +49,9 @@ pub fn run(root: &Path) -> anyhow::Result<()> {
     for p in &packages {
         let dir = format!("{}-{}", p.name, p.version);
         let file = target_dir.join("package").join(format!("{dir}.crate"));
-        run_cmd(Command::new("tar").arg("-xzf").arg(&file).arg("-C").arg(&scratch))?;
+        // `-m`: the files get the time of extraction, not the fixed time `cargo package` writes
+        // into every `.crate`, so cargo sees a changed file as changed.
+        run_cmd(Command::new("tar").arg("-xzmf").arg(&file).arg("-C").arg(&scratch))?;
         for license in ["LICENSE-MIT", "LICENSE-APACHE"] {
             anyhow::ensure!(
                 scratch.join(&dir).join(license).is_file(),
