@@ -40,7 +40,7 @@ pub fn run(root: &Path, quick: bool, json: Option<PathBuf>, only: &[String]) -> 
     let mut build = Command::new(&cargo);
     build.current_dir(root).args(["bench", "--no-run", "--bench", "gi_sweep"]);
     for c in &selected {
-        build.args(["-p", c]);
+        build.args(["-p", &crate::package_name(root, c)?]);
     }
     run_cmd(&mut build)?;
     for (i, name) in selected.iter().enumerate() {
@@ -55,7 +55,8 @@ pub fn run(root: &Path, quick: bool, json: Option<PathBuf>, only: &[String]) -> 
         run_cmd(
             Command::new(&cargo)
                 .current_dir(root)
-                .args(["bench", "-q", "-p", name, "--bench", "gi_sweep"])
+                .args(["bench", "-q", "-p", &crate::package_name(root, name)?])
+                .args(["--bench", "gi_sweep"])
                 .env(gi_report::ENV_OUT, &part)
                 .env(gi_report::ENV_QUICK, if quick { "1" } else { "0" }),
         )

@@ -30,7 +30,7 @@ pub fn run(
             "test",
             "--release",
             "-p",
-            "scene",
+            &crate::package_name(root, "scene")?,
             "--test",
             "fuzz_structured",
             "--",

@@ -6,12 +6,15 @@
 //!   sweep, merged into `target/gi-report/` (report.json, report.md, one SVG per technique).
 //! - `cargo xtask render [ARGS]`: the engine's main job (see `serein-render --help`).
 //! - `cargo xtask view [ARGS]`: the engine in a window (see `serein-view --help`).
+//! - `cargo xtask package-check`: every library crate packages and its `.crate` builds outside
+//!   the workspace, with default features and with all features (also part of `test`).
 //! - `cargo xtask report`: redraws report.md and the charts from an existing report.json.
 //! - `cargo xtask fuzz [--minutes N] [--target NAME] [--seed S]`: the loaders' structure-aware
 //!   fuzzer for N minutes (default 10) with a new seed; summary in `target/fuzz/`.
 
 mod bench;
 mod fuzz;
+mod package_check;
 mod reliability;
 mod report;
 mod shaders;
@@ -67,6 +70,9 @@ enum Command {
     },
     /// Validate every top-level WGSL file under shaders/ with naga.
     Shaders,
+    /// `cargo package` every library crate and build each packaged crate outside the workspace
+    /// (default features, then all features).
+    PackageCheck,
     /// Render a scene with the engine (release build of `serein-render`): with no arguments
     /// the city at 1600x900 at 17:30 into target/render/. `cargo xtask render --help-render`
     /// lists the options (--scene, --time, --date, --size, --preset, --frames, --out,
@@ -98,6 +104,7 @@ fn main() -> anyhow::Result<()> {
         Command::Render { args } => run_bin(&root, "serein-render", "--help-render", &args),
         Command::View { args } => run_bin(&root, "serein-view", "--help-view", &args),
         Command::Shaders => shaders::validate_all(&root).map(|n| println!("{n} shaders valid")),
+        Command::PackageCheck => package_check::run(&root),
     }
 }
 
@@ -120,6 +127,23 @@ fn workspace_root() -> PathBuf {
         .parent()
         .expect("xtask lives one level below the workspace root")
         .to_path_buf()
+}
+
+/// The package name of the crate in `crates/<dir>` (a library's package is `serein-*`, its
+/// library keeps the directory's name).
+fn package_name(root: &std::path::Path, dir: &str) -> anyhow::Result<String> {
+    use anyhow::Context;
+    let path = root.join("crates").join(dir).join("Cargo.toml");
+    let text =
+        std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
+    let manifest: toml::Table =
+        text.parse().with_context(|| format!("parsing {}", path.display()))?;
+    manifest
+        .get("package")
+        .and_then(|p| p.get("name"))
+        .and_then(|n| n.as_str())
+        .map(str::to_owned)
+        .with_context(|| format!("{} has no package name", path.display()))
 }
 
 /// Runs a command, echoing it; errors if it fails.

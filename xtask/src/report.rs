@@ -28,22 +28,13 @@ pub struct Report {
     pub reliability: Option<crate::reliability::Reliability>,
 }
 
-fn gpu_name() -> String {
-    match gpu_harness::GpuContext::new() {
-        Ok(ctx) if ctx.is_software() => {
-            format!("{} (software rasteriser: not a GPU)", ctx.describe())
-        }
-        Ok(ctx) => ctx.describe(),
-        Err(_) => "none".into(),
-    }
-}
-
 /// Merges the parts of `crates` found in `parts_dir` (missing parts are skipped).
 pub fn merge(parts_dir: &Path, crates: &[String], quick: bool) -> anyhow::Result<Report> {
     let mut report = Report {
         machine: Machine {
             cores: std::thread::available_parallelism().map_or(1, |n| n.get()),
-            gpu: gpu_name(),
+            // The first sweep that names its adapter (xtask itself opens no GPU).
+            gpu: "none".into(),
         },
         quick,
         entries: Vec::new(),
@@ -57,6 +48,9 @@ pub fn merge(parts_dir: &Path, crates: &[String], quick: bool) -> anyhow::Result
         }
         let part: Part = serde_json::from_str(&std::fs::read_to_string(&path)?)
             .with_context(|| format!("parsing {}", path.display()))?;
+        if let (Some(gpu), "none") = (part.gpu, report.machine.gpu.as_str()) {
+            report.machine.gpu = gpu;
+        }
         report.entries.extend(part.entries);
         report.comparisons.extend(part.comparisons);
     }

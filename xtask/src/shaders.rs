@@ -3,8 +3,10 @@
 //! Shared snippets are named `*.inc.wgsl` and are validated inside the shaders that include
 //! them. A top-level shader names its snippets in leading comment lines of the form
 //! `// include: sh_math/sh.inc.wgsl` (paths relative to `shaders/`); the Rust side builds the
-//! same source with `concat!(include_str!(snippet), include_str!(shader))`, and each crate's
-//! own test validates that string too.
+//! same source from its own files (`crates/<crate>/shaders` is a link to `shaders/<crate>`, so
+//! the package carries them: `include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/..."))`)
+//! and from the snippets other crates export as `pub const`s (`sh_math::WGSL`), and each
+//! crate's own test validates that string too.
 
 use anyhow::Context;
 use std::path::{Path, PathBuf};

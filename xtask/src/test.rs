@@ -1,6 +1,6 @@
 //! `cargo xtask test`: the checks CI runs, in the order that fails fastest.
 
-use crate::{run_cmd, shaders};
+use crate::{package_check, run_cmd, shaders};
 use std::path::Path;
 use std::process::Command;
 
@@ -18,6 +18,8 @@ pub fn run(root: &Path, test_args: &[String]) -> anyhow::Result<()> {
     ]))?;
     let n = shaders::validate_all(root)?;
     eprintln!("naga: {n} top-level WGSL shaders valid");
+    // After clippy, whose dependency artifacts the packaged crates' checks reuse.
+    package_check::run(root)?;
     // Last, so the run ends with the test runner's own summary. Property tests draw from a
     // fixed seed unless the caller picks another (`PROPTEST_RNG_SEED`), so CI is reproducible;
     // `--no-fail-fast` reports every failing test binary, not just the first.

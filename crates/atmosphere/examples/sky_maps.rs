@@ -1,7 +1,7 @@
 //! Writes the sky map of Lisbon on 21 June 2024 at sunrise, noon and sunset as PNG (tone
 //! mapped, for a person to look at) and EXR (linear radiance, per unit solar irradiance).
 //!
-//! `cargo run --release -p atmosphere --example sky_maps [output_dir]`
+//! `cargo run --release -p serein-atmosphere --example sky_maps [output_dir]`
 //! (default output directory: `target/atmosphere-sky-maps`).
 
 use atmosphere::{CivilDate, Sky, SkyMap, SkyMapSettings, solar_position};

@@ -14,12 +14,13 @@ use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 
 /// The WGSL source, exactly as the GPU receives it.
-pub const SKYMAP_WGSL: &str = include_str!("../../../shaders/atmosphere/skymap.wgsl");
+pub const SKYMAP_WGSL: &str =
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/skymap.wgsl"));
 /// The map's bilinear sample for consumers' shaders (the twin of [`SkyMap::sample`]):
 /// `fn skymap_sample(dir, size) -> vec3<f32>`, over a `fn skymap_texel(index: i32) ->
 /// vec3<f32>` the including shader defines on its own binding.
 pub const SKYMAP_SAMPLE_INC_WGSL: &str =
-    include_str!("../../../shaders/atmosphere/skymap_sample.inc.wgsl");
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/skymap_sample.inc.wgsl"));
 
 /// [`SKYMAP_SAMPLE_INC_WGSL`] followed by `shaders/atmosphere/skymap_sample_eval.wgsl`
 /// (bindings: 0 = `{ size, count }` uniform, 1 = the map as RGB triples, 2 = directions as
@@ -27,7 +28,7 @@ pub const SKYMAP_SAMPLE_INC_WGSL: &str =
 pub fn skymap_sample_eval_shader() -> String {
     format!(
         "{SKYMAP_SAMPLE_INC_WGSL}\n{}",
-        include_str!("../../../shaders/atmosphere/skymap_sample_eval.wgsl")
+        include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/skymap_sample_eval.wgsl"))
     )
 }
 /// Entry point of [`SKYMAP_WGSL`].

@@ -2,7 +2,7 @@
 //! and the sky volume refills over the next frames; the report of each hour's last frame says
 //! which passes ran. Writes `target/time_of_day/HHhMM.png`.
 //!
-//! `cargo run --release -p engine --example time_of_day [-- WIDTHxHEIGHT]`
+//! `cargo run --release -p serein-engine --example time_of_day [-- WIDTHxHEIGHT]`
 
 use engine::{Preset, Renderer, Settings, pass};
 use scene::{CivilDate, Sun};

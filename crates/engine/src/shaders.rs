@@ -2,13 +2,16 @@
 //! casting buffer's and the combination's are `traced_effects::gpu`'s, the G-buffer's
 //! `scene::gpu`'s.
 
-const COMMON_INC: &str = include_str!("../../../shaders/engine/common.inc.wgsl");
-const LIGHTING: &str = include_str!("../../../shaders/engine/lighting.wgsl");
-const QUERIES: &str = include_str!("../../../shaders/engine/queries.wgsl");
-const SKY_VPLS: &str = include_str!("../../../shaders/engine/sky_vpls.wgsl");
-const SHADING: &str = include_str!("../../../shaders/engine/shading.inc.wgsl");
-const TRACED: &str = include_str!("../../../shaders/engine/traced.wgsl");
-const MIRRORED_SUN: &str = include_str!("../../../shaders/engine/mirrored_sun.inc.wgsl");
+const COMMON_INC: &str =
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/common.inc.wgsl"));
+const LIGHTING: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/lighting.wgsl"));
+const QUERIES: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/queries.wgsl"));
+const SKY_VPLS: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/sky_vpls.wgsl"));
+const SHADING: &str =
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/shading.inc.wgsl"));
+const TRACED: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/traced.wgsl"));
+const MIRRORED_SUN: &str =
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/mirrored_sun.inc.wgsl"));
 
 /// Every complete shader as `(name, source)`, for the pipelines and the naga test.
 pub fn all() -> Vec<(&'static str, String)> {

@@ -22,7 +22,7 @@
 //! not model (its frame is black); it is the reference path tracer's validation scene
 //! (`crates/reference/tests/scene.rs`), not the engine's.
 //!
-//! `SEREIN_BLESS=1 cargo test -p engine --test golden` rewrites the goldens. On a failure the
+//! `SEREIN_BLESS=1 cargo test -p serein-engine --test golden` rewrites the goldens. On a failure the
 //! rendered image is written as `tests/golden/<scene>.actual.png` and the absolute difference
 //! (x4) as `tests/golden/<scene>.diff.png` (both gitignored), and the message names the files
 //! and the numbers.

@@ -5,7 +5,7 @@
 //! other). Run alone it prints the JSON part; `cargo xtask bench` would merge it into the
 //! report.
 //!
-//! `cargo run -p gi_report --example sweep`
+//! `cargo run -p serein-gi-report --example sweep`
 
 use gi_report::{Entry, Sweep, rel_rms, time_ms};
 

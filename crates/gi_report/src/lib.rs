@@ -9,9 +9,11 @@
 //! a minute per crate on 2 cores), which `cargo xtask bench` sets.
 
 mod metrics;
+#[cfg(feature = "sweep")]
 mod sweep;
 mod timing;
 
 pub use metrics::{max_rel, mean_rel_luminance, rel_rms};
+#[cfg(feature = "sweep")]
 pub use sweep::{Comparison, ENV_OUT, ENV_QUICK, Entry, ErrorValue, Part, Sweep};
 pub use timing::{black_box, interleaved, time_ms, time_ns_per_call};

@@ -122,6 +122,10 @@ impl Comparison {
 pub struct Part {
     pub entries: Vec<Entry>,
     pub comparisons: Vec<Comparison>,
+    /// The wgpu adapter the sweep's GPU entries ran on ([`Sweep::adapter`]); absent when it
+    /// measured none. The merged report's `machine.gpu` is the first part's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gpu: Option<String>,
 }
 
 /// Collects a crate's entries; knows whether this is the quick sweep; shows progress.
@@ -157,6 +161,12 @@ impl Sweep {
     /// `full` repetitions normally, a fifth of them (at least 3) in the quick sweep.
     pub fn reps(&self, full: usize) -> usize {
         if self.quick { (full / 5).max(3) } else { full }
+    }
+
+    /// Names the wgpu adapter this sweep's GPU entries ran on (a software rasteriser should say
+    /// so in the name: its timings are not GPU timings).
+    pub fn adapter(&mut self, name: impl Into<String>) {
+        self.part.gpu = Some(name.into());
     }
 
     /// Shows what is being measured now.

@@ -2,7 +2,7 @@
 //! GPU, or Mesa's lavapipe / llvmpipe on a machine without one), dispatch a compute shader
 //! over your CPU data, read it back and compare with the CPU path.
 //!
-//! `cargo run -p gpu_harness --example double`
+//! `cargo run -p serein-gpu-harness --example double`
 
 use gpu_harness::{Binding, GpuContext};
 

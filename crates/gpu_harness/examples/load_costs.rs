@@ -7,7 +7,7 @@
 //! the compiler sees as a constant (a loop of constant trip count, unrolled) is read once for
 //! the whole group.
 //!
-//! `cargo run --release -p gpu_harness --example load_costs [ROUNDS]`
+//! `cargo run --release -p serein-gpu-harness --example load_costs [ROUNDS]`
 //!
 //! Measured (2 cores of an Intel Xeon, lavapipe, load 1.0, median of 20 rounds, two runs
 //! within 2%): ms per pass of 32 reads a pixel, and per read once the no-read pass is taken

@@ -3,8 +3,8 @@
 //! memory, and Mrays/s for primary, incoherent and shadow rays, plus hit mismatches against
 //! brute force on a sample of rays and Embree's agreement with the kd-tree on all of them.
 //!
-//! cargo run --release -p kdtree_tracer --example kdbench -- MESH.obj [--rays N] [--json]
-//! cargo run --release -p kdtree_tracer --example kdbench -- --scene city|sphere|soup|cornell|blob|cable|atrium|scan
+//! cargo run --release -p serein-kdtree-tracer --example kdbench -- MESH.obj [--rays N] [--json]
+//! cargo run --release -p serein-kdtree-tracer --example kdbench -- --scene city|sphere|soup|cornell|blob|cable|atrium|scan
 //!
 //! `--scan-level L` sets the scanned-style mesh's size (`20 * 4^L` triangles, default 5).
 

@@ -17,7 +17,7 @@
 //! races `trace_tiles` (packets) against tiles of single rays on the city's two 800x450
 //! reflection buffers and its 1600x900 primary rays (times in ms as well as the ratio).
 //!
-//! cargo run --release -p kdtree_tracer --example kdrace -- [--rays N] [--threads T]
+//! cargo run --release -p serein-kdtree-tracer --example kdrace -- [--rays N] [--threads T]
 //! [--rounds R] [--preset NAME] [--no-embree] [MESH...]
 
 #[path = "../benches/embree/mod.rs"]

@@ -2,7 +2,7 @@
 //! image's worth of camera rays per frame in parallel tiles into a buffer you keep, and shade
 //! each hit with a shadow ray (an any-hit query). Prints the image as text.
 //!
-//! `cargo run -p kdtree_tracer --example render`
+//! `cargo run -p serein-kdtree-tracer --example render`
 
 use glam::Vec3;
 use kdtree_tracer::{DEFAULT_TILE, Hit, KdTree, Mesh, Ray, Settings, test_util};

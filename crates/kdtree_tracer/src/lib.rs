@@ -53,6 +53,7 @@
 mod aabb;
 mod brute;
 mod build;
+#[cfg(feature = "bvh")]
 mod bvh;
 mod differentials;
 mod error;
@@ -61,6 +62,7 @@ mod mesh;
 mod node;
 mod packet;
 mod ray;
+#[cfg(feature = "bvh")]
 mod scene;
 mod settings;
 mod surfaces;
@@ -73,12 +75,14 @@ mod triangle;
 pub mod test_util;
 
 pub use brute::BruteForce;
+#[cfg(feature = "bvh")]
 pub use bvh::{BvhAccel, BvhKind, BvhPreset};
 pub use differentials::{Footprint, RayDifferential, texture_footprint};
 pub use error::Error;
 pub use mesh::Mesh;
 pub use packet::PACKET;
 pub use ray::{Hit, Ray, RayQuery};
+#[cfg(feature = "bvh")]
 pub use scene::SceneAccel;
 pub use settings::{MAX_DEPTH_LIMIT, Settings};
 pub use surfaces::{SurfaceHit, Surfaces};

@@ -5,7 +5,7 @@
 //! reference's mean) and a Reinhard tone map. The LPV's VPLs come from a 256² CPU RSM of the
 //! scene from the sun (`shadows::Rsm`), see `support/scene_case.rs`.
 //!
-//! `cargo run --release -p lpv --example cornell_window [out.png] [spp]`
+//! `cargo run --release -p serein-lpv --example cornell_window [out.png] [spp]`
 
 #[path = "../support/scene_case.rs"]
 mod scene_case;

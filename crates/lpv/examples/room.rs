@@ -6,7 +6,7 @@
 //! hand: in a renderer, a shadow pass writes them), and the pixels a column up a wall that
 //! stands on the floor. Prints the bounce each wall point receives.
 //!
-//! `cargo run -p lpv --example room`
+//! `cargo run -p serein-lpv --example room`
 
 use glam::Vec3;
 use lpv::{Lpv, LpvSettings, rsm_surfels, rsm_vpls};

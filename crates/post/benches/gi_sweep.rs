@@ -107,6 +107,10 @@ fn main() {
             None
         }
     };
+    if let Some(ctx) = &ctx {
+        let software = if ctx.is_software() { " (software rasteriser: not a GPU)" } else { "" };
+        sweep.adapter(format!("{}{software}", ctx.describe()));
+    }
     let technique = if ctx.is_some() { "accumulate_gpu" } else { "accumulate_cpu" };
     sweep.stage("time one frame of the pass");
     let ms = frame_ms(ctx.as_ref(), sweep.reps(50));

@@ -3,7 +3,7 @@
 //! to show. Here a synthetic 64x32 frame (a bright sky over a darker ground) is shown for a
 //! few frames, then the sun sets (the frame gets 50 times darker) and the eye adapts.
 //!
-//! `cargo run -p post --example tone_map`
+//! `cargo run -p serein-post --example tone_map`
 
 use post::{Exposure, ToneMapper, log_average};
 

@@ -3,7 +3,7 @@
 //! surfaces it sees, then a few frames of `refresh` lit by VPLs on a sunlit patch of floor.
 //! Prints each frame's summary and the irradiance the lookup gives a few of the points.
 //!
-//! `cargo run -p radiance_cache --example view`
+//! `cargo run -p serein-radiance-cache --example view`
 
 use glam::Vec3;
 use kdtree_tracer::{Hit, KdTree, Mesh, Settings as TreeSettings};

@@ -2,7 +2,7 @@
 //! 2) with and without photons, their whole-frame relative RMS against each other
 //! (unclamped), the mean relative standard error, the worst 8 x 8 block and the time.
 //!
-//! `cargo run --release -p reference --example caustics -- --spp 64 --baseline` (add
+//! `cargo run --release -p serein-reference --example caustics -- --spp 64 --baseline` (add
 //! `--refine` for the second sampling stage where the image is noisiest)
 
 use anyhow::{Result, bail};

@@ -1,7 +1,7 @@
 //! Renders one of the `scene` crate's generated scenes with the reference path tracer and
 //! writes the mean and standard-error images (EXR) and a tone-mapped PNG.
 //!
-//! `cargo run --release -p reference --example render -- --scene city --spp 64`
+//! `cargo run --release -p serein-reference --example render -- --scene city --spp 64`
 
 use anyhow::{Context, Result, bail};
 use clap::Parser;

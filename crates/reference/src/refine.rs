@@ -32,7 +32,7 @@
 //! were drawn.
 //!
 //! **Measured** (the city at 320x180, caustic photons on, seeds 1 and 2, 2 cores idle;
-//! `cargo run --release -p reference --example caustics -- --spp 1024 --refine`):
+//! `cargo run --release -p serein-reference --example caustics -- --spp 1024 --refine`):
 //!
 //! | | 1024 spp | 1024 spp + [`Refinement::DEFAULT`] |
 //! |---|---|---|

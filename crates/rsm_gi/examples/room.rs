@@ -6,7 +6,7 @@
 //! Here the RSM is a 4 x 4 m sunlit floor seen from straight above, and the G-buffer a column
 //! of pixels up a wall standing on it. Prints the bounce each wall pixel receives.
 //!
-//! `cargo run -p rsm_gi --example room`
+//! `cargo run -p serein-rsm-gi --example room`
 
 use glam::{Mat4, Vec3};
 use rsm_gi::{GBuffer, RsmGi, RsmInput, RsmProjection, Settings};

@@ -34,8 +34,8 @@ use wgpu::util::DeviceExt;
 macro_rules! shader {
     ($($file:literal),+) => {
         concat!(
-            include_str!("../../../shaders/rsm_gi/common.inc.wgsl"),
-            $(include_str!(concat!("../../../shaders/rsm_gi/", $file))),+
+            include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/common.inc.wgsl")),
+            $(include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/", $file))),+
         )
     };
 }

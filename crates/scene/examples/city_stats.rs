@@ -1,7 +1,7 @@
 //! Generates the reference city, prints its statistics, what it needs from the engine and why,
 //! and what changes when the sun moves and a mesh is moved.
 //!
-//! `cargo run -p scene --release --example city_stats -- [seed]`
+//! `cargo run -p serein-scene --release --example city_stats -- [seed]`
 
 use scene::{Generated, SceneChange, SunPosition};
 use std::time::Instant;

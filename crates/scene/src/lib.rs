@@ -40,10 +40,12 @@ mod bounds;
 mod camera;
 mod change;
 mod error;
+#[cfg(feature = "generate")]
 mod generate;
 #[cfg(feature = "gpu")]
 pub mod gpu;
 mod light;
+#[cfg(feature = "load")]
 mod load;
 mod material;
 mod mesh;
@@ -59,14 +61,19 @@ pub use bounds::Aabb;
 pub use camera::{Camera, Frustum};
 pub use change::{SceneChange, SceneState};
 pub use error::{Cause, LoadError, LoadErrorKind, SceneError};
+#[cfg(feature = "generate")]
 pub use generate::{
     FURNACE_ALBEDO, FURNACE_EMISSION, Generated, city, cornell_window, furnace, furnace_radiance,
     plane_box, two_rooms,
 };
 pub use light::{PointLight, SUN_ANGULAR_RADIUS, Sun, SunPosition};
+#[cfg(feature = "load")]
 pub use load::gltf::{load_gltf, load_gltf_slice};
+#[cfg(feature = "load")]
 pub use load::obj::{load_obj, load_obj_slice};
+#[cfg(feature = "load")]
 pub use load::scene_file::{load_scene_file, load_scene_str};
+#[cfg(feature = "load")]
 pub use load::{LoadOptions, load, load_with};
 pub use material::{AlphaMask, Material, MaterialId, RAY_TRACE_THRESHOLD, phong_lobe};
 pub use mesh::{Cleanup, Mesh, MeshData};

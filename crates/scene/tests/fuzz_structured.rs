@@ -6,7 +6,7 @@
 //! The normal test run spends a short budget on a fixed seed and then a new one (both printed);
 //! `cargo xtask fuzz [--minutes N] [--target NAME] [--seed N]` runs longer. A load slower than
 //! the plan's bound is a failure like any other. A failure prints `SEREIN_FUZZ_SEED=...`:
-//! `SEREIN_FUZZ_SEED=<seed> SEREIN_FUZZ_TARGET=<name> cargo test -p scene --test
+//! `SEREIN_FUZZ_SEED=<seed> SEREIN_FUZZ_TARGET=<name> cargo test -p serein-scene --test
 //! fuzz_structured -- --nocapture` reproduces it. One `#[test]` runs the targets one after the
 //! other so that each target's peak memory is its own.
 

@@ -1,5 +1,5 @@
 //! The scene files under `tests/data/`, made by the project: each is what its generator in
-//! `tests/common/` writes (`SEREIN_BLESS=1 cargo test -p scene --test test_data` rewrites
+//! `tests/common/` writes (`SEREIN_BLESS=1 cargo test -p serein-scene --test test_data` rewrites
 //! them), and each loads as the scene it describes.
 
 mod common;

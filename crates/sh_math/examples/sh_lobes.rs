@@ -1,7 +1,7 @@
 //! Draws what SH does to a sharp light: a sun-like lobe projected to 2..5 bands, unwindowed and
 //! Hann-windowed, as a latitude-longitude PNG (one row per band count), plus the irradiance.
 //!
-//! `cargo run --release -p sh_math --example sh_lobes -- [OUT.png]`
+//! `cargo run --release -p serein-sh-math --example sh_lobes -- [OUT.png]`
 //! (default: target/sh_math_lobes.png). Red marks negative values (ringing).
 
 use glam::Vec3;

@@ -3,7 +3,7 @@
 //! on the GPU, prepend `sh_math::WGSL` to your shader and call `sh_irradiance_9` on the same
 //! coefficients. Prints the SH irradiance beside a brute-force integral of the sky.
 //!
-//! `cargo run -p sh_math --example sky_irradiance`
+//! `cargo run -p serein-sh-math --example sky_irradiance`
 
 use glam::Vec3;
 use sh_math::{Sh3Rgb, fibonacci_sphere, irradiance_rgb, project_fn_rgb, saff_kuijlaars_sphere};

@@ -38,4 +38,4 @@ pub use rotate::ShRotation;
 
 /// The WGSL snippet with the same basis evaluation (`sh_basis_4`, `sh_basis_9`, `sh_basis_16`,
 /// `sh_basis_25`, `sh_irradiance_9`): prepend it to a shader that uses it.
-pub const WGSL: &str = include_str!("../../../shaders/sh_math/sh.inc.wgsl");
+pub const WGSL: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/sh.inc.wgsl"));

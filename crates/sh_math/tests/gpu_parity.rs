@@ -4,8 +4,8 @@ use glam::Vec3;
 use sh_math::{Sh3, Sh5, eval_basis, irradiance, random_sphere};
 
 const PARITY: &str = concat!(
-    include_str!("../../../shaders/sh_math/sh.inc.wgsl"),
-    include_str!("../../../shaders/sh_math/parity.wgsl")
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/sh.inc.wgsl")),
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/parity.wgsl"))
 );
 
 #[test]

@@ -5,7 +5,7 @@
 //! on the far end of the pole's shadow, where the sun's penumbra is widest. Each panel shows
 //! visibility, the irradiance divided by that of the unshadowed ground.
 //!
-//! `cargo run -p shadows --release --example plane_box [out.png] [map resolution] [reference samples]`
+//! `cargo run -p serein-shadows --release --example plane_box [out.png] [map resolution] [reference samples]`
 
 #[path = "../benches/support/sun_scenes.rs"]
 mod sun_scenes;

@@ -4,7 +4,7 @@
 //! with PCSS. Prints the shadow of a table on the ground, seen from above, as text: the
 //! penumbra widens away from the table's legs.
 //!
-//! `cargo run -p shadows --example sun_shadows`
+//! `cargo run -p serein-shadows --example sun_shadows`
 
 use glam::{DVec3, Vec3};
 use shadows::{Camera, CascadedShadowMap, CsmSettings, DepthMap, Pcss, PcssSettings, rasterize};

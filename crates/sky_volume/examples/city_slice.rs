@@ -1,7 +1,7 @@
 //! Renders top-down slices of the sky-light irradiance volume of the generated city (the
 //! `scene` crate's reference city and its occlusion quads) as PNG images.
 //!
-//! `cargo run --release -p sky_volume --example city_slice [out_dir]` writes
+//! `cargo run --release -p serein-sky-volume --example city_slice [out_dir]` writes
 //! `sky_volume_slice.png`: irradiance at an upward normal 1 m above the ground (left) and at
 //! a normal facing north-east at half the volume's height (right), tone-mapped, sampled on a
 //! fine grid by trilinear lookup. The sky is this crate's `AnalyticSky` for the scene's sun

@@ -46,12 +46,14 @@ pub fn unpack_probe(words: &[u32; PROBE_UVEC4S * 4]) -> [f32; 27] {
 /// shaders (after the `sh_math` snippet): the includer provides `sky_volume_params()` (the
 /// [`LookupParams`] uniform, [`ResidentSkyVolume::lookup_params`]) and `sky_volume_probe(i)`
 /// (the probe buffer, [`ResidentSkyVolume::probes`]).
-pub const LOOKUP_INC_WGSL: &str = include_str!("../../../shaders/sky_volume/lookup.inc.wgsl");
+pub const LOOKUP_INC_WGSL: &str =
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/lookup.inc.wgsl"));
 /// WGSL of the lookup kernel (entry point `lookup`) over [`LOOKUP_INC_WGSL`]; use
 /// [`lookup_shader`].
-pub const LOOKUP_WGSL: &str = include_str!("../../../shaders/sky_volume/lookup.wgsl");
+pub const LOOKUP_WGSL: &str =
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/lookup.wgsl"));
 /// WGSL of the brute-force fill (entry point `fill`); use [`fill_shader`].
-pub const FILL_WGSL: &str = include_str!("../../../shaders/sky_volume/fill.wgsl");
+pub const FILL_WGSL: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/fill.wgsl"));
 
 /// The complete lookup shader (sh_math snippet + [`LOOKUP_INC_WGSL`] + [`LOOKUP_WGSL`]).
 pub fn lookup_shader() -> String {

@@ -1,5 +1,5 @@
 //! Writes the SSAO of a generated scene's view beside the ray-traced truth:
-//! `cargo run --release -p ssao --example ao_image -- [cornell_window|city|two_rooms|plane_box] [samples] [radius]`
+//! `cargo run --release -p serein-ssao --example ao_image -- [cornell_window|city|two_rooms|plane_box] [samples] [radius]`
 //! writes `target/ssao/<scene>.png` (top: SSAO, bottom: traced AO) and prints the error.
 
 #[path = "../tests/common/mod.rs"]

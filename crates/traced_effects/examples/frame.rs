@@ -3,7 +3,7 @@
 //! radiance through the scene's kd-tree, and what the traced light adds to a mirror pixel.
 //! A GPU renderer runs the first and last steps as `traced_effects::gpu` passes instead.
 //!
-//! `cargo run -p traced_effects --example frame`
+//! `cargo run -p serein-traced-effects --example frame`
 
 use glam::{UVec2, Vec3};
 use traced_effects::combine::traced_radiance;

@@ -54,7 +54,7 @@ impl Presenter {
             config.usage |= wgpu::TextureUsages::COPY_SRC;
         }
         surface.configure(&device, &config);
-        let source = include_str!("../../../../shaders/app/blit.wgsl");
+        let source = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/blit.wgsl"));
         let blit = gpu_harness::fullscreen_pipeline(
             &device,
             "blit",

@@ -41,8 +41,8 @@ pub use resident::{ResidentLpv, RsmFrame, RsmTextures};
 macro_rules! shader {
     ($($file:literal),+) => {
         concat!(
-            include_str!("../../../../shaders/lpv/common.inc.wgsl"),
-            $(include_str!(concat!("../../../../shaders/lpv/", $file))),+
+            include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/common.inc.wgsl")),
+            $(include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/", $file))),+
         )
     };
 }

@@ -22,11 +22,13 @@ pub use tonemap::{REDUCE_GROUPS, ToneMapPass};
 
 /// The tone-mapping shader (`shaders/post/tonemap.wgsl`: entry points `reduce`, `adapt`,
 /// `map`).
-pub const TONEMAP_WGSL: &str = include_str!("../../../../shaders/post/tonemap.wgsl");
+pub const TONEMAP_WGSL: &str =
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/tonemap.wgsl"));
 
 /// The accumulation shader (`shaders/post/accumulate.wgsl`: entry points `vs_fullscreen`,
 /// `fs_accumulate`).
-pub const ACCUMULATE_WGSL: &str = include_str!("../../../../shaders/post/accumulate.wgsl");
+pub const ACCUMULATE_WGSL: &str =
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/accumulate.wgsl"));
 
 /// Every shader of the crate as `(name, source)`, for the naga test.
 pub const SHADERS: [(&str, &str); 2] = [("tonemap", TONEMAP_WGSL), ("accumulate", ACCUMULATE_WGSL)];

@@ -45,9 +45,9 @@ use glam::{Mat4, Vec3};
 
 /// The G-buffer shader: [`super::MATERIAL_INC_WGSL`] then `shaders/scene/gbuffer.wgsl`.
 pub const GBUFFER_WGSL: &str = concat!(
-    include_str!("../../../../shaders/scene/material.inc.wgsl"),
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/material.inc.wgsl")),
     "\n",
-    include_str!("../../../../shaders/scene/gbuffer.wgsl")
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/gbuffer.wgsl"))
 );
 
 /// G-buffer formats in attachment order: albedo + glossiness, shading normal + specular

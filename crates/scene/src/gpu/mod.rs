@@ -35,7 +35,8 @@ use glam::Vec3;
 
 /// The WGSL declaration of [`GpuMaterial`] (`struct Material`), for the shaders that read
 /// [`GpuScene::materials`].
-pub const MATERIAL_INC_WGSL: &str = include_str!("../../../../shaders/scene/material.inc.wgsl");
+pub const MATERIAL_INC_WGSL: &str =
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/material.inc.wgsl"));
 
 /// One vertex (world space; scenes are static, so transforms are applied at upload).
 #[repr(C)]

@@ -41,27 +41,31 @@ pub use rsm_pass::ReflectiveShadowMap;
 pub use rsm_vpls::{GpuVplReduction, RSM_VPLS_WGSL};
 
 /// The PCF/PCSS snippet (`shaders/shadows/pcss.inc.wgsl`).
-pub const PCSS_INC_WGSL: &str = include_str!("../../../../shaders/shadows/pcss.inc.wgsl");
+pub const PCSS_INC_WGSL: &str =
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/pcss.inc.wgsl"));
 
 /// The cascade lookup snippet (`shaders/shadows/csm.inc.wgsl`; include after the PCSS one).
-pub const CSM_INC_WGSL: &str = include_str!("../../../../shaders/shadows/csm.inc.wgsl");
+pub const CSM_INC_WGSL: &str =
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/csm.inc.wgsl"));
 
 /// The point-light cube snippet (`shaders/shadows/cube.inc.wgsl`).
-pub const CUBE_INC_WGSL: &str = include_str!("../../../../shaders/shadows/cube.inc.wgsl");
+pub const CUBE_INC_WGSL: &str =
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/cube.inc.wgsl"));
 
 /// The snippet followed by `shaders/shadows/pcss_eval.wgsl` (bindings: 0 `PcssParams`
 /// uniform, 1 [`PcssEval`] uniform, 2 depths `array<f32>`, 3 taps `array<vec2<f32>>`,
 /// 4 receivers `array<PcssReceiver>`, 5 output `array<vec4<f32>>` = hard, PCF, PCSS, 0).
 pub const PCSS_EVAL_WGSL: &str = concat!(
-    include_str!("../../../../shaders/shadows/pcss.inc.wgsl"),
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/pcss.inc.wgsl")),
     "\n",
-    include_str!("../../../../shaders/shadows/pcss_eval.wgsl")
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/pcss_eval.wgsl"))
 );
 
 /// The overlapped shadow maps' lookup (`shaders/shadows/osm.inc.wgsl`, after the PCSS and
 /// cascade snippets; the maps are [`crate::CsmCascade`] blocks rendered by
 /// [`CascadeShadows`]).
-pub const OSM_INC_WGSL: &str = include_str!("../../../../shaders/shadows/osm.inc.wgsl");
+pub const OSM_INC_WGSL: &str =
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/osm.inc.wgsl"));
 
 /// The PCSS, cascade and overlapped-map snippets followed by `shaders/shadows/csm_eval.wgsl`
 /// (entry points `main` for the cascades, `main_osm` for overlapped maps; bindings:
@@ -69,30 +73,31 @@ pub const OSM_INC_WGSL: &str = include_str!("../../../../shaders/shadows/osm.inc
 /// 3 queries `array<vec4<f32>, 2>` = position + view depth, geometry normal, 4 output
 /// `array<f32>` visibility).
 pub const CSM_EVAL_WGSL: &str = concat!(
-    include_str!("../../../../shaders/shadows/pcss.inc.wgsl"),
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/pcss.inc.wgsl")),
     "\n",
-    include_str!("../../../../shaders/shadows/csm.inc.wgsl"),
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/csm.inc.wgsl")),
     "\n",
-    include_str!("../../../../shaders/shadows/osm.inc.wgsl"),
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/osm.inc.wgsl")),
     "\n",
-    include_str!("../../../../shaders/shadows/csm_eval.wgsl")
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/csm_eval.wgsl"))
 );
 
 /// The alpha-mask snippet of the masked pipelines (`shaders/shadows/mask.inc.wgsl`).
-pub const MASK_INC_WGSL: &str = include_str!("../../../../shaders/shadows/mask.inc.wgsl");
+pub const MASK_INC_WGSL: &str =
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/mask.inc.wgsl"));
 
 /// The depth-only shadow pass (`shaders/shadows/depth.wgsl` after the mask snippet).
 pub const DEPTH_WGSL: &str = concat!(
-    include_str!("../../../../shaders/shadows/mask.inc.wgsl"),
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/mask.inc.wgsl")),
     "\n",
-    include_str!("../../../../shaders/shadows/depth.wgsl")
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/depth.wgsl"))
 );
 
 /// The reflective shadow map pass (`shaders/shadows/rsm.wgsl` after the mask snippet).
 pub const RSM_WGSL: &str = concat!(
-    include_str!("../../../../shaders/shadows/mask.inc.wgsl"),
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/mask.inc.wgsl")),
     "\n",
-    include_str!("../../../../shaders/shadows/rsm.wgsl")
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/rsm.wgsl"))
 );
 
 /// The `Eval` uniform of `pcss_eval.wgsl`.

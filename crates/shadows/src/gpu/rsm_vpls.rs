@@ -11,7 +11,8 @@ use glam::Vec3;
 use wgpu::util::DeviceExt;
 
 /// The reduction kernel.
-pub const RSM_VPLS_WGSL: &str = include_str!("../../../../shaders/shadows/rsm_vpls.wgsl");
+pub const RSM_VPLS_WGSL: &str =
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/rsm_vpls.wgsl"));
 
 /// Bytes of one tile's VPL as the kernel writes it (position, normal, flux as `vec4`s).
 const TILE_BYTES: u64 = 48;

@@ -55,26 +55,26 @@ use bytemuck::{Pod, Zeroable};
 /// Schlick's Fresnel term, `fn fresnel_schlick(c: f32, ior: f32) -> f32`
 /// (`shaders/traced_effects/fresnel.inc.wgsl`).
 pub const FRESNEL_INC_WGSL: &str =
-    include_str!("../../../../shaders/traced_effects/fresnel.inc.wgsl");
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/fresnel.inc.wgsl"));
 
 /// A pixel's view ray and world position from a linear depth
 /// (`shaders/traced_effects/screen.inc.wgsl`): `pixel_view_ray(inv_view_proj, eye, size, px)`
 /// and `pixel_world_position(inv_view_proj, eye, forward, size, px, depth)`.
 pub const SCREEN_INC_WGSL: &str =
-    include_str!("../../../../shaders/traced_effects/screen.inc.wgsl");
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/screen.inc.wgsl"));
 
 macro_rules! shader {
     ($file:literal) => {
-        concat!(
-            include_str!("../../../../shaders/scene/material.inc.wgsl"),
+        constcat::concat!(
+            scene::gpu::MATERIAL_INC_WGSL,
             "\n",
-            include_str!("../../../../shaders/traced_effects/fresnel.inc.wgsl"),
+            include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/fresnel.inc.wgsl")),
             "\n",
-            include_str!("../../../../shaders/traced_effects/screen.inc.wgsl"),
+            include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/screen.inc.wgsl")),
             "\n",
-            include_str!("../../../../shaders/traced_effects/common.inc.wgsl"),
+            include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/common.inc.wgsl")),
             "\n",
-            include_str!(concat!("../../../../shaders/traced_effects/", $file))
+            include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/", $file))
         )
     };
 }
@@ -90,7 +90,8 @@ pub const RAYCAST_WGSL: &str = shader!("raycast.wgsl");
 pub const COMBINE_WGSL: &str = shader!("combine.wgsl");
 
 /// The placement of the uploaded radiance per texel (entry point `main`).
-pub const SCATTER_WGSL: &str = include_str!("../../../../shaders/traced_effects/scatter.wgsl");
+pub const SCATTER_WGSL: &str =
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/scatter.wgsl"));
 
 /// [`TracedView::flags`]: cast reflection rays.
 pub const TRACED_REFLECTIONS: u32 = 1;
