@@ -18,6 +18,8 @@ pub fn run(root: &Path, test_args: &[String]) -> anyhow::Result<()> {
     ]))?;
     let n = shaders::validate_all(root)?;
     eprintln!("naga: {n} top-level WGSL shaders valid");
+    // The report page, built from a small fixture, rendered in headless Chromium.
+    crate::browser::check(root)?;
     // Last, so the run ends with the test runner's own summary. Property tests draw from a
     // fixed seed unless the caller picks another (`PROPTEST_RNG_SEED`), so CI is reproducible;
     // `--no-fail-fast` reports every failing test binary, not just the first.
