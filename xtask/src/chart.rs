@@ -124,7 +124,8 @@ pub fn svg(chart: &Chart) -> anyhow::Result<String> {
     }
     // Pad to the decade below the data (plotters' log ticks start at a decade) and to the next
     // 1-2-5 value above it, at least a factor 1.5 on each side.
-    let pad_lo = |v: f64| 10f64.powf((v / 1.5).log10().floor());
+    // (a hair below it: plotters finds the first decade through ln, which rounds 0.1 up to 1).
+    let pad_lo = |v: f64| 10f64.powf((v / 1.5).log10().floor()) * (1.0 - 1e-6);
     let pad_hi = |v: f64| nice_above(v * 1.5);
     let (xmin, xmax, ymin, ymax) = (pad_lo(xmin), pad_hi(xmax), pad_lo(ymin), pad_hi(ymax));
     let decades = |lo: f64, hi: f64| ((hi / lo).log10().ceil() as usize).max(1);
