@@ -8,13 +8,20 @@
 //! - `cargo xtask view [ARGS]`: the engine in a window (see `serein-view --help`).
 //! - `cargo xtask package-check`: every library crate packages and its `.crate` builds outside
 //!   the workspace, with default features and with all features (also part of `test`).
-//! - `cargo xtask report`: redraws report.md and the charts from an existing report.json.
+//! - `cargo xtask report`: redraws report.md, index.html and the charts from an existing
+//!   report.json.
+//! - `cargo xtask page-check`: builds the report page from a fixture and checks it in headless
+//!   Chromium (a step of `cargo xtask test`).
 //! - `cargo xtask fuzz [--minutes N] [--target NAME] [--seed S]`: the loaders' structure-aware
 //!   fuzzer for N minutes (default 10) with a new seed; summary in `target/fuzz/`.
 
 mod bench;
+mod browser;
+mod chart;
+mod front;
 mod fuzz;
 mod package_check;
+mod page;
 mod reliability;
 mod report;
 mod shaders;
@@ -54,8 +61,10 @@ enum Command {
         #[arg(long)]
         only: Vec<String>,
     },
-    /// Redraw report.md and the SVG charts from target/gi-report/report.json.
+    /// Redraw report.md, index.html and the SVG charts from target/gi-report/report.json.
     Report,
+    /// Build the report page from xtask/fixtures/report.json and check it in headless Chromium.
+    PageCheck,
     /// Fuzz the loaders (glTF, GLB, OBJ + MTL, scene TOML, PNG) with structure-aware mutations.
     Fuzz {
         /// Minutes in all, shared between the targets.
@@ -98,6 +107,7 @@ fn main() -> anyhow::Result<()> {
         Command::Test { test_args } => test::run(&root, &test_args),
         Command::Bench { quick, json, only } => bench::run(&root, quick, json, &only),
         Command::Report => report::redraw(&root.join("target/gi-report")),
+        Command::PageCheck => browser::check(&root).map(|_| ()),
         Command::Fuzz { minutes, target, seed } => {
             fuzz::run(&root, minutes, target.as_deref(), seed.as_deref())
         }

@@ -1,12 +1,14 @@
-//! The merged report: report.json, report.md, one error-vs-time SVG per technique, and one
-//! race per truth: every technique measured against the same reference (whatever crate's
-//! sweep measured it) on one chart.
+//! The merged report: report.json, report.md, index.html (one page: headline answers, every
+//! chart inline, fronts, pictures, races, reliability), one error-vs-time SVG per technique,
+//! and one race per truth: every technique measured against the same reference (whatever
+//! crate's sweep measured it) on one chart.
 
+use crate::chart::{self, Chart};
+use crate::front::{self, Point};
 use anyhow::Context;
 use gi_report::{Comparison, Entry, Part};
-use plotters::prelude::*;
 use serde::{Deserialize, Serialize};
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
 #[derive(Serialize, Deserialize)]
@@ -57,28 +59,71 @@ pub fn merge(parts_dir: &Path, crates: &[String], quick: bool) -> anyhow::Result
     Ok(report)
 }
 
-/// Writes report.md and the charts from `dir/report.json`.
+/// Writes report.md, index.html and the charts from `dir/report.json`.
 pub fn redraw(dir: &Path) -> anyhow::Result<()> {
     let path = dir.join("report.json");
     let report: Report = serde_json::from_str(
         &std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?,
-    )?;
-    let mut charts = charts(dir, &report)?;
-    charts.extend(races(dir, &report)?);
+    )
+    .with_context(|| format!("parsing {}", path.display()))?;
+    let mut charts = charts(&report)?;
+    charts.extend(races(&report)?);
+    for c in &charts {
+        std::fs::write(dir.join(&c.file), &c.svg).with_context(|| format!("writing {}", c.file))?;
+    }
     std::fs::write(dir.join("report.md"), markdown(&report, &charts))?;
-    eprintln!("wrote {}/report.json, report.md and {} charts", dir.display(), charts.len());
+    std::fs::write(dir.join("index.html"), crate::page::html(&report, &charts))?;
+    eprintln!(
+        "wrote {}/report.json, report.md, index.html and {} charts",
+        dir.display(),
+        charts.len()
+    );
     Ok(())
 }
 
-fn fmt_settings(e: &Entry) -> String {
+pub fn fmt_settings(e: &Entry) -> String {
     e.settings.iter().map(|(k, v)| format!("{k}={v}")).collect::<Vec<_>>().join(", ")
 }
 
-fn markdown(report: &Report, charts: &[String]) -> String {
+/// The median time and its spread: `12.3 [11.9–13.0] ×9` (min–max, repeats).
+pub fn fmt_spread(e: &Entry) -> String {
+    match &e.spread {
+        Some(s) => {
+            format!("{} [{}–{}] ×{}", fmt_ms(e.time_ms), fmt_ms(s.min), fmt_ms(s.max), s.samples)
+        }
+        None => fmt_ms(e.time_ms),
+    }
+}
+
+/// A race's ratio with its interval and what it means.
+pub fn fmt_ratio(c: &Comparison) -> String {
+    match &c.interval {
+        Some(i) if i.includes_one() => format!(
+            "{:.2} [{:.2}–{:.2}, {:.0}%, {} pairs]: no clear winner (the interval holds 1)",
+            c.ratio,
+            i.lo,
+            i.hi,
+            100.0 * i.confidence,
+            i.pairs
+        ),
+        Some(i) => format!(
+            "{:.2} [{:.2}–{:.2}, {:.0}%, {} pairs]",
+            c.ratio,
+            i.lo,
+            i.hi,
+            100.0 * i.confidence,
+            i.pairs
+        ),
+        None => format!("{:.2} (no interval: not raced interleaved)", c.ratio),
+    }
+}
+
+fn markdown(report: &Report, charts: &[ChartOut]) -> String {
     let mut md = String::from("# Accuracy costs time\n\n");
     md += &format!(
-        "Machine: {} cores, GPU: {}. Sweep: {}.\n\n\
-         Times are medians of repeated runs of the unit each name says. Errors name their metric: \
+        "Machine: {} cores, GPU: {}. Sweep: {}. The same report as one page: `index.html`.\n\n\
+         Times are medians of repeated runs of the unit each name says, with [min–max] of the \
+         repeats and their count. Errors name their metric: \
          `rel_rms` = sqrt(sum (a-r)^2 / sum r^2); `max_rel` = max |a-r|/|r| where r is bounded away \
          from 0; `mean_rel_luminance` = sum |Y(a)-Y(r)| / sum Y(r); others are defined in the entry's note.\n",
         report.machine.cores,
@@ -90,9 +135,11 @@ fn markdown(report: &Report, charts: &[String]) -> String {
         by_crate.entry(&e.crate_name).or_default().push(e);
     }
     for (krate, entries) in by_crate {
-        md += &format!(
-            "\n## {krate}\n\n| name | technique | settings | time (ms) | error | reference | threads | note |\n|---|---|---|---:|---|---|---:|---|\n"
-        );
+        md += &format!("\n## {krate}\n\n");
+        for c in charts.iter().filter(|c| c.krate.as_deref() == Some(krate)) {
+            md += &format!("- **{}**: {}\n", c.title, c.headline);
+        }
+        md += "\n| name | technique | settings | time (ms) [min–max] ×n | error | reference | threads | note |\n|---|---|---|---:|---|---|---:|---|\n";
         for e in entries {
             let err =
                 e.error.as_ref().map_or("".into(), |x| format!("{} {:.3e}", x.metric, x.value));
@@ -101,36 +148,39 @@ fn markdown(report: &Report, charts: &[String]) -> String {
                 e.name,
                 e.technique,
                 fmt_settings(e),
-                fmt_ms(e.time_ms),
+                fmt_spread(e),
                 err,
                 e.reference.as_deref().unwrap_or(""),
                 e.threads,
                 e.note.as_deref().unwrap_or("")
             );
         }
-        for c in charts.iter().filter(|c| c.starts_with(&format!("{krate}__"))) {
-            md += &format!("\n![{c}]({c})\n");
+        for c in charts.iter().filter(|c| c.krate.as_deref() == Some(krate)) {
+            md += &format!("\n![{0}]({0})\n", c.file);
         }
     }
-    let races: Vec<&String> = charts.iter().filter(|c| c.starts_with(RACE_PREFIX)).collect();
+    let races: Vec<&ChartOut> = charts.iter().filter(|c| c.krate.is_none()).collect();
     if !races.is_empty() {
         md += "\n## Races: every technique measured against one truth\n\nEach chart holds the \
                entries, of any crate, whose error names the same reference (the same scene, \
                receivers and samples): one series per technique.\n";
         for c in races {
-            md += &format!("\n![{c}]({c})\n");
+            md += &format!("\n**{}**: {}\n\n![{2}]({2})\n", c.title, c.headline, c.file);
         }
     }
     if !report.comparisons.is_empty() {
-        md += "\n## Side-by-side comparisons (same process, interleaved; ratio > 1: we are better)\n\n| name | ours | theirs | unit | ratio | note |\n|---|---:|---:|---|---:|---|\n";
+        md += "\n## Side-by-side comparisons (same process, interleaved; ratio > 1: we are better)\n\n\
+               The interval is the order-statistic confidence interval of the median per-round \
+               ratio (each round times both peers back to back).\n\n\
+               | name | ours | theirs | unit | ratio [interval] | note |\n|---|---:|---:|---|---|---|\n";
         for c in &report.comparisons {
             md += &format!(
-                "| `{}` | {:.3} | {:.3} | {} | {:.2} | {} |\n",
+                "| `{}` | {:.3} | {:.3} | {} | {} | {} |\n",
                 c.name,
                 c.ours,
                 c.theirs,
                 c.unit,
-                c.ratio,
+                fmt_ratio(c),
                 c.note.as_deref().unwrap_or("")
             );
         }
@@ -141,65 +191,139 @@ fn markdown(report: &Report, charts: &[String]) -> String {
     md
 }
 
-/// One log-log chart (error vs ms) per (crate, technique) with at least one error figure.
-/// Returns the file names written.
-fn charts(dir: &Path, report: &Report) -> anyhow::Result<Vec<String>> {
-    let mut groups: BTreeMap<(String, String), Points> = BTreeMap::new();
-    for e in &report.entries {
-        let Some(err) = &e.error else { continue };
-        if err.value > 0.0 && err.value.is_finite() && e.time_ms > 0.0 {
-            let label = e.name.rsplit('/').next().unwrap_or("").to_owned();
-            groups
-                .entry((e.crate_name.clone(), e.technique.clone()))
-                .or_default()
-                .push((err.value, e.time_ms, label));
-        }
+/// A drawn chart and what the page says about it.
+pub struct ChartOut {
+    /// File name of the SVG beside report.md.
+    pub file: String,
+    pub svg: String,
+    pub title: String,
+    /// The crate of a technique's chart; `None` for a race.
+    pub krate: Option<String>,
+    /// The metric on the x axis.
+    pub metric: String,
+    pub points: Vec<Point>,
+    /// The one-line answer from the front.
+    pub headline: String,
+}
+
+/// The x axis's name for a metric: its name, its short definition, its unit.
+fn metric_axis(metric: &str, reference: Option<&str>) -> String {
+    let what = match metric {
+        "rel_rms" => "rel_rms = sqrt(Σ(a−r)² / Σr²)",
+        "max_rel" => "max_rel = max |a−r| / |r|",
+        "mean_rel_luminance" => "mean_rel_luminance = Σ|Y(a)−Y(r)| / ΣY(r)",
+        other => other,
+    };
+    match reference {
+        Some(r) => format!("error: {what} against {r} (unitless)"),
+        None => format!("error: {what} (unitless, see the entry's note)"),
+    }
+}
+
+const Y_NAME: &str = "time (ms, median of repeats)";
+
+fn chart_out(
+    file: String,
+    title: String,
+    krate: Option<String>,
+    metric: &str,
+    reference: Option<&str>,
+    points: Vec<Point>,
+) -> anyhow::Result<ChartOut> {
+    let svg = chart::svg(&Chart {
+        title: &title,
+        x_name: metric_axis(metric, reference),
+        y_name: Y_NAME,
+        points: &points,
+    })
+    .with_context(|| format!("drawing {file}"))?;
+    let headline = front::headline(&points, metric);
+    Ok(ChartOut { file, svg, title, krate, metric: metric.to_owned(), points, headline })
+}
+
+fn point(i: usize, e: &Entry, series: String) -> Option<Point> {
+    let err = e.error.as_ref()?;
+    (err.value > 0.0 && err.value.is_finite() && e.time_ms > 0.0 && e.time_ms.is_finite()).then(
+        || Point {
+            error: err.value,
+            ms: e.time_ms,
+            spread: e.spread,
+            series,
+            label: e.name.split_once('/').map_or(e.name.as_str(), |(_, l)| l).to_owned(),
+            entry: i,
+        },
+    )
+}
+
+/// One log-log chart (error vs ms) per (crate, technique, metric) with at least one error
+/// figure (the metric in the file name only where a technique has several).
+fn charts(report: &Report) -> anyhow::Result<Vec<ChartOut>> {
+    type Group = (Vec<Point>, BTreeSet<String>);
+    let mut groups: BTreeMap<(String, String, String), Group> = BTreeMap::new();
+    for (i, e) in report.entries.iter().enumerate() {
+        let label = e.name.rsplit('/').next().unwrap_or("");
+        let Some(p) = point(i, e, series_of(label).to_owned()) else { continue };
+        let metric = e.error.as_ref().map_or(String::new(), |m| m.metric.clone());
+        let g = groups.entry((e.crate_name.clone(), e.technique.clone(), metric)).or_default();
+        g.0.push(p);
+        g.1.extend(e.reference.clone());
+    }
+    let mut metrics_of: BTreeMap<(&str, &str), usize> = BTreeMap::new();
+    for (krate, technique, _) in groups.keys() {
+        *metrics_of.entry((krate, technique)).or_default() += 1;
     }
     let mut written = Vec::new();
-    for ((krate, technique), points) in groups {
-        let file = format!("{krate}__{}.svg", technique.replace(['/', ' '], "_"));
-        draw_chart(&dir.join(&file), &format!("{krate}: {technique}"), &points)
-            .with_context(|| format!("drawing {file}"))?;
-        written.push(file);
+    for ((krate, technique, metric), (points, references)) in &groups {
+        let several = metrics_of[&(krate.as_str(), technique.as_str())] > 1;
+        let stem = technique.replace(['/', ' '], "_");
+        let file = if several {
+            format!("{krate}__{stem}__{metric}.svg")
+        } else {
+            format!("{krate}__{stem}.svg")
+        };
+        let reference = (references.len() == 1).then(|| references.iter().next().unwrap().as_str());
+        let title = format!("{krate}: {technique}");
+        written.push(chart_out(
+            file,
+            title,
+            Some(krate.clone()),
+            metric,
+            reference,
+            points.clone(),
+        )?);
     }
     Ok(written)
 }
-
-/// A chart's points: (error, ms, label).
-type Points = Vec<(f64, f64, String)>;
 
 /// File-name prefix of the race charts.
 const RACE_PREFIX: &str = "race__";
 
 /// One chart per reference that entries of at least two techniques were measured against
-/// (series: `crate/technique`). Returns the file names written.
-fn races(dir: &Path, report: &Report) -> anyhow::Result<Vec<String>> {
-    let mut groups: BTreeMap<(&str, &str), Points> = BTreeMap::new();
-    for e in &report.entries {
+/// (series: `crate/technique`).
+fn races(report: &Report) -> anyhow::Result<Vec<ChartOut>> {
+    let mut groups: BTreeMap<(&str, &str), Vec<Point>> = BTreeMap::new();
+    for (i, e) in report.entries.iter().enumerate() {
         let (Some(err), Some(reference)) = (&e.error, &e.reference) else { continue };
-        if err.value > 0.0 && err.value.is_finite() && e.time_ms > 0.0 {
-            let series = format!("{}/{}", e.crate_name, e.technique);
-            let key = (reference.as_str(), err.metric.as_str());
-            groups.entry(key).or_default().push((err.value, e.time_ms, series));
-        }
+        let series = format!("{}/{}", e.crate_name, e.technique);
+        let Some(mut p) = point(i, e, series) else { continue };
+        p.label = e.name.clone();
+        groups.entry((reference.as_str(), err.metric.as_str())).or_default().push(p);
     }
     let mut written = Vec::new();
     for ((reference, metric), points) in groups {
-        let techniques: std::collections::BTreeSet<&str> =
-            points.iter().map(|p| p.2.as_str()).collect();
+        let techniques: BTreeSet<&str> = points.iter().map(|p| p.series.as_str()).collect();
         if techniques.len() < 2 {
             continue;
         }
         let file = format!("{RACE_PREFIX}{reference}_{metric}.svg").replace(['/', ' '], "_");
-        draw_chart(&dir.join(&file), &format!("race: {metric} against {reference}"), &points)
-            .with_context(|| format!("drawing {file}"))?;
-        written.push(file);
+        let title = format!("race: {metric} against {reference}");
+        written.push(chart_out(file, title, None, metric, Some(reference), points)?);
     }
     Ok(written)
 }
 
 /// The series a point belongs to: its label without a trailing `_<number>` (so
-/// `projection_fibonacci_hemisphere_100` and `_1024` form one line).
+/// `projection_fibonacci_hemisphere_100` and `_1024` share a marker).
 fn series_of(label: &str) -> &str {
     match label.rsplit_once('_') {
         Some((head, tail)) if !head.is_empty() && tail.chars().all(|c| c.is_ascii_digit()) => head,
@@ -207,66 +331,7 @@ fn series_of(label: &str) -> &str {
     }
 }
 
-fn draw_chart(path: &Path, title: &str, points: &[(f64, f64, String)]) -> anyhow::Result<()> {
-    let (mut xmin, mut xmax, mut ymin, mut ymax) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-    for (x, y, _) in points {
-        xmin = xmin.min(*x);
-        xmax = xmax.max(*x);
-        ymin = ymin.min(*y);
-        ymax = ymax.max(*y);
-    }
-    let pad = |lo: f64, hi: f64| (lo / 2.0, hi * 2.0);
-    let (xmin, xmax) = pad(xmin, xmax);
-    let (ymin, ymax) = pad(ymin, ymax);
-    let mut series: BTreeMap<&str, Vec<(f64, f64)>> = BTreeMap::new();
-    for (x, y, label) in points {
-        series.entry(series_of(label)).or_default().push((*x, *y));
-    }
-    let err = |e: &dyn std::fmt::Display| anyhow::anyhow!("{e}");
-    let root = SVGBackend::new(path, (820, 520)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| err(&e))?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 20))
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(70)
-        .build_cartesian_2d((xmin..xmax).log_scale(), (ymin..ymax).log_scale())
-        .map_err(|e| err(&e))?;
-    chart
-        .configure_mesh()
-        .x_desc("error against the reference")
-        .y_desc("time (ms)")
-        .x_labels(8)
-        .y_labels(8)
-        .x_label_formatter(&|v| format!("{v:.1e}"))
-        .y_label_formatter(&|v| format!("{v:.1e}"))
-        .draw()
-        .map_err(|e| err(&e))?;
-    for (i, (name, mut pts)) in series.into_iter().enumerate() {
-        let colour = Palette99::pick(i).to_rgba();
-        pts.sort_by(|a, b| a.1.total_cmp(&b.1));
-        chart
-            .draw_series(LineSeries::new(pts.clone(), colour.stroke_width(1)))
-            .map_err(|e| err(&e))?
-            .label(name)
-            .legend(move |(x, y)| Circle::new((x + 8, y), 4, colour.filled()));
-        chart
-            .draw_series(pts.iter().map(|p| Circle::new(*p, 4, colour.filled())))
-            .map_err(|e| err(&e))?;
-    }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::UpperRight)
-        .label_font(("sans-serif", 11))
-        .draw()
-        .map_err(|e| err(&e))?;
-    root.present().map_err(|e| err(&e))?;
-    Ok(())
-}
-
 /// Milliseconds with four significant digits whatever the scale (1.234e-5 for 12 ns).
-fn fmt_ms(ms: f64) -> String {
+pub fn fmt_ms(ms: f64) -> String {
     if ms != 0.0 && ms.abs() < 0.01 { format!("{ms:.3e}") } else { format!("{ms:.4}") }
 }

@@ -20,6 +20,8 @@ pub fn run(root: &Path, test_args: &[String]) -> anyhow::Result<()> {
     eprintln!("naga: {n} top-level WGSL shaders valid");
     // After clippy, whose dependency artifacts the packaged crates' checks reuse.
     package_check::run(root)?;
+    // The report page, built from a small fixture, rendered in headless Chromium.
+    crate::browser::check(root)?;
     // Last, so the run ends with the test runner's own summary. Property tests draw from a
     // fixed seed unless the caller picks another (`PROPTEST_RNG_SEED`), so CI is reproducible;
     // `--no-fail-fast` reports every failing test binary, not just the first.

@@ -1,13 +1,16 @@
 //! Report records and the per-crate sweep that collects them.
 
+use crate::timing::{self, RatioInterval, Spread};
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Where a sweep writes its part of the report (a JSON file). Unset: the part is printed.
 pub const ENV_OUT: &str = "GI_SWEEP_OUT";
 /// `1`: run the reduced sweep (about a minute per crate on 2 cores).
 pub const ENV_QUICK: &str = "GI_SWEEP_QUICK";
+/// The folder of the report's pictures, beside `report.json`.
+pub const PICTURES: &str = "pictures";
 
 /// An error figure with the name of its metric (`rel_rms`, `max_rel`, `mean_rel_luminance`,
 /// `abs`, ... each defined where it is computed).
@@ -41,6 +44,28 @@ pub struct Entry {
     /// A remark a reader needs (a target, the thesis's figure beside ours, ...).
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub note: Option<String>,
+    /// The spread of the repeats `time_ms` is the median of (absent: one run, or a report
+    /// written before spreads were recorded). [`Sweep::entry`] fills it from the timing
+    /// harness when the entry's time is the median of one of its recent timings.
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub spread: Option<Spread>,
+    /// Pictures of this point's output, for sweeps that produce images.
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub pictures: Option<Pictures>,
+}
+
+/// Pictures of an entry's output, as paths relative to the report's directory
+/// (`target/gi-report/`); written with [`crate::pictures`] into [`Sweep::picture_dir`].
+#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+pub struct Pictures {
+    /// The technique's output at this setting (a small PNG).
+    pub image: String,
+    /// The truth it is measured against, same size.
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub truth: Option<String>,
+    /// A false-colour image of the error (see [`crate::pictures::write_error`]).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub error: Option<String>,
 }
 
 impl Entry {
@@ -57,6 +82,8 @@ impl Entry {
             reference: None,
             threads: 1,
             note: None,
+            spread: None,
+            pictures: None,
         }
     }
 
@@ -83,6 +110,19 @@ impl Entry {
         self.note = Some(note.into());
         self
     }
+
+    /// Sets the spread of the repeats (in ms, like `time_ms`), for times the harness did not
+    /// take or that the sweep rescaled (per item, per ray).
+    pub fn spread(mut self, spread: Spread) -> Self {
+        self.spread = Some(spread);
+        self
+    }
+
+    /// Attaches pictures of this point's output.
+    pub fn pictures(mut self, pictures: Pictures) -> Self {
+        self.pictures = Some(pictures);
+        self
+    }
 }
 
 /// A side-by-side race with a peer, measured in the same process, interleaved.
@@ -96,6 +136,11 @@ pub struct Comparison {
     pub ratio: f64,
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub note: Option<String>,
+    /// The ratio's interval from the interleaved rounds (absent: not raced interleaved, or a
+    /// report written before intervals were recorded). [`Sweep::comparison`] fills it from the
+    /// timing harness's most recent race whose medians give this ratio.
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub interval: Option<RatioInterval>,
 }
 
 impl Comparison {
@@ -108,11 +153,25 @@ impl Comparison {
         higher_is_better: bool,
     ) -> Self {
         let ratio = if higher_is_better { ours / theirs } else { theirs / ours };
-        Self { name: name.into(), ours, theirs, unit: unit.to_owned(), ratio, note: None }
+        Self {
+            name: name.into(),
+            ours,
+            theirs,
+            unit: unit.to_owned(),
+            ratio,
+            note: None,
+            interval: None,
+        }
     }
 
     pub fn note(mut self, note: impl Into<String>) -> Self {
         self.note = Some(note.into());
+        self
+    }
+
+    /// Sets the ratio's interval (oriented like `ratio`: > 1 means we are better).
+    pub fn interval(mut self, interval: RatioInterval) -> Self {
+        self.interval = Some(interval);
         self
     }
 }
@@ -174,8 +233,13 @@ impl Sweep {
         self.progress.set_message(format!("{}: {what}", self.crate_name));
     }
 
+    /// Records a point. Without a spread of its own, the entry gets the one of the harness's
+    /// most recent timing whose median is its `time_ms`.
     pub fn entry(&mut self, mut entry: Entry) {
         entry.crate_name = self.crate_name.clone();
+        if entry.spread.is_none() {
+            entry.spread = timing::recall_spread(entry.time_ms);
+        }
         self.progress.inc(1);
         self.say(format!(
             "  {:<48} {:>12.6} ms  {}",
@@ -186,7 +250,12 @@ impl Sweep {
         self.part.entries.push(entry);
     }
 
-    pub fn comparison(&mut self, c: Comparison) {
+    /// Records a race. Without an interval of its own, the comparison gets the one of the
+    /// harness's most recent interleaved race whose medians give its ratio.
+    pub fn comparison(&mut self, mut c: Comparison) {
+        if c.interval.is_none() {
+            c.interval = timing::recall_interval(c.ratio);
+        }
         self.progress.inc(1);
         self.say(format!(
             "  {:<48} ours {:.3} vs theirs {:.3} {} (ratio {:.2})",
@@ -202,6 +271,21 @@ impl Sweep {
         } else {
             self.progress.println(line);
         }
+    }
+
+    /// Where this crate's pictures go (`target/gi-report/pictures/<crate>/`, created), or
+    /// `None` when the sweep writes no part (no [`ENV_OUT`]): pictures are for the report.
+    pub fn picture_dir(&self) -> Option<PathBuf> {
+        let report_dir = self.out.as_deref()?.parent()?.parent()?;
+        let dir = report_dir.join(PICTURES).join(&self.crate_name);
+        std::fs::create_dir_all(&dir).ok()?;
+        Some(dir)
+    }
+
+    /// A path under [`Sweep::picture_dir`] as the report names it (relative to its directory).
+    pub fn picture_path(&self, file: &Path) -> String {
+        let name = file.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+        format!("{PICTURES}/{}/{name}", self.crate_name)
     }
 
     /// Writes the part to [`ENV_OUT`] (or prints it as JSON when unset).
@@ -240,6 +324,37 @@ mod tests {
         assert!(v.get("note").is_none());
         let back: Entry = serde_json::from_value(v).unwrap();
         assert_eq!(back, e);
+    }
+
+    #[test]
+    fn the_sweep_attaches_spreads_and_intervals_from_the_harness() {
+        let mut sweep = Sweep::from_env("gi_report_test");
+        let (ms, _) = crate::time_ms(7, || crate::black_box((0..2000).sum::<u64>()));
+        sweep.entry(Entry::new("gi_report_test/sum", "sum", ms));
+        // Per-item times the harness did not take keep no spread.
+        sweep.entry(Entry::new("gi_report_test/other", "sum", ms * 0.37));
+        let spin = |n: u64| (0..n).fold(0u64, |a, i| crate::black_box(a.wrapping_add(i ^ 7)));
+        let (ours, theirs) = crate::interleaved(
+            9,
+            || {
+                crate::black_box(spin(20_000));
+            },
+            || {
+                crate::black_box(spin(400_000));
+            },
+        );
+        sweep.comparison(Comparison::new("gi_report_test/race", ours, theirs, "ms", false));
+        // An old report (no spread, no interval) still reads.
+        let old = r#"{"name":"a/b","ours":1.0,"theirs":2.0,"unit":"ms","ratio":2.0}"#;
+        assert_eq!(serde_json::from_str::<Comparison>(old).unwrap().interval, None);
+        let part = sweep.finish().unwrap();
+        let spread = part.entries[0].spread.expect("the timing's spread");
+        assert_eq!((spread.samples, spread.median), (7, ms));
+        assert!(spread.min <= spread.q1 && spread.q3 <= spread.max);
+        assert_eq!(part.entries[1].spread, None);
+        let interval = part.comparisons[0].interval.expect("the race's interval");
+        assert_eq!(interval.pairs, 9);
+        assert!(interval.lo > 1.0, "ours does 20x less work: {interval:?}");
     }
 
     #[test]

@@ -23,7 +23,7 @@ mod scene_case;
 #[path = "../support/views.rs"]
 mod views;
 
-use gi_report::{Comparison, Entry, Sweep, interleaved, time_ms};
+use gi_report::{Comparison, Entry, Pictures, Sweep, interleaved, time_ms};
 use glam::Vec3;
 use lpv::{Lpv, LpvSettings};
 use rsm_gi::{Interleave, Output, RsmGi, Settings};
@@ -126,6 +126,54 @@ fn entry(name: String, technique: &str, ms: f64, c: &Case, s: &Settings, a: &[Ve
         .threads(2)
 }
 
+/// `entry` with pictures for the report: `a` and the truth on the case's first four views side
+/// by side (the horizontal ring of a cube of views; the city's one camera) and the error.
+fn with_pictures(sweep: &Sweep, entry: Entry, c: &Case, a: &[Vec3]) -> Entry {
+    use gi_report::pictures::{write_error, write_thumbnail};
+    let Some(dir) = sweep.picture_dir() else { return entry };
+    let views = &c.views[..c.views.len().min(4)];
+    let h = views[0].height;
+    if views.iter().any(|v| v.height != h) {
+        return entry;
+    }
+    let offsets: Vec<u32> =
+        views.iter().scan(0, |x, v| Some(std::mem::replace(x, *x + v.width))).collect();
+    let w: u32 = views.iter().map(|v| v.width).sum();
+    let (mut image, mut truth) =
+        (vec![[0.0f32; 3]; (w * h) as usize], vec![[0.0f32; 3]; (w * h) as usize]);
+    for (k, &(v, i)) in c.at.iter().enumerate() {
+        if v < views.len() {
+            let vw = views[v].width as usize;
+            let p = (i / vw) * w as usize + offsets[v] as usize + i % vw;
+            image[p] = a[k].to_array();
+            truth[p] = c.truth[k].mean.to_array();
+        }
+    }
+    let lum = |c: &[f32; 3]| 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+    let mean = truth.iter().map(lum).sum::<f32>() / truth.len() as f32;
+    let exposure = if mean > 0.0 { 0.4 / mean } else { 1.0 };
+    let stem = entry.name.rsplit('/').next().unwrap_or("entry").to_owned();
+    let (img_path, truth_path, err_path) = (
+        dir.join(format!("{stem}.png")),
+        dir.join(format!("truth_{}.png", c.case.name)),
+        dir.join(format!("{stem}_error.png")),
+    );
+    let written = write_thumbnail(&truth_path, &truth, w, h, exposure)
+        .and_then(|()| write_thumbnail(&img_path, &image, w, h, exposure))
+        .and_then(|()| write_error(&err_path, &image, &truth, w, h));
+    match written {
+        Ok(_) => entry.pictures(Pictures {
+            image: sweep.picture_path(&img_path),
+            truth: Some(sweep.picture_path(&truth_path)),
+            error: Some(sweep.picture_path(&err_path)),
+        }),
+        Err(e) => {
+            eprintln!("no pictures for {}: {e}", entry.name);
+            entry
+        }
+    }
+}
+
 /// Frames of a still camera the radiance cache converges over before it is measured (its
 /// own sweep's quick figure).
 const CACHE_FRAMES: usize = 8;
@@ -155,7 +203,7 @@ fn radiance_cache_race(sweep: &mut Sweep, c: &Case, pool: &rayon::ThreadPool, re
         let (ms, cache) = pool.install(|| time_ms(reps, converge));
         let a: Vec<Vec3> = points.iter().map(|p| cache.irradiance(p.position, p.normal)).collect();
         let (e, scale, noise) = c.errors(&a);
-        sweep.entry(
+        let entry =
             Entry::new(format!("rsm_gi/radiance_cache_{tag}_{}", c.case.name), "radiance_cache", ms)
                 .setting("scene", c.case.name)
                 .setting("frames", CACHE_FRAMES)
@@ -164,8 +212,9 @@ fn radiance_cache_race(sweep: &mut Sweep, c: &Case, pool: &rayon::ThreadPool, re
                 .setting("reference_noise_rel_rms", noise)
                 .error("rel_rms", e, &c.reference_name)
                 .threads(2)
-                .note("radiance_cache on the same pixels as rsm_gi (time: its converging updates, not one frame)"),
-        );
+                .note("radiance_cache on the same pixels as rsm_gi (time: its converging updates, not one frame)");
+        let entry = with_pictures(sweep, entry, c, &a);
+        sweep.entry(entry);
     }
 }
 
@@ -207,14 +256,16 @@ fn main() {
                 let f0 = run(base);
                 let (ms0, frame0) = pool.install(|| time_ms(reps(5), || c.frame(&f0)));
                 let a0 = c.at_receivers(&frame0);
-                sweep.entry(entry(
+                let e = entry(
                     format!("rsm_gi/{method}_{scene}_1x1_{vpls}"),
                     method,
                     ms0,
                     c,
                     &base,
                     &a0,
-                ));
+                );
+                let e = with_pictures(&sweep, e, c, &a0);
+                sweep.entry(e);
                 for pat in Interleave::PATTERNS {
                     let s = Settings { pattern: pat, ..base };
                     let f = run(s);
@@ -233,11 +284,13 @@ fn main() {
                     });
                     let name = format!("rsm_gi/{method}_{scene}_{}_{vpls}", pat.name());
                     let (e0, e) = (c.errors(&a0).0, c.errors(&a).0);
-                    sweep.entry(entry(name.clone(), method, ms, c, &s, &a).note(format!(
+                    let pattern_entry = entry(name.clone(), method, ms, c, &s, &a).note(format!(
                         "{:.1}x faster than 1x1 (interleaved timing), error {:.2}x the 1x1's",
                         ms_base / ms,
                         e / e0
-                    )));
+                    ));
+                    let pattern_entry = with_pictures(&sweep, pattern_entry, c, &a);
+                    sweep.entry(pattern_entry);
                     sweep.comparison(
                         Comparison::new(format!("{name}_vs_1x1"), ms, ms_base, "ms", false)
                             .note("interleaved vs non-interleaved, same VPL count, timed interleaved, 2 threads"),
@@ -268,17 +321,17 @@ fn main() {
             let a: Vec<Vec3> =
                 c.receivers.iter().map(|r| lpv.irradiance(r.position, r.normal)).collect();
             let (e, scale, noise) = c.errors(&a);
-            sweep.entry(
-                Entry::new(format!("rsm_gi/lpv_{tag}_{scene}"), "lpv", ms)
-                    .setting("scene", scene)
-                    .setting("geometry_volume", s.geometry_volume)
-                    .setting("lookup_offset_cells", s.lookup_offset_cells)
-                    .setting("best_fit_scale", scale)
-                    .setting("reference_noise_rel_rms", noise)
-                    .error("rel_rms", e, &c.reference_name)
-                    .threads(2)
-                    .note("lpv on the same pixels as rsm_gi (time includes its RSM extraction and surfels)"),
-            );
+            let lpv_entry = Entry::new(format!("rsm_gi/lpv_{tag}_{scene}"), "lpv", ms)
+                .setting("scene", scene)
+                .setting("geometry_volume", s.geometry_volume)
+                .setting("lookup_offset_cells", s.lookup_offset_cells)
+                .setting("best_fit_scale", scale)
+                .setting("reference_noise_rel_rms", noise)
+                .error("rel_rms", e, &c.reference_name)
+                .threads(2)
+                .note("lpv on the same pixels as rsm_gi (time includes its RSM extraction and surfels)");
+            let lpv_entry = with_pictures(&sweep, lpv_entry, c, &a);
+            sweep.entry(lpv_entry);
         }
 
         sweep.stage(&format!("radiance cache {scene}"));
