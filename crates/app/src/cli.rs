@@ -50,6 +50,10 @@ pub struct RenderJob {
     pub trace_depth: Option<u32>,
     pub seed: u64,
     pub progress: bool,
+    /// Refuse an imperfect scene file (a missing texture or material library, a feature the
+    /// loaders do not support) instead of loading it with stand-ins and warnings
+    /// (`scene::LoadOptions::strict`).
+    pub strict: bool,
 }
 
 impl Default for RenderJob {
@@ -77,6 +81,7 @@ impl Default for RenderJob {
             trace_depth: None,
             seed: 1,
             progress: true,
+            strict: false,
         }
     }
 }
@@ -101,6 +106,10 @@ pub struct SceneArgs {
     /// Seed of generated scenes.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
+    /// Refuse an imperfect scene file: a missing texture or material library, or a feature
+    /// the loaders do not support, is an error instead of a warning and a stand-in.
+    #[arg(long)]
+    pub strict: bool,
 }
 
 impl SceneArgs {
@@ -112,6 +121,7 @@ impl SceneArgs {
             date: self.date.clone(),
             utc_offset_h: self.utc_offset,
             seed: self.seed,
+            strict: self.strict,
             ..Default::default()
         }
     }
@@ -165,12 +175,20 @@ fn parse_date(s: &str) -> Result<scene::CivilDate, EngineError> {
     Ok(scene::CivilDate::new(y, m, d))
 }
 
-/// Loads the job's scene: a generated scene by name, else a file.
+/// Loads the job's scene: a generated scene by name, else a file (strict with
+/// [`RenderJob::strict`]); prints each of the load's warnings (`Scene::warnings`) once on
+/// stderr.
 pub fn load_scene(job: &RenderJob) -> Result<scene::Scene, EngineError> {
     let mut s = match scene::Generated::from_name(&job.scene) {
         Some(g) => g.build(job.seed),
-        None => scene::load(Path::new(&job.scene))?,
+        None => {
+            let options = scene::LoadOptions { strict: job.strict, ..Default::default() };
+            scene::load_with(Path::new(&job.scene), &options)?
+        }
     };
+    for w in warning_lines(&s) {
+        eprintln!("warning: {w}");
+    }
     if job.time.is_some() || job.date.is_some() {
         let sun = s.sun.get_or_insert_with(|| {
             scene::Sun::at_time(scene::CivilDate::new(2024, 6, 21), 16.5, 38.72, -9.14)
@@ -205,11 +223,17 @@ pub fn load_scene(job: &RenderJob) -> Result<scene::Scene, EngineError> {
     Ok(s)
 }
 
+/// The scene's load warnings, one line each with its cause (`engine::error_chain`).
+pub fn warning_lines(scene: &scene::Scene) -> Vec<String> {
+    scene.warnings.iter().map(|w| engine::error_chain(w)).collect()
+}
+
 /// Renders the job and writes `frame.exr`, `frame.png`, `report.md`, `report.json`,
 /// `timeline.svg` (and `reference.exr`, `reference.png`, `difference.png` with a reference).
 pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
     let scene = load_scene(job)?;
     let name = scene.name.clone();
+    let warnings = warning_lines(&scene);
     let ss = job.supersample.clamp(1, MAX_SUPERSAMPLE);
     let preset = Settings::preset(job.preset, job.width * ss, job.height * ss);
     let settings = Settings {
@@ -323,6 +347,7 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
         ray_traced_frames: traced,
         errors: errors.map(|e| serde_json::to_value(e).unwrap_or_default()),
         ledger,
+        warnings,
         notes,
     };
     write_report(&job.out, &info, &frame.report)?;

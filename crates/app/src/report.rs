@@ -49,6 +49,9 @@ pub struct RunInfo {
     pub errors: Option<Value>,
     /// The component ledger (`--components`), when computed.
     pub ledger: Option<crate::ledger::Ledger>,
+    /// The scene loaders' warnings, one line each (what the file lacked or used without
+    /// support, and the stand-in).
+    pub warnings: Vec<String>,
     pub notes: Vec<String>,
 }
 
@@ -156,6 +159,10 @@ pub fn markdown(info: &RunInfo, last: &FrameReport) -> String {
     }
     if let Some(ledger) = &info.ledger {
         let _ = write!(s, "\n## Component ledger\n\n{}", ledger.to_markdown());
+    }
+    if !info.warnings.is_empty() {
+        s.push_str("\n## Scene warnings\n\n");
+        info.warnings.iter().for_each(|w| s.push_str(&format!("- {w}\n")));
     }
     if !info.notes.is_empty() {
         s.push_str("\n## Notes\n\n");
@@ -333,6 +340,7 @@ mod tests {
             ray_traced_frames: 3,
             errors: Some(json!({ "rel_rms": 0.05, "psnr_db": 31.2 })),
             ledger: None,
+            warnings: Vec::new(),
             notes: vec!["a note".to_owned()],
         }
     }

@@ -167,3 +167,45 @@ fn bad_time_date_and_preset_strings_are_settings_errors() {
     );
     assert_eq!("rsm".parse::<engine::Indirect>().unwrap(), engine::Indirect::Rsm);
 }
+
+/// Issue 57 (3, 4): an OBJ whose texture is missing loads with one warning line (the stand-in
+/// named, the file system's cause once); `--strict` (`RenderJob::strict`) makes it the error,
+/// whose printed chain (`anyhow`'s, with the binary's context) names each cause once.
+#[test]
+fn strict_turns_a_warning_into_an_error_whose_chain_names_each_cause_once() {
+    let dir = common::scratch_dir("errors-strict");
+    let mtl = "newmtl wood\nKd 0.8 0.8 0.8\nmap_Kd textures\\wood.png\n";
+    let obj = "mtllib box.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl wood\nf 1/1 2/2 3/3\n";
+    std::fs::write(dir.join("box.mtl"), mtl).expect("write");
+    std::fs::write(dir.join("box.obj"), obj).expect("write");
+    let mut job = common::job(dir.join("box.obj").to_str().expect("utf-8"), &dir);
+    let s = load_scene(&job).expect("a missing texture is a warning");
+    let lines = app::cli::warning_lines(&s);
+    assert_eq!(lines.len(), 1, "{lines:?}");
+    assert!(lines[0].contains("box.obj: material \"wood\": texture \"textures\\wood.png\""));
+    assert!(lines[0].contains("magenta and black checker"), "{}", lines[0]);
+    assert_eq!(lines[0].matches("wood.png").count(), 3, "{}", lines[0]);
+
+    job.strict = true;
+    let e = load_scene(&job).expect_err("strict refuses the missing texture");
+    assert!(
+        matches!(&e, EngineError::Scene(scene::SceneError::Load(l))
+            if matches!(&l.kind, scene::LoadErrorKind::Strict(w)
+                if matches!(&**w, scene::LoadWarningKind::MissingTexture { path, .. }
+                    if path == "textures\\wood.png"))),
+        "{e:?}"
+    );
+    let e = anyhow::Error::new(e).context("render failed");
+    let chain: Vec<String> = e.chain().map(|c| c.to_string()).collect();
+    assert_eq!(chain.len(), 4, "{chain:#?}");
+    assert_eq!(chain[0], "render failed");
+    assert!(chain[1].ends_with("missing or unreadable texture `textures\\wood.png`"), "{chain:#?}");
+    assert!(chain[2].starts_with("cannot read ") && chain[2].ends_with("wood.png"), "{chain:#?}");
+    for (i, l) in chain.iter().enumerate() {
+        assert!(!chain[..i].contains(l), "line {i} repeats: {chain:#?}");
+        assert!(chain.get(i + 1).is_none_or(|n| !l.contains(n.as_str())), "{chain:#?}");
+    }
+    // The printed forms: one line each, in order.
+    assert_eq!(format!("{e:#}"), chain.join(": "));
+    let _ = std::fs::remove_dir_all(&dir);
+}

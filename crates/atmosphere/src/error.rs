@@ -30,6 +30,6 @@ pub enum AtmosphereError {
     Invalid { what: &'static str, reason: String },
     /// The GPU path failed (no adapter, validation error, read-back failure).
     #[cfg(feature = "gpu")]
-    #[error("GPU error: {0}")]
+    #[error("atmosphere GPU path")]
     Gpu(#[from] gpu_harness::GpuError),
 }

@@ -57,7 +57,7 @@ pub mod views;
 
 pub use components::Component;
 pub use effects::{Effect, Effects};
-pub use error::EngineError;
+pub use error::{EngineError, error_chain};
 pub use gpu::{TransferCounts, check_capabilities};
 pub use graph::pass;
 pub use radiance_cache::CacheSummary;

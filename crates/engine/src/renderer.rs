@@ -417,7 +417,7 @@ impl Renderer {
         let report =
             self.scheduler.run_frame_timed(&ctx, &mut self.timer).map_err(|e| match e {
                 frame_scheduler::FrameError::PassFailed { pass, source, .. } => {
-                    EngineError::Pass { pass, message: source.to_string() }
+                    EngineError::Pass { pass, message: crate::error_chain(source.as_ref()) }
                 }
             })?;
         self.last_frame = Some(Instant::now());

@@ -65,7 +65,7 @@ pub enum ResourceError {
 pub enum FrameError {
     /// A pass body returned an error; passes after it were skipped. The report of the partial
     /// frame is attached.
-    #[error("pass '{pass}' failed: {source}")]
+    #[error("pass '{pass}' failed")]
     PassFailed {
         pass: String,
         #[source]

@@ -13,18 +13,18 @@ pub enum GpuError {
     )]
     NoAdapter(String),
     /// The adapter refused to create a device.
-    #[error("the adapter `{adapter}` could not create a device: {source}")]
+    #[error("the adapter `{adapter}` could not create a device")]
     Device {
         adapter: String,
         #[source]
         source: wgpu::RequestDeviceError,
     },
     /// Shader compilation, pipeline creation or dispatch failed (wgpu validation error).
-    #[error("GPU validation failed: {0}")]
+    #[error("GPU validation failed")]
     Validation(#[from] wgpu::Error),
     /// Reading a buffer back failed: `what` of it (waiting for the device, mapping, the
     /// mapped range).
-    #[error("buffer read-back failed ({what}): {source}")]
+    #[error("buffer read-back failed ({what})")]
     Readback {
         what: &'static str,
         #[source]

@@ -15,6 +15,6 @@ pub enum LpvError {
     Mismatch(String),
     /// A GPU entry point could not run (no adapter, validation failure, read-back failure).
     #[cfg(feature = "gpu")]
-    #[error("LPV GPU path: {0}")]
+    #[error("LPV GPU path")]
     Gpu(#[from] gpu_harness::GpuError),
 }

@@ -22,6 +22,6 @@ pub enum PostError {
     NoSuchSource { index: usize, sources: usize },
     /// A wgpu call failed (pipeline creation, validation, read-back).
     #[cfg(feature = "gpu")]
-    #[error("GPU: {0}")]
+    #[error("post-processing GPU path")]
     Gpu(#[from] gpu_harness::GpuError),
 }

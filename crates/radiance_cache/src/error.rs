@@ -13,7 +13,7 @@ pub enum CacheError {
     Invariant(String),
     /// GPU path: no adapter, or a device call failed.
     #[cfg(feature = "gpu")]
-    #[error("gpu: {0}")]
+    #[error("radiance cache GPU path")]
     Gpu(#[from] gpu_harness::GpuError),
     /// GPU path: a lookup binding made before the cache data it binds recreated a buffer
     /// (make it again with `GpuLookup::bind`).

@@ -11,7 +11,7 @@ pub enum Error {
     InvalidLight(String),
     #[error("settings: {0}")]
     InvalidSettings(String),
-    #[error("geometry: {0}")]
+    #[error(transparent)]
     Geometry(#[from] kdtree_tracer::Error),
     #[error("image sizes differ: {0}x{1} vs {2}x{3}")]
     SizeMismatch(u32, u32, u32, u32),

@@ -21,6 +21,6 @@ pub enum RsmGiError {
     Misuse(&'static str),
     /// A GPU entry point could not run (no adapter, validation failure, read-back failure).
     #[cfg(feature = "gpu")]
-    #[error("rsm_gi GPU path: {0}")]
+    #[error("rsm_gi GPU path")]
     Gpu(#[from] gpu_harness::GpuError),
 }

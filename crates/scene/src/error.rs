@@ -1,5 +1,12 @@
 //! Typed errors: every failure names the file (or `<memory>`) and the element it concerns.
+//!
+//! Each error either shows its source in its message or returns it from
+//! [`std::error::Error::source`], never both, so a printed chain (`anyhow`'s `{:#}`, or walking
+//! `source()`) names each cause once: a [`LoadErrorKind`] returns the foreign error it wraps (the
+//! file system's, the image decoder's) without repeating it; a [`LoadError`] shows its kind and
+//! returns the kind's source; [`SceneError`] is transparent over what it wraps.
 
+use crate::LoadWarningKind;
 use std::fmt;
 use std::sync::Arc;
 
@@ -31,7 +38,7 @@ impl PartialEq for Cause {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum LoadErrorKind {
     /// The file at `path` could not be read.
-    #[error("cannot read {path}: {cause}")]
+    #[error("cannot read {path}")]
     Io {
         path: String,
         #[source]
@@ -40,11 +47,17 @@ pub enum LoadErrorKind {
     /// The file is not well-formed in its format (JSON, GLB container, OBJ line, TOML).
     #[error("malformed: {0}")]
     Parse(String),
-    /// A referenced file or texture does not exist or cannot be decoded.
-    #[error("missing or unreadable texture `{0}`")]
-    MissingTexture(String),
+    /// What the load would otherwise have warned about and worked around (a missing texture
+    /// or material library, an unsupported feature), refused because
+    /// [`crate::LoadOptions::strict`] is set.
+    #[error(transparent)]
+    Strict(Box<LoadWarningKind>),
+    /// A glTF extension the file requires (`extensionsRequired`) that this loader does not
+    /// honour: the file cannot be shown as its author meant.
+    #[error("requires the glTF extension `{0}`, which this loader does not support")]
+    RequiredExtension(String),
     /// An image that could not be decoded.
-    #[error("cannot decode image: {0}")]
+    #[error("cannot decode image")]
     Image(#[source] Cause),
     /// A triangle index that points past the end of the vertex list.
     #[error("index {index} out of range ({vertex_count} vertices)")]
@@ -96,9 +109,10 @@ impl fmt::Display for LoadError {
 }
 
 impl std::error::Error for LoadError {
-    /// What went wrong, whose own source (an I/O or decoding error) follows it.
+    /// The kind's source (an I/O or decoding error): the kind itself is part of this error's
+    /// message, so it is not returned again.
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
-        Some(&self.kind)
+        std::error::Error::source(&self.kind)
     }
 }
 
@@ -118,7 +132,7 @@ pub enum SceneError {
     #[error("invalid {element}: {reason}")]
     Invalid { element: String, reason: String },
     /// The sun's date, time or place is not usable.
-    #[error("sun position: {0}")]
+    #[error(transparent)]
     Solar(#[from] atmosphere::AtmosphereError),
 }
 

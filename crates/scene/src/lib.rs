@@ -55,6 +55,7 @@ mod quad;
 mod scene;
 mod texture;
 mod volumes;
+mod warning;
 
 pub use atmosphere::CivilDate;
 pub use bounds::Aabb;
@@ -86,3 +87,4 @@ pub use texture::{
     srgb_to_linear,
 };
 pub use volumes::{LpvPlacement, SkyVolumePlacement};
+pub use warning::{LoadWarning, LoadWarningKind, STAND_IN_COLORS, STAND_IN_TEXTURE};

@@ -1,8 +1,8 @@
 //! The scene: what is in the world, and the plain-data views other crates build from.
 
 use crate::{
-    Aabb, Camera, Cleanup, LpvPlacement, Material, MaterialId, Mesh, OcclusionQuad, PointLight,
-    SceneError, SkyVolumePlacement, Sun, Texture, TextureId,
+    Aabb, Camera, Cleanup, LoadWarning, LpvPlacement, Material, MaterialId, Mesh, OcclusionQuad,
+    PointLight, SceneError, SkyVolumePlacement, Sun, Texture, TextureId,
 };
 use glam::{Affine3A, Vec2, Vec3};
 use std::fmt;
@@ -25,6 +25,9 @@ pub struct Scene {
     pub lpv: LpvPlacement,
     /// What the loaders repaired (dropped degenerate triangles, recomputed normals).
     pub cleanup: Cleanup,
+    /// What the loaders could not honour and worked around (a stand-in for a missing texture,
+    /// an ignored feature), each once, in the order met; empty for generated scenes.
+    pub warnings: Vec<LoadWarning>,
 }
 
 /// The scene flattened to world space: plain data an acceleration structure
@@ -135,6 +138,7 @@ impl Scene {
             sky_volume: SkyVolumePlacement::fit(Aabb::EMPTY),
             lpv: LpvPlacement::fit(Aabb::EMPTY),
             cleanup: Cleanup::default(),
+            warnings: Vec::new(),
         }
     }
 
@@ -166,7 +170,7 @@ impl Scene {
     }
 
     /// Appends another scene's textures, materials and meshes (ids remapped), point lights and
-    /// occlusion quads, all moved by `transform`; keeps this scene's sun, sky and camera.
+    /// occlusion quads, all moved by `transform`, and its warnings; keeps this scene's sun, sky and camera.
     pub fn merge(&mut self, other: Scene, transform: Affine3A) {
         let toff = self.textures.len() as u32;
         let moff = self.materials.len() as u32;
@@ -211,6 +215,11 @@ impl Scene {
             self.occlusion_quads.push(q);
         }
         self.cleanup += other.cleanup;
+        for w in other.warnings {
+            if !self.warnings.contains(&w) {
+                self.warnings.push(w);
+            }
+        }
     }
 
     /// Places the sky volume and LPV cascades over the current geometry.

@@ -14,7 +14,7 @@ pub enum ShadowError {
     Invariant(String),
     /// A GPU entry point failed (no adapter, validation error, read-back).
     #[cfg(feature = "gpu")]
-    #[error("GPU: {0}")]
+    #[error("shadows GPU path")]
     Gpu(#[from] gpu_harness::GpuError),
 }
 

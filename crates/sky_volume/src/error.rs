@@ -17,7 +17,7 @@ pub enum SkyVolumeError {
     LayerOutOfRange { start: u32, end: u32, layers: u32 },
     /// The GPU refused a pipeline, or a read-back failed (the resident pass).
     #[cfg(feature = "gpu")]
-    #[error("sky volume GPU path: {0}")]
+    #[error("sky volume GPU path")]
     Gpu(#[from] gpu_harness::GpuError),
     /// The structure's invariants do not hold (from `validate()`).
     #[error("sky volume invariant broken: {0}")]

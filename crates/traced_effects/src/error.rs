@@ -4,10 +4,10 @@
 #[derive(Debug, thiserror::Error)]
 pub enum TraceError {
     /// The scene is inconsistent (a mesh names a material it does not have).
-    #[error("scene: {0}")]
+    #[error(transparent)]
     Scene(#[from] scene::SceneError),
     /// The kd-tree could not be built (non-finite geometry).
-    #[error("ray tracer: {0}")]
+    #[error(transparent)]
     Tree(#[from] kdtree_tracer::Error),
     /// A GPU pass's inputs do not fit it (a view or target of another size than the pass
     /// was made for).
@@ -15,6 +15,6 @@ pub enum TraceError {
     Mismatch(&'static str),
     /// A GPU pass could not be made or run (shader or pipeline validation, read-back).
     #[cfg(feature = "gpu")]
-    #[error("traced_effects GPU path: {0}")]
+    #[error("traced_effects GPU path")]
     Gpu(#[from] gpu_harness::GpuError),
 }

@@ -148,7 +148,9 @@ impl Viewer {
             }
             Action::Screenshot => match self.screenshot() {
                 Ok(msg) => self.message = Some(msg),
-                Err(e) => self.message = Some(format!("screenshot failed: {e}")),
+                Err(e) => {
+                    self.message = Some(format!("screenshot failed: {}", engine::error_chain(&e)))
+                }
             },
         }
     }
@@ -179,6 +181,7 @@ impl Viewer {
             ray_traced_frames: usize::from(stats.ray_traced),
             errors: None,
             ledger: None,
+            warnings: crate::cli::warning_lines(r.scene()),
             notes: vec![format!(
                 "taken in serein-view at frame {}; camera {:?}, local time {:.2} h",
                 self.frame,

@@ -22,7 +22,7 @@ impl Gpu {
     pub fn new() -> Result<Self, EngineError> {
         let ctx = gpu_harness::GpuContext::new().map_err(|e| match e {
             gpu_harness::GpuError::NoAdapter(m) => EngineError::NoAdapter(m),
-            other => EngineError::Gpu(other.to_string()),
+            other => EngineError::Wgpu(other),
         })?;
         check_capabilities(&ctx.describe(), &ctx.downlevel)?;
         Ok(Self::from_parts(ctx.device, ctx.queue, &ctx.adapter_info))

@@ -1,8 +1,8 @@
 //! What one load shares across every file it reads: the root folder references may not leave,
 //! the chain of files being loaded (include cycles and depth), and the budgets that keep a
-//! small hostile file from exhausting memory or time.
+//! small hostile file from exhausting memory or time; and the warnings gathered on the way.
 
-use crate::LoadErrorKind;
+use crate::{LoadError, LoadErrorKind, LoadWarning, LoadWarningKind};
 use std::io::Read;
 use std::path::{Component, Path, PathBuf};
 
@@ -28,6 +28,11 @@ pub struct LoadOptions {
     pub max_total_pixels: u64,
     /// Largest file read, bytes.
     pub max_file_bytes: u64,
+    /// Refuse what a load otherwise works around with a warning ([`crate::LoadWarning`]: a
+    /// missing texture or material library, a feature that is not supported): the first one
+    /// is the load's error ([`LoadErrorKind::Strict`]). `false` (the default) loads the scene
+    /// with stand-ins and lists the warnings in `Scene::warnings`.
+    pub strict: bool,
 }
 
 impl Default for LoadOptions {
@@ -40,6 +45,7 @@ impl Default for LoadOptions {
             max_image_pixels: 1 << 25,
             max_total_pixels: 1 << 27,
             max_file_bytes: 1 << 30,
+            strict: false,
         }
     }
 }
@@ -54,6 +60,8 @@ pub(crate) struct Ctx {
     instances: usize,
     triangles: u64,
     pixels: u64,
+    /// Each warning once, in the order met.
+    warnings: Vec<LoadWarning>,
 }
 
 impl Ctx {
@@ -65,6 +73,7 @@ impl Ctx {
             instances: 0,
             triangles: 0,
             pixels: 0,
+            warnings: Vec::new(),
         }
     }
 
@@ -73,15 +82,43 @@ impl Ctx {
         Self::new(opts, Some(file.parent().unwrap_or(Path::new(""))))
     }
 
+    /// Records a warning (once: a repeat of one already recorded is dropped), or with
+    /// [`LoadOptions::strict`] returns it as the load's error.
+    pub fn warn(
+        &mut self,
+        file: &str,
+        element: impl Into<String>,
+        kind: LoadWarningKind,
+    ) -> Result<(), LoadError> {
+        if self.opts.strict {
+            return Err(LoadError::new(file, element, LoadErrorKind::Strict(Box::new(kind))));
+        }
+        let w = LoadWarning::new(file, element, kind);
+        if !self.warnings.contains(&w) {
+            self.warnings.push(w);
+        }
+        Ok(())
+    }
+
+    /// The warnings recorded so far, in the order met.
+    pub fn take_warnings(&mut self) -> Vec<LoadWarning> {
+        std::mem::take(&mut self.warnings)
+    }
+
     /// `reference` (as written in a file in folder `base`) as a path, if it may be read.
+    /// Backslashes are separators (files written on Windows: `.\wood.jpg`, `tex\wood.jpg`), and
+    /// a drive letter (`C:`) makes a path absolute, as it does there.
     pub fn resolve(&self, base: &Path, reference: &str) -> Result<PathBuf, LoadErrorKind> {
-        let rel = Path::new(reference);
+        let slashed = reference.replace('\\', "/");
+        let rel = Path::new(&slashed);
         let joined = base.join(rel);
         let Some(root) = self.root.as_ref().filter(|_| self.opts.confine_to_root) else {
             return Ok(joined);
         };
         let escapes = |why: &str| LoadErrorKind::PathEscapes(format!("`{reference}` {why}"));
-        if rel.has_root() || rel.is_absolute() {
+        let drive = slashed.as_bytes();
+        let drive = drive.len() >= 2 && drive[0].is_ascii_alphabetic() && drive[1] == b':';
+        if rel.has_root() || rel.is_absolute() || drive {
             return Err(escapes("is absolute"));
         }
         if !absolute(&joined).starts_with(root) {

@@ -25,9 +25,14 @@
 //! Node transforms are composed down the hierarchy; each (node, primitive) becomes a mesh.
 //! The first perspective camera, if any, becomes the scene's camera. Non-triangle primitives
 //! are skipped; sparse accessors are not supported (typed error).
+//!
+//! What a file uses and this loader ignores gives one warning per feature (the table is in
+//! `load::gltf_support`); an extension the file requires and this loader does not honour is a
+//! [`LoadErrorKind::RequiredExtension`] error. A texture that is missing or cannot be decoded
+//! gives a warning and a stand-in ([`crate::STAND_IN_TEXTURE`]).
 
 use super::context::{Ctx, LoadOptions};
-use super::image::decode;
+use super::image::{decode, stand_in};
 use super::uri::read_uri;
 use crate::{
     AlphaMask, Camera, ColorSpace, LoadError, LoadErrorKind, Material, MaterialId, Mesh, MeshData,
@@ -50,7 +55,9 @@ const MAX_DEPTH: usize = 64;
 /// in its folder (see [`LoadOptions`]).
 pub fn load_gltf(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
     let path = path.as_ref();
-    load_gltf_in(path, &mut Ctx::for_file(&LoadOptions::default(), path))
+    let mut ctx = Ctx::for_file(&LoadOptions::default(), path);
+    let r = load_gltf_in(path, &mut ctx);
+    super::with_warnings(r, &mut ctx)
 }
 
 pub(crate) fn load_gltf_in(path: &Path, ctx: &mut Ctx) -> Result<Scene, SceneError> {
@@ -65,7 +72,9 @@ pub fn load_gltf_slice(
     base_dir: Option<&Path>,
     file: &str,
 ) -> Result<Scene, SceneError> {
-    load_gltf_ctx(bytes, base_dir, file, &mut Ctx::new(&LoadOptions::default(), base_dir))
+    let mut ctx = Ctx::new(&LoadOptions::default(), base_dir);
+    let r = load_gltf_ctx(bytes, base_dir, file, &mut ctx);
+    super::with_warnings(r, &mut ctx)
 }
 
 fn load_gltf_ctx(
@@ -79,6 +88,7 @@ fn load_gltf_ctx(
     let doc = gltf::Gltf::from_slice_without_validation(bytes)
         .map_err(|e| err("document".into(), LoadErrorKind::Parse(e.to_string())))?;
     validate(doc.as_json()).map_err(|(el, k)| err(el, k))?;
+    super::gltf_support::warn_unsupported(doc.as_json(), file, ctx)?;
     let mut blob = doc.blob.clone();
     let mut buffers = Vec::new();
     for b in doc.buffers() {
@@ -109,6 +119,7 @@ fn load_gltf_ctx(
         buffers: &buffers,
         scene: Scene::new(file),
         images: HashMap::new(),
+        stand_ins: HashMap::new(),
         ctx,
     };
     let mut material_ids = Vec::new();
@@ -244,6 +255,7 @@ fn glb_header(bytes: &[u8]) -> Result<(), LoadErrorKind> {
 /// exists, and `Image::source` unwraps `uri` / `mimeType`.
 fn validate(root: &gltf::json::Root) -> Result<(), (String, LoadErrorKind)> {
     use gltf::json::validation::Validate;
+    super::gltf_support::check_required(root)?;
     for (i, m) in root.meshes.iter().enumerate() {
         for (j, p) in m.primitives.iter().enumerate() {
             if let Some((_, a)) =
@@ -305,6 +317,8 @@ struct Loader<'a> {
     buffers: &'a [Vec<u8>],
     scene: Scene,
     images: HashMap<(usize, bool), TextureId>,
+    /// The stand-in of each colour space, made on first use.
+    stand_ins: HashMap<bool, TextureId>,
     ctx: &'a mut Ctx,
 }
 
@@ -342,15 +356,50 @@ impl Loader<'_> {
                     }
                 }
             }
-            gltf::image::Source::Uri { uri, .. } => read_uri(uri, self.base_dir, self.ctx)
-                .map_err(|k| match k {
-                    LoadErrorKind::Io { .. } => LoadErrorKind::MissingTexture(uri.to_owned()),
-                    k => k,
-                })
-                .map_err(|k| self.err(el.clone(), k))?,
+            gltf::image::Source::Uri { uri, .. } => match read_uri(uri, self.base_dir, self.ctx) {
+                Ok(b) => b,
+                Err(k) if super::image::missing(&k) => return self.stand_in(key, uri, el, k),
+                Err(k) => return Err(self.err(el, k)),
+            },
         };
-        let t = decode(&name, &bytes, space, self.ctx).map_err(|k| self.err(el, k))?;
+        let t = match decode(&name, &bytes, space, self.ctx) {
+            Ok(t) => t,
+            Err(k) if super::image::missing(&k) => {
+                let path = match img.source() {
+                    gltf::image::Source::Uri { uri, .. } => uri.to_owned(),
+                    gltf::image::Source::View { view, .. } => {
+                        format!("buffer view {}", view.index())
+                    }
+                };
+                return self.stand_in(key, &path, el, k);
+            }
+            Err(k) => return Err(self.err(el, k)),
+        };
         let id = self.scene.add_texture(t);
+        self.images.insert(key, id);
+        Ok(id)
+    }
+
+    /// Warns that image `key` (`path`) is missing or unreadable (`cause`) and stands the
+    /// stand-in of its colour space in for it.
+    fn stand_in(
+        &mut self,
+        key: (usize, bool),
+        path: &str,
+        element: String,
+        cause: LoadErrorKind,
+    ) -> Result<TextureId, SceneError> {
+        let kind = crate::LoadWarningKind::MissingTexture {
+            path: path.to_owned(),
+            cause: Box::new(cause),
+        };
+        self.ctx.warn(self.file, element, kind)?;
+        let space = if key.1 { ColorSpace::Srgb } else { ColorSpace::Linear };
+        let id = match self.stand_ins.get(&key.1) {
+            Some(&id) => id,
+            None => self.scene.add_texture(stand_in(space, false)),
+        };
+        self.stand_ins.insert(key.1, id);
         self.images.insert(key, id);
         Ok(id)
     }

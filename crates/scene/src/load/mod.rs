@@ -1,9 +1,12 @@
 //! Loaders: glTF 2.0, OBJ + MTL, and the TOML scene file. Every error names the file and the
 //! element; malformed input never panics, and the budgets of [`LoadOptions`] bound what a
-//! small hostile file can make a load allocate.
+//! small hostile file can make a load allocate. What an imperfect file lacks (a texture, a
+//! material library) or uses without support here is worked around with a warning, stored on
+//! the scene (`Scene::warnings`), or refused with [`LoadOptions::strict`].
 
 pub(crate) mod context;
 pub(crate) mod gltf;
+mod gltf_support;
 pub(crate) mod image;
 pub(crate) mod obj;
 pub(crate) mod scene_file;
@@ -24,7 +27,20 @@ pub fn load(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
 /// [`load`] with other limits.
 pub fn load_with(path: impl AsRef<Path>, options: &LoadOptions) -> Result<Scene, SceneError> {
     let path = path.as_ref();
-    load_in(path, &mut Ctx::for_file(options, path))
+    let mut ctx = Ctx::for_file(options, path);
+    let r = load_in(path, &mut ctx);
+    with_warnings(r, &mut ctx)
+}
+
+/// A whole load's result with the warnings its context gathered moved onto the scene (loads
+/// nested in a load leave theirs in the context, so each appears once).
+pub(crate) fn with_warnings(
+    r: Result<Scene, SceneError>,
+    ctx: &mut Ctx,
+) -> Result<Scene, SceneError> {
+    let mut scene = r?;
+    scene.warnings.extend(ctx.take_warnings());
+    Ok(scene)
 }
 
 /// Loads `path` inside a load in progress, by extension.

@@ -5,12 +5,17 @@
 //! `Tr` = 1 - d) -> transparency = 1 - d, `Ni` -> IOR; `illum` 3, 5, 7 (ray-traced reflection
 //! models) -> mirror reflectivity = largest `Ks` channel; `map_d` -> alpha-test mask (its red
 //! channel, cutoff 0.5); `Ke` -> emission. Objects without a material get a grey default.
+//!
+//! A material library or texture that is missing or unreadable gives a warning (on
+//! `Scene::warnings`) and a stand-in: the default grey material for the objects of a missing
+//! library, [`crate::STAND_IN_TEXTURE`] for a texture; with [`LoadOptions::strict`] it is the
+//! load's error. Paths written with backslashes are read with them as separators.
 
 use super::context::{Ctx, LoadOptions};
-use super::image::decode;
+use super::image::{decode, missing, stand_in};
 use crate::{
-    AlphaMask, ColorSpace, LoadError, LoadErrorKind, Material, Mesh, MeshData, Scene, SceneError,
-    TextureId,
+    AlphaMask, ColorSpace, LoadError, LoadErrorKind, LoadWarningKind, Material, Mesh, MeshData,
+    Scene, SceneError, TextureId,
 };
 use glam::{Vec2, Vec3};
 use std::cell::RefCell;
@@ -58,20 +63,29 @@ fn options() -> tobj::LoadOptions {
 /// which must lie in its folder: see [`LoadOptions`]).
 pub fn load_obj(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
     let path = path.as_ref();
-    load_obj_in(path, &mut Ctx::for_file(&LoadOptions::default(), path))
+    let mut ctx = Ctx::for_file(&LoadOptions::default(), path);
+    let r = load_obj_in(path, &mut ctx);
+    super::with_warnings(r, &mut ctx)
 }
 
 pub(crate) fn load_obj_in(path: &Path, ctx: &mut Ctx) -> Result<Scene, SceneError> {
     let bytes = super::read_file(path, ctx)?;
     let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
+    // A library that cannot be read is an empty one (its objects get the default material)
+    // and a warning; one that may not be read (out of the folder, a device) is an error.
     let failed: RefCell<Option<(PathBuf, LoadErrorKind)>> = RefCell::new(None);
+    let missing_libs: RefCell<Vec<(String, LoadErrorKind)>> = RefCell::new(Vec::new());
     let loader = |p: &Path| {
-        let full = base.join(p);
-        let read = ctx.resolve(&base, &p.to_string_lossy()).and_then(|full| ctx.read(&full));
+        let name = p.to_string_lossy();
+        let read = ctx.resolve(&base, &name).and_then(|full| ctx.read(&full));
         match read {
             Ok(b) => tobj::load_mtl_buf(&mut std::io::Cursor::new(sanitize(&b))),
+            Err(e) if matches!(e, LoadErrorKind::Io { .. }) => {
+                missing_libs.borrow_mut().push((name.into_owned(), e));
+                Ok((Vec::new(), Default::default()))
+            }
             Err(e) => {
-                *failed.borrow_mut() = Some((full, e));
+                *failed.borrow_mut() = Some((base.join(p), e));
                 Err(tobj::LoadError::OpenFileFailed)
             }
         }
@@ -82,16 +96,24 @@ pub(crate) fn load_obj_in(path: &Path, ctx: &mut Ctx) -> Result<Scene, SceneErro
     if let Some((p, e)) = failed.into_inner() {
         return Err(LoadError::new(&file, format!("mtllib \"{}\"", p.display()), e).into());
     }
+    for (lib, cause) in missing_libs.into_inner() {
+        let kind =
+            LoadWarningKind::MissingMaterialLibrary { path: lib.clone(), cause: Box::new(cause) };
+        ctx.warn(&file, format!("mtllib \"{lib}\""), kind)?;
+    }
     finish(result, &file, Some(&base), ctx)
 }
 
 /// Loads OBJ text from memory with an optional MTL text (used for every `mtllib`); textures
-/// cannot be resolved (a material naming one is an error). `file` names the source in errors.
+/// cannot be resolved (a material naming one gets the stand-in and a warning). `file` names
+/// the source in errors.
 pub fn load_obj_slice(obj: &[u8], mtl: Option<&[u8]>, file: &str) -> Result<Scene, SceneError> {
     let mtl = sanitize(mtl.unwrap_or_default());
     let loader = |_: &Path| tobj::load_mtl_buf(&mut std::io::Cursor::new(mtl.as_bytes()));
     let result = tobj::load_obj_buf(&mut std::io::Cursor::new(sanitize(obj)), &options(), loader);
-    finish(result, file, None, &mut Ctx::new(&LoadOptions::default(), None))
+    let mut ctx = Ctx::new(&LoadOptions::default(), None);
+    let r = finish(result, file, None, &mut ctx);
+    super::with_warnings(r, &mut ctx)
 }
 
 fn finish(
@@ -117,19 +139,23 @@ fn finish(
             return Ok(t);
         }
         let el = format!("material \"{user}\": texture \"{name}\"");
-        let Some(base) = base else {
-            return Err(err(el, LoadErrorKind::MissingTexture(name.to_owned())));
+        let bytes = match base {
+            Some(base) => ctx.resolve(base, name).and_then(|p| ctx.read(&p)),
+            None => Err(LoadErrorKind::Unsupported(format!(
+                "external file `{name}` in an in-memory load"
+            ))),
         };
-        let bytes = ctx
-            .resolve(base, name)
-            .and_then(|p| {
-                ctx.read(&p).map_err(|k| match k {
-                    LoadErrorKind::Io { .. } => LoadErrorKind::MissingTexture(name.to_owned()),
-                    k => k,
-                })
-            })
-            .map_err(|k| err(el.clone(), k))?;
-        let mut t = decode(name, &bytes, space, ctx).map_err(|k| err(el.clone(), k))?;
+        let decoded = bytes.and_then(|b| decode(name, &b, space, ctx));
+        let mut t = match decoded {
+            Ok(t) => t,
+            Err(k) if missing(&k) => {
+                let kind =
+                    LoadWarningKind::MissingTexture { path: name.to_owned(), cause: Box::new(k) };
+                ctx.warn(file, el, kind)?;
+                stand_in(space, mask)
+            }
+            Err(k) => return Err(err(el, k)),
+        };
         if mask {
             // Alpha from the red channel of a grey mask image.
             for l in &mut t.levels {

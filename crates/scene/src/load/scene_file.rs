@@ -164,7 +164,9 @@ pub fn load_scene_str(
     base_dir: Option<&Path>,
     file: &str,
 ) -> Result<Scene, SceneError> {
-    load_scene_ctx(text, base_dir, file, &mut Ctx::new(&LoadOptions::default(), base_dir))
+    let mut ctx = Ctx::new(&LoadOptions::default(), base_dir);
+    let r = load_scene_ctx(text, base_dir, file, &mut ctx);
+    super::with_warnings(r, &mut ctx)
 }
 
 fn load_scene_ctx(
