@@ -26,6 +26,6 @@ mod metrics;
 mod sweep;
 mod timing;
 
-pub use metrics::{max_rel, mean_rel_luminance, rel_rms};
+pub use metrics::{ImageErrors, image_errors, max_rel, mean_rel_luminance, rel_rms};
 pub use sweep::{Comparison, ENV_OUT, ENV_QUICK, Entry, ErrorValue, Part, Sweep};
 pub use timing::{black_box, interleaved, time_ms, time_ns_per_call};
