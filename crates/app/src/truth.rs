@@ -228,10 +228,10 @@ pub fn progress_bar(on: bool, what: &str) -> impl Fn(Progress) + Send + Sync + '
                 b.set_position(p.done);
             }
         }
-        if p.finished() {
-            if let Some(b) = bar.take() {
-                b.finish_and_clear();
-            }
+        if p.finished()
+            && let Some(b) = bar.take()
+        {
+            b.finish_and_clear();
         }
     }
 }
