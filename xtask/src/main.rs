@@ -5,6 +5,8 @@
 //! - `cargo xtask bench [--quick] [--json PATH] [--only CRATE]`: every crate's accuracy-vs-time
 //!   sweep, merged into `target/gi-report/` (report.json, report.md, one SVG per technique).
 //! - `cargo xtask render [ARGS]`: the engine's main job (see `serein-render --help`).
+//! - `cargo xtask reference render|merge [ARGS]`: the reference on the CPU alone (see
+//!   `serein-reference --help`).
 //! - `cargo xtask view [ARGS]`: the engine in a window (see `serein-view --help`).
 //! - `cargo xtask package-check`: every library crate packages and its `.crate` builds outside
 //!   the workspace, with default features and with all features (also part of `test`).
@@ -91,6 +93,15 @@ enum Command {
         #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
         args: Vec<String>,
     },
+    /// The path-traced reference of any scene on the CPU alone (release build of
+    /// `serein-reference`): `render` (--scene, --size, --spp, --render-seed, --part I/N,
+    /// --out) and `merge PARTIAL... --out DIR`. `cargo xtask reference --help-reference`
+    /// lists the options.
+    Reference {
+        /// Arguments for serein-reference.
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+        args: Vec<String>,
+    },
     /// Open the engine in a window (release build of `serein-view`): fly through the city,
     /// change the time of day, switch effects. `cargo xtask view --help-view` lists the
     /// options (--scene, --time, --date, --size, --preset, --out, --record).
@@ -113,6 +124,9 @@ fn main() -> anyhow::Result<()> {
         }
         Command::Render { args } => run_bin(&root, "serein-render", "--help-render", &args),
         Command::View { args } => run_bin(&root, "serein-view", "--help-view", &args),
+        Command::Reference { args } => {
+            run_bin(&root, "serein-reference", "--help-reference", &args)
+        }
         Command::Shaders => shaders::validate_all(&root).map(|n| println!("{n} shaders valid")),
         Command::PackageCheck => package_check::run(&root),
     }

@@ -161,7 +161,7 @@ fn capped_reference(
             .with_size(width, height)
             .with_component(reference::Component::Reflections)
     };
-    let r = reference::render(&world, cam, settings, false)?;
+    let r = reference::render(&world, cam, settings)?;
     Ok(compare::ReferenceRender {
         mean: r.mean(),
         std_error: r.std_error(),

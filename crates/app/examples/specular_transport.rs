@@ -66,7 +66,7 @@ fn main() -> Result<()> {
             .with_size(w, h)
             .with_spp(args.spp)
             .with_component(Component::Full);
-        let image = reference::render(&world, cam, settings, true).context("reference")?.mean();
+        let image = reference::render(&world, cam, settings).context("reference")?.mean();
         let y = pixels.iter().map(|&i| luminance(image.pixels[i]) as f64).sum::<f64>()
             / pixels.len() as f64;
         println!("{name}: mean luminance {y:.5}");

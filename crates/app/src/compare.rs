@@ -79,7 +79,10 @@ pub fn reference_component(
         .with_size(width, height)
         .with_spp(spp.max(1))
         .with_component(component);
-    let mut r = reference::render(&world, cam, settings, progress).map_err(tech)?;
+    let mut r = reference::Renderer::new(&world, cam, settings)
+        .map_err(tech)?
+        .with_progress(crate::truth::progress_bar(progress, component.name()));
+    r.add_samples(settings.spp);
     let refined = r.refine(&Refinement::DEFAULT).map_err(tech)?.len();
     Ok(ReferenceRender {
         mean: r.mean(),
@@ -144,12 +147,10 @@ pub fn errors(
     spp: u32,
     ms: f64,
 ) -> Result<ReferenceErrors, EngineError> {
-    let tech = |e| EngineError::technique("reference", e);
-    let e = reference::compare(approx, reference, None).map_err(tech)?;
+    let e = image_errors(approx, reference)?;
     let mean_r = luminance(reference.mean());
     let cap = FIREFLY_CLAMP * mean_r.max(1e-12);
-    let c =
-        reference::compare(&clamped(approx, cap), &clamped(reference, cap), None).map_err(tech)?;
+    let c = image_errors(&clamped(approx, cap), &clamped(reference, cap))?;
     Ok(ReferenceErrors {
         rel_rms: e.rel_rms,
         rel_rms_clamped: c.rel_rms,
@@ -163,6 +164,21 @@ pub fn errors(
         reference_spp: spp,
         reference_ms: ms,
     })
+}
+
+/// `gi_report`'s image errors of `approx` against `reference` (images of one size).
+pub fn image_errors(
+    approx: &Image,
+    reference: &Image,
+) -> Result<gi_report::ImageErrors, EngineError> {
+    let (a, r) = (approx, reference);
+    let same = (a.width, a.height) == (r.width, r.height);
+    same.then(|| gi_report::image_errors(&a.as_arrays(), &r.as_arrays(), None))
+        .flatten()
+        .ok_or_else(|| {
+            let e = reference::Error::SizeMismatch(a.width, a.height, r.width, r.height);
+            EngineError::technique("reference", e)
+        })
 }
 
 /// Renders the reference of the renderer's current view at the size of `frame` (the

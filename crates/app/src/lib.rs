@@ -11,6 +11,8 @@
 //! - [`ledger`]: each lighting component against its reference, whole frame and per region
 //!   ([`regions`]), with a contact sheet ([`contact_sheet`]) and the light beyond one bounce
 //!   ([`beyond`]).
+//! - [`truth`]: `serein-reference`, the reference of any scene on the CPU alone, whole or
+//!   as partial renders that merge.
 //! - [`view`]: `serein-view`, the engine in a window.
 
 pub mod beyond;
@@ -21,6 +23,7 @@ pub mod ledger;
 pub mod regions;
 pub mod report;
 pub mod thesis;
+pub mod truth;
 pub mod view;
 
 use engine::EngineError;

@@ -45,7 +45,7 @@ fn the_presets_gather_beats_the_lpv_and_the_lpv_looks_up_beyond_its_own_injectio
         let c = Some(Component::SunIndirectDiffuse);
         let engine =
             app::compare::engine_component(&scene, s, &camera, c, 1).expect("engine image");
-        reference::compare(&engine, &truth.mean, None).expect("compare").rel_rms
+        app::compare::image_errors(&engine, &truth.mean).expect("compare").rel_rms
     };
     let high = Settings::preset(Preset::High, SIZE.0, SIZE.1);
     assert_eq!(high.indirect, Indirect::Rsm, "the high preset's one bounce");

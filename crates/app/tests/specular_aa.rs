@@ -41,7 +41,7 @@ fn direct_sun_error(g: scene::Generated) -> Option<f64> {
         false,
     )
     .expect("reference");
-    let e = reference::compare(&engine, &truth.mean, None).expect("compare");
+    let e = app::compare::image_errors(&engine, &truth.mean).expect("compare");
     eprintln!(
         "{g:?}: direct sun, 16 still samples against {SPP} spp: rel RMS {:.4} (reference's \
          own relative standard error {:.4})",

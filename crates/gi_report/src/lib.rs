@@ -22,7 +22,7 @@ pub mod pictures;
 mod sweep;
 mod timing;
 
-pub use metrics::{max_rel, mean_rel_luminance, rel_rms};
+pub use metrics::{ImageErrors, image_errors, max_rel, mean_rel_luminance, rel_rms};
 #[cfg(feature = "sweep")]
 pub use sweep::{
     Comparison, ENV_OUT, ENV_QUICK, Entry, ErrorValue, PICTURES, Part, Pictures, Sweep,

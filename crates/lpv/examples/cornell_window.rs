@@ -57,7 +57,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .with_component(Component::SunIndirectDiffuse)
         .with_size(W, H)
         .with_spp(spp);
-    let truth = reference::render(&case.world, camera, settings, false)?.mean().pixels;
+    let truth = reference::render(&case.world, camera, settings)?.mean().pixels;
     let panels = [shade(&lpvs[0]), shade(&lpvs[1]), truth];
     let mean: f32 =
         panels[2].iter().map(|c| c.element_sum() / 3.0).sum::<f32>() / panels[2].len() as f32;

@@ -17,7 +17,7 @@
 use gi_report::{Entry, Sweep, time_ms};
 use reference::{
     Component, Estimate, QuerySettings, Refinement, RenderSettings, Renderer, SceneLighting,
-    camera_from_scene, compare, radiance, render, world_from_scene,
+    camera_from_scene, radiance, render, world_from_scene,
 };
 use std::time::Instant;
 
@@ -60,7 +60,7 @@ fn main() {
     for (w, h, spp, reps) in points {
         sweep.stage(&format!("city {w}x{h} {spp} spp"));
         let s = RenderSettings { width: w, height: h, spp, ..RenderSettings::DEFAULT };
-        let (ms, r) = time_ms(reps, || render(&world, cam, s, false).expect("render"));
+        let (ms, r) = time_ms(reps, || render(&world, cam, s).expect("render"));
         let paths = (w * h * spp) as f64;
         sweep.entry(
             Entry::new(format!("reference/city_{w}x{h}_{spp}spp"), "path_tracing", ms)
@@ -82,11 +82,11 @@ fn main() {
     let ref_spp = if quick { 64 } else { 256 };
     let base =
         RenderSettings { width: w, height: h, spp: ref_spp, seed: 99, ..RenderSettings::DEFAULT };
-    let truth = render(&world, cam, base, false).expect("reference render").mean();
+    let truth = render(&world, cam, base).expect("reference render").mean();
     for spp in [1u32, 4, 16] {
         let s = RenderSettings { spp, seed: 1, ..base };
-        let (ms, r) = time_ms(1, || render(&world, cam, s, false).expect("render"));
-        let e = compare(&r.mean(), &truth, None).expect("same size");
+        let (ms, r) = time_ms(1, || render(&world, cam, s).expect("render"));
+        let e = errors(&r.mean(), &truth);
         sweep.entry(
             Entry::new(
                 format!("reference/city_{w}x{h}_{spp}spp_vs_{ref_spp}spp"),
@@ -155,10 +155,10 @@ fn city_caustics(sweep: &mut Sweep, world: &reference::World, cam: reference::Ca
         for seed in [1u64, 2] {
             let s = RenderSettings { spp, path, seed, ..RenderSettings::DEFAULT };
             let t0 = Instant::now();
-            renders.push(render(world, cam, s, false).expect("render"));
+            renders.push(render(world, cam, s).expect("render"));
             ms.push(t0.elapsed().as_secs_f64() * 1e3);
         }
-        let e = compare(&renders[0].mean(), &renders[1].mean(), None).expect("same size");
+        let e = errors(&renders[0].mean(), &renders[1].mean());
         let rse = renders[0].mean_rel_std_error();
         sweep.entry(
             Entry::new(format!("reference/city_320x180_caustics_{name}"), "path_tracing", ms[0])
@@ -191,7 +191,7 @@ fn city_refined(sweep: &mut Sweep, world: &reference::World, cam: reference::Cam
     for seed in [1u64, 2] {
         let s = RenderSettings { spp, seed, ..RenderSettings::DEFAULT };
         let t0 = Instant::now();
-        let mut r = render(world, cam, s, false).expect("render");
+        let mut r = render(world, cam, s).expect("render");
         first.push(r.mean());
         worst.0 = worst.0.max(r.worst_block_rel_std_error(8));
         let chosen = r.refine(&Refinement::DEFAULT).expect("refine");
@@ -203,8 +203,8 @@ fn city_refined(sweep: &mut Sweep, world: &reference::World, cam: reference::Cam
         worst.1 = worst.1.max(r.worst_block_rel_std_error(8));
         refined.push(r);
     }
-    let e_first = compare(&first[0], &first[1], None).expect("same size").rel_rms;
-    let e = compare(&refined[0].mean(), &refined[1].mean(), None).expect("same size").rel_rms;
+    let e_first = errors(&first[0], &first[1]).rel_rms;
+    let e = errors(&refined[0].mean(), &refined[1].mean()).rel_rms;
     let rse = refined.iter().map(|r| r.mean_rel_std_error()).fold(0.0, f64::max);
     sweep.entry(
         Entry::new("reference/city_320x180_refined", "path_tracing", ms[0])
@@ -242,7 +242,7 @@ fn cornell_area_equal_time(sweep: &mut Sweep, quick: bool) {
     let base = RenderSettings { spp: spp_old, ..RenderSettings::DEFAULT };
     let old_settings = RenderSettings { path: base.path.with_emitter_sampling(false), ..base };
     let t0 = Instant::now();
-    let old = render(&world, cam, old_settings, false).expect("render");
+    let old = render(&world, cam, old_settings).expect("render");
     let t_old = t0.elapsed().as_secs_f64();
     let mut new = Renderer::new(&world, cam, base).expect("renderer");
     let t0 = Instant::now();
@@ -271,4 +271,9 @@ fn cornell_area_equal_time(sweep: &mut Sweep, quick: bool) {
             ))
             .threads(threads()),
     );
+}
+
+/// `gi_report`'s image errors of `a` against `b` (images of one size).
+fn errors(a: &reference::Image, b: &reference::Image) -> gi_report::ImageErrors {
+    gi_report::image_errors(&a.as_arrays(), &b.as_arrays(), None).expect("images of one size")
 }

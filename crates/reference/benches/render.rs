@@ -17,7 +17,7 @@ fn bench(c: &mut Criterion) {
             RenderSettings { width: 64, height: 36, spp: 2, component, ..RenderSettings::DEFAULT };
         g.throughput(Throughput::Elements((s.width * s.height * s.spp) as u64));
         g.bench_function(format!("city_64x36_2spp_{}", component.name()), |b| {
-            b.iter(|| black_box(render(&world, cam, s, false).expect("render").mean()))
+            b.iter(|| black_box(render(&world, cam, s).expect("render").mean()))
         });
     }
     g.finish();

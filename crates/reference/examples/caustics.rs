@@ -8,7 +8,7 @@
 use anyhow::{Result, bail};
 use clap::Parser;
 use reference::{
-    PathSettings, Refinement, RenderSettings, Renderer, SceneLighting, camera_from_scene, compare,
+    PathSettings, Refinement, RenderSettings, Renderer, SceneLighting, camera_from_scene,
     luminance, render, world_from_scene,
 };
 use std::time::Instant;
@@ -147,7 +147,7 @@ fn main() -> Result<()> {
                 component: reference::Component::from_name(&args.component).expect("component"),
             };
             let t0 = Instant::now();
-            let mut r = render(&world, cam, s, false)?;
+            let mut r = render(&world, cam, s)?;
             let secs = t0.elapsed().as_secs_f64();
             println!(
                 "{name} seed {seed}: {secs:.2} s, mean rel std error {:.4}, worst 8x8 block {:.4}",
@@ -180,7 +180,7 @@ fn main() -> Result<()> {
             renders.push(r);
         }
         let (a, b) = (renders[0].mean(), renders[1].mean());
-        let e = compare(&a, &b, None)?;
+        let e = errors(&a, &b);
         println!(
             "{name}: rel_rms between seeds {:.4}, mean_rel_luminance {:.4}, mean Y {:.5} / {:.5}",
             e.rel_rms,
@@ -229,4 +229,9 @@ fn main() -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// `gi_report`'s image errors of `a` against `b` (images of one size).
+fn errors(a: &reference::Image, b: &reference::Image) -> gi_report::ImageErrors {
+    gi_report::image_errors(&a.as_arrays(), &b.as_arrays(), None).expect("images of one size")
 }

@@ -77,7 +77,7 @@ fn main() -> Result<()> {
         seed: args.seed,
     };
     let t1 = Instant::now();
-    let r = render(&world, camera_from_scene(&scene), settings, true)?;
+    let r = render(&world, camera_from_scene(&scene), settings)?;
     let secs = t1.elapsed().as_secs_f64();
     let primary = args.width as f64 * args.height as f64 * args.spp as f64;
     eprintln!(

@@ -17,6 +17,12 @@ pub enum Error {
     SizeMismatch(u32, u32, u32, u32),
     #[error("writing {path}: {message}")]
     Write { path: String, message: String },
+    #[error("reading {path}: {message}")]
+    Read { path: String, message: String },
+    #[error("partial render: {0}")]
+    Partial(String),
+    #[error("merging partial renders: {0}")]
+    Merge(String),
     #[error("scene: {0}")]
     Scene(String),
 }

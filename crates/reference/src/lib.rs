@@ -46,8 +46,17 @@
 //!   an [`Estimate`] with its standard error out;
 //! - **progressive images** ([`Renderer`]): 16x16 tiles on rayon, one seeded random stream
 //!   per (pixel, sample), so results are identical bit for bit whatever the thread count;
-//!   per-pixel variance, EXR output of the mean and standard error, tone-mapped PNG;
-//! - **image comparison** ([`compare`], [`difference_image`]) on `gi_report`'s metrics.
+//!   EXR output of the mean and standard error, tone-mapped PNG; progress reported to a
+//!   callback ([`Renderer::with_progress`], [`Progress`]);
+//! - **an honest standard error**: each pixel's samples fall into [`BATCHES`] independent
+//!   batches, each its own stratified sequence over the pixel, and the error is the spread
+//!   of the batch means ([`BatchMoments`]), which stays right on pixels an edge crosses,
+//!   where the spread of stratified samples overstates it several-fold;
+//! - **partial renders that merge** ([`Partial`]): renders of other seeds or other pixels
+//!   ([`Renderer::with_pixels`]) add up to the estimate one render of all their samples
+//!   would state, so a large reference spreads over machines;
+//! - **difference images** ([`difference_image`], [`error_in_std_errors`]); the scalar
+//!   error metrics over whole images are `gi_report`'s (`gi_report::image_errors`).
 //!
 //! With the `scene` crate's scenes: [`world_from_scene`] and [`camera_from_scene`].
 //!
@@ -65,6 +74,8 @@ mod image;
 mod integrator;
 mod lights;
 mod material;
+mod partial;
+mod progress;
 mod query;
 mod refine;
 mod render;
@@ -74,16 +85,18 @@ mod stats;
 mod world;
 
 pub use camera::Camera;
-pub use compare::{ImageErrors, compare, difference_image, error_in_std_errors};
+pub use compare::{difference_image, error_in_std_errors};
 pub use error::Error;
 pub use from_scene::{SceneLighting, camera_from_scene, world_from_scene};
 pub use image::Image;
 pub use integrator::{Component, PathSettings};
 pub use material::{AlbedoTexture, AlphaTest, CoverageFn, Material, Sample, TextureFn};
+pub use partial::{Part, Partial};
+pub use progress::{Progress, ProgressFn, Stage};
 pub use query::{QueryPoint, QuerySettings, ambient_occlusion, irradiance, radiance};
 pub use refine::{GLINT_BOUNCES, Refinement, glint_pixels};
 pub use render::{CAUSTIC_BATCH, RenderSettings, Renderer, TILE, render};
 pub use rng::Rng;
 pub use sampling::luminance;
-pub use stats::{Estimate, Moments};
+pub use stats::{BATCHES, BatchMoments, Estimate, Moments, PixelSums};
 pub use world::{PointLight, SkyFn, Sun, SurfaceHit, World, WorldBuilder};

@@ -23,6 +23,12 @@
 //!   [`GLINT_BOUNCES`] mirror or glass reflections, and marks the pixel when the sun's disk
 //!   lies within the spread of the directions they leave in: those pixels get
 //!   `min_factor` times the samples even when their variance is zero.
+//! - **Which errors.** The standard errors are the batch means' ([`crate::BatchMoments`]),
+//!   honest on pixels an edge crosses; the samples' own spread, several times too large
+//!   there (the sub-pixel positions are stratified), would spend the budget on emitters'
+//!   outlines and silhouettes against the sky. `sigma` is the standard error times the
+//!   square root of the samples: with stratification the error falls faster than that
+//!   predicts, so the counts it asks for err on the generous side.
 //! - **Rounds.** The glints' own variance is known only once they have been found, so
 //!   [`Refinement::rounds`] rounds run, each choosing from the estimates the last left.
 //!

@@ -1,16 +1,18 @@
-//! Progressive image rendering: tiles on rayon, per-pixel moments, a progress bar.
+//! Progressive image rendering: tiles on rayon, per-pixel batch sums, progress reports.
 
 use crate::camera::Camera;
 use crate::caustics::{CausticSource, PhotonMap};
 use crate::image::Image;
 use crate::integrator::{self, Component, PathSettings};
+use crate::partial::{Part, Partial};
+use crate::progress::{Progress, ProgressFn, Reporter, Stage};
 use crate::refine::{Refinement, glint_pixels};
 use crate::rng::{Rng, mix64, pixel_jitter};
-use crate::stats::{Estimate, Moments};
+use crate::stats::{Estimate, PixelSums};
 use crate::world::World;
 use crate::{Error, sampling::luminance};
-use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
+use std::ops::Range;
 
 /// Tile edge in pixels (the unit of parallel work).
 pub const TILE: u32 = 16;
@@ -109,38 +111,74 @@ impl Default for RenderSettings {
 
 /// A progressive render: call [`Renderer::add_samples`] as often as wanted; the mean and
 /// standard error images are available at any time.
+///
+/// Each pixel keeps its samples' sums in [`crate::BATCHES`] independent batches
+/// ([`PixelSums`]), and its standard error comes from the spread of the batch means
+/// ([`crate::BatchMoments::estimate`]), which stays honest where the stratified sub-pixel
+/// positions make the samples themselves dependent. [`Renderer::partial`] hands the
+/// statistics out in a form that renders with other seeds (or of other pixels) merge into.
 pub struct Renderer<'w> {
     world: &'w World,
     camera: Camera,
     settings: RenderSettings,
-    moments: Vec<Moments>,
+    /// Per pixel, in tile order (tile by tile, row-major inside a tile; see [`slot`]), so
+    /// that each tile's pixels are one slice a worker owns.
+    pixels: Vec<PixelSums>,
+    /// The pixels rendered (row-major indices); the others stay without samples.
+    range: Range<u32>,
     samples: u32,
-    progress: bool,
+    progress: Option<Box<ProgressFn<'w>>>,
 }
 
 impl<'w> Renderer<'w> {
     pub fn new(world: &'w World, camera: Camera, settings: RenderSettings) -> Result<Self, Error> {
         settings.validate()?;
         camera.validate()?;
-        let n = settings.width as usize * settings.height as usize;
+        let n = settings.width * settings.height;
         Ok(Self {
             world,
             camera,
             settings,
-            moments: vec![Moments::default(); n],
+            pixels: vec![PixelSums::default(); n as usize],
+            range: 0..n,
             samples: 0,
-            progress: false,
+            progress: None,
         })
     }
 
-    /// Shows an indicatif progress bar (tiles done) during [`Renderer::add_samples`].
-    pub fn with_progress(mut self, on: bool) -> Self {
-        self.progress = on;
+    /// Renders only the pixels `range` (row-major indices `y * width + x`, end exclusive):
+    /// a share of a large image for one machine, whose [`Renderer::partial`] merges with the
+    /// others'. A pixel's samples do not depend on which others are rendered.
+    pub fn with_pixels(mut self, range: Range<u32>) -> Result<Self, Error> {
+        let n = self.settings.width * self.settings.height;
+        if range.start >= range.end || range.end > n {
+            return Err(Error::InvalidSettings(format!(
+                "pixels {}..{} of a {}x{} image (a non-empty range within 0..{n})",
+                range.start, range.end, self.settings.width, self.settings.height
+            )));
+        }
+        if self.samples > 0 {
+            return Err(Error::InvalidSettings("choosing pixels after sampling began".into()));
+        }
+        self.range = range;
+        Ok(self)
+    }
+
+    /// Reports progress to `report` during [`Renderer::add_samples`] and
+    /// [`Renderer::refine`] (from the worker threads; see [`Progress`]).
+    pub fn with_progress(mut self, report: impl Fn(Progress) + Send + Sync + 'w) -> Self {
+        self.progress = Some(Box::new(report));
         self
     }
 
     pub fn settings(&self) -> &RenderSettings {
         &self.settings
+    }
+
+    /// The pixels rendered (row-major indices; all of them unless [`Renderer::with_pixels`]
+    /// chose fewer).
+    pub fn pixels(&self) -> Range<u32> {
+        self.range.clone()
     }
 
     /// Samples per pixel so far.
@@ -153,17 +191,28 @@ impl<'w> Renderer<'w> {
     pub fn add_samples(&mut self, count: u32) {
         let (w, h) = (self.settings.width, self.settings.height);
         let tiles_x = w.div_ceil(TILE);
-        let tiles = tiles_x * h.div_ceil(TILE);
-        let bar = self.progress_bar(count);
         let first = self.samples;
-        let (world, s) = (self.world, self.settings);
-        // Per tile, the moments of this call's samples, in pixel order.
-        let mut results: Vec<(u32, Vec<Moments>)> = (0..tiles)
-            .map(|t| {
-                let (x0, y0, x1, y1) = tile_rect(t, tiles_x, w, h);
-                (t, vec![Moments::default(); ((x1 - x0) * (y1 - y0)) as usize])
-            })
-            .collect();
+        let range = self.range.clone();
+        let reporter = Reporter::start(
+            self.progress.as_deref(),
+            Stage::Samples { first, count },
+            range.len() as u64 * count as u64,
+        );
+        let s = self.settings;
+        let mut pixels = std::mem::take(&mut self.pixels);
+        // Each tile's slice of the pixels, with the tile's rectangle.
+        let mut tiles: Vec<(Rect, &mut [PixelSums])> = Vec::new();
+        let mut rest = pixels.as_mut_slice();
+        for t in 0..tiles_x * h.div_ceil(TILE) {
+            let r = tile_rect(t, tiles_x, w, h);
+            let (tile, tail) =
+                std::mem::take(&mut rest).split_at_mut(((r.2 - r.0) * (r.3 - r.1)) as usize);
+            rest = tail;
+            let inside = (r.1..r.3).any(|y| y * w + r.2 > range.start && y * w + r.0 < range.end);
+            if inside {
+                tiles.push((r, tile));
+            }
+        }
         // Without caustics one batch holds every sample; with them, a batch of samples
         // shares the memory of its photon maps (one per sample index). Each pixel adds its
         // samples in order either way, so the batching never changes a bit.
@@ -174,35 +223,30 @@ impl<'w> Renderer<'w> {
             let k1 = (k0 + batch).min(first + count);
             let maps: Vec<PhotonMap> = match &source {
                 Some(src) => {
-                    (k0..k1).map(|k| src.map(world, k as u64, s.path.max_bounces)).collect()
+                    (k0..k1).map(|k| src.map(self.world, k as u64, s.path.max_bounces)).collect()
                 }
                 None => Vec::new(),
             };
-            let last = k1 == first + count;
-            results.par_iter_mut().for_each(|(t, out)| {
-                let (x0, y0, x1, y1) = tile_rect(*t, tiles_x, w, h);
+            tiles.par_iter_mut().for_each(|((x0, y0, x1, y1), out)| {
                 let mut i = 0;
-                for y in y0..y1 {
-                    for x in x0..x1 {
-                        self.sample_pixel(&mut out[i], y * w + x, s.seed, k0..k1, &maps);
+                let mut drawn = 0u64;
+                for y in *y0..*y1 {
+                    for x in *x0..*x1 {
+                        let p = y * w + x;
+                        if range.contains(&p) {
+                            self.sample_pixel(&mut out[i], p, s.seed, k0..k1, &maps);
+                            drawn += (k1 - k0) as u64;
+                        }
                         i += 1;
                     }
                 }
-                if last {
-                    bar.inc(1);
-                }
+                reporter.add(drawn);
             });
             k0 = k1;
         }
-        bar.finish_and_clear();
-        for (t, tile) in results {
-            let (x0, y0, x1, _) = tile_rect(t, tiles_x, w, h);
-            let tw = x1 - x0;
-            for (i, m) in tile.iter().enumerate() {
-                let (x, y) = (x0 + i as u32 % tw, y0 + i as u32 / tw);
-                self.moments[(y * w + x) as usize].merge(m);
-            }
-        }
+        drop(tiles);
+        self.pixels = pixels;
+        reporter.finish();
         self.samples += count;
     }
 
@@ -211,10 +255,10 @@ impl<'w> Renderer<'w> {
     /// maps.
     fn sample_pixel(
         &self,
-        m: &mut Moments,
+        m: &mut PixelSums,
         pixel: u32,
         seed: u64,
-        ks: std::ops::Range<u32>,
+        ks: Range<u32>,
         maps: &[PhotonMap],
     ) {
         let (w, h) = (self.settings.width, self.settings.height);
@@ -226,38 +270,47 @@ impl<'w> Renderer<'w> {
             let (jx, jy) = pixel_jitter(seed, pixel as u64, k as u64);
             let dir = camera.direction(x + jx, y + jy, w, h);
             let map = if maps.is_empty() { None } else { maps.get((k - k0) as usize % maps.len()) };
-            m.add(integrator::radiance(
-                self.world,
-                s.component,
-                camera.position,
-                dir,
-                &s.path,
-                map,
-                &mut rng,
-            ));
+            m.add(
+                k,
+                integrator::radiance(
+                    self.world,
+                    s.component,
+                    camera.position,
+                    dir,
+                    &s.path,
+                    map,
+                    &mut rng,
+                ),
+            );
         }
     }
 
     /// Second-stage sampling where the image is noisiest (see [`Refinement`] for the rule):
     /// [`Refinement::rounds`] rounds, each choosing pixels and their sample counts from the
-    /// estimates so far (and, before the first, from the glint probe when the component
-    /// sees the sun through mirrors and glass); a chosen pixel is rendered again with that
-    /// many fresh samples from streams independent of every earlier sample, which
-    /// **replace** its earlier ones, so its estimate stays unbiased (keeping the earlier
-    /// ones would not: a pixel is chosen because its samples came out high). Photon maps
-    /// (caustic estimator): the [`CAUSTIC_BATCH`] passes after the samples so far, used in
-    /// turn. Returns the refined pixels (row-major indices, ascending).
-    /// [`Renderer::samples`] stays the first stage's count; a refined pixel's is its
-    /// [`Estimate::samples`].
+    /// estimates so far (their standard errors from the batch means) and, before the first,
+    /// from the glint probe when the component sees the sun through mirrors and glass; a
+    /// chosen pixel is rendered again with that many fresh samples from streams independent
+    /// of every earlier sample, which **replace** its earlier ones, so its estimate stays
+    /// unbiased (keeping the earlier ones would not: a pixel is chosen because its samples
+    /// came out high). Photon maps (caustic estimator): the [`CAUSTIC_BATCH`] passes after
+    /// the samples so far, used in turn. Returns the refined pixels (row-major indices,
+    /// ascending). [`Renderer::samples`] stays the first stage's count; a refined pixel's is
+    /// its [`Estimate::samples`]. With [`Renderer::with_pixels`], only those pixels are
+    /// refined, and the budget is their share of the image's.
     pub fn refine(&mut self, refinement: &Refinement) -> Result<Vec<u32>, Error> {
         refinement.validate()?;
         if self.samples == 0 {
             return Err(Error::InvalidSettings("refining a render with no samples".into()));
         }
         let (w, h) = (self.settings.width, self.settings.height);
+        let share = self.range.len() as f32 / (w * h) as f32;
+        let refinement = Refinement { budget: refinement.budget * share, ..*refinement };
         let sees_sun = matches!(self.settings.component, Component::Full | Component::Reflections);
-        let glints = if refinement.glint_probe && sees_sun {
+        let glints: Vec<u32> = if refinement.glint_probe && sees_sun {
             glint_pixels(self.world, &self.camera, w, h)
+                .into_iter()
+                .filter(|p| self.range.contains(p))
+                .collect()
         } else {
             Vec::new()
         };
@@ -285,53 +338,33 @@ impl<'w> Renderer<'w> {
                         .map(move |c| (i, c * REFINE_CHUNK, ((c + 1) * REFINE_CHUNK).min(n)))
                 })
                 .collect();
-            let msg = format!("refining {} pixels, round {}", chosen.len(), round + 1);
-            let bar = self.bar(chunks.len() as u64, "chunks", msg);
+            let total = chosen.iter().map(|&(_, n)| n as u64).sum();
+            let stage = Stage::Refine { round: round + 1, pixels: chosen.len() as u32 };
+            let reporter = Reporter::start(self.progress.as_deref(), stage, total);
             let seed = self.settings.seed ^ mix64(REFINE_SALT ^ round as u64);
-            let fresh: Vec<Moments> = chunks
+            let fresh: Vec<PixelSums> = chunks
                 .par_iter()
                 .map(|&(i, k0, k1)| {
-                    let mut m = Moments::default();
+                    let mut m = PixelSums::default();
                     self.sample_pixel(&mut m, chosen[i].0, seed, k0..k1, &maps);
-                    bar.inc(1);
+                    reporter.add((k1 - k0) as u64);
                     m
                 })
                 .collect();
-            bar.finish_and_clear();
-            let mut new = vec![Moments::default(); chosen.len()];
+            reporter.finish();
+            let mut new = vec![PixelSums::default(); chosen.len()];
             for (&(i, _, _), m) in chunks.iter().zip(&fresh) {
                 new[i].merge(m);
             }
             for (&(p, _), m) in chosen.iter().zip(new) {
-                self.moments[p as usize] = m;
+                let slot = self.slot(p);
+                self.pixels[slot] = m;
                 refined.push(p);
             }
         }
         refined.sort_unstable();
         refined.dedup();
         Ok(refined)
-    }
-
-    /// The progress bar of one [`Renderer::add_samples`] call (hidden unless asked for).
-    fn progress_bar(&self, count: u32) -> ProgressBar {
-        let tiles = self.settings.width.div_ceil(TILE) * self.settings.height.div_ceil(TILE);
-        let msg = format!("spp {}..{}", self.samples, self.samples + count);
-        self.bar(tiles as u64, "tiles", msg)
-    }
-
-    /// A progress bar of `len` `unit`s (hidden unless asked for).
-    fn bar(&self, len: u64, unit: &str, msg: String) -> ProgressBar {
-        if !self.progress {
-            return ProgressBar::hidden();
-        }
-        let b = ProgressBar::new(len);
-        if let Ok(style) = ProgressStyle::with_template(&format!(
-            "{{msg}} [{{elapsed_precise}}] {{wide_bar}} {{pos}}/{{len}} {unit} (eta {{eta}})"
-        )) {
-            b.set_style(style);
-        }
-        b.set_message(format!("{} {msg}", self.settings.component.name()));
-        b
     }
 
     /// The photon source of the caustic estimator, when the settings, the component and the
@@ -344,9 +377,37 @@ impl<'w> Renderer<'w> {
         CausticSource::new(self.world, s.path.caustic_photons, s.path.caustic_radius, s.seed)
     }
 
-    /// Per-pixel estimates.
+    /// Where pixel `p` (row-major) is kept.
+    fn slot(&self, p: u32) -> usize {
+        slot(p, self.settings.width, self.settings.height)
+    }
+
+    /// Per-pixel estimates (row-major); pixels not rendered have no samples.
     pub fn estimates(&self) -> Vec<Estimate> {
-        self.moments.iter().map(Moments::estimate).collect()
+        let n = self.settings.width * self.settings.height;
+        (0..n).map(|p| self.pixels[self.slot(p)].estimate()).collect()
+    }
+
+    /// The non-empty batches of pixel `(x, y)`: their sample counts and means (what its
+    /// standard error is the spread of).
+    pub fn batch_means(&self, x: u32, y: u32) -> Vec<(u32, glam::Vec3)> {
+        self.pixels[self.slot(y * self.settings.width + x)].batch_means()
+    }
+
+    /// The render's statistics for merging with renders of other seeds or other pixels
+    /// ([`Partial::merge`]); `label` says what was rendered (scene, camera, settings), and
+    /// only partials with the same label merge.
+    pub fn partial(&self, label: impl Into<String>) -> Partial {
+        let s = &self.settings;
+        Partial {
+            width: s.width,
+            height: s.height,
+            component: s.component,
+            label: label.into(),
+            parts: vec![Part { seed: s.seed, pixels: self.range.clone(), spp: self.samples }],
+            pixels: self.range.clone(),
+            stats: self.range.clone().map(|p| self.pixels[self.slot(p)].moments()).collect(),
+        }
     }
 
     /// The mean image.
@@ -354,7 +415,7 @@ impl<'w> Renderer<'w> {
         self.image(|e| e.mean)
     }
 
-    /// The per-pixel standard error of the mean.
+    /// The per-pixel standard error of the mean (from the batch means).
     pub fn std_error(&self) -> Image {
         self.image(|e| e.std_error)
     }
@@ -363,19 +424,14 @@ impl<'w> Renderer<'w> {
         Image {
             width: self.settings.width,
             height: self.settings.height,
-            pixels: self.moments.iter().map(|m| f(&m.estimate())).collect(),
+            pixels: self.estimates().iter().map(f).collect(),
         }
     }
 
     /// Mean relative standard error of the image: `sum Y(se) / sum Y(mean)` (Rec. 709
     /// luminance), the error bar of the whole image in one number.
     pub fn mean_rel_std_error(&self) -> f64 {
-        let (mut se, mut mean) = (0.0f64, 0.0f64);
-        for e in self.estimates() {
-            se += luminance(e.std_error) as f64;
-            mean += luminance(e.mean) as f64;
-        }
-        if mean > 0.0 { se / mean } else { 0.0 }
+        mean_rel_std_error(&self.estimates())
     }
 
     /// The largest [`Renderer::mean_rel_std_error`] of the image's `edge x edge` blocks
@@ -394,22 +450,74 @@ impl<'w> Renderer<'w> {
     }
 }
 
+/// `sum Y(se) / sum Y(mean)` over `estimates` (0 for a black image).
+pub(crate) fn mean_rel_std_error(estimates: &[Estimate]) -> f64 {
+    let (mut se, mut mean) = (0.0f64, 0.0f64);
+    for e in estimates {
+        se += luminance(e.std_error) as f64;
+        mean += luminance(e.mean) as f64;
+    }
+    if mean > 0.0 { se / mean } else { 0.0 }
+}
+
 /// Renders `settings.spp` samples per pixel in one go and returns the renderer (for the
-/// mean, the standard error and further progressive passes).
+/// mean, the standard error and further progressive passes). [`Renderer::new`] with
+/// [`Renderer::with_progress`] or [`Renderer::with_pixels`] does the same with progress
+/// reports or for a share of the pixels.
 pub fn render<'w>(
     world: &'w World,
     camera: Camera,
     settings: RenderSettings,
-    progress: bool,
 ) -> Result<Renderer<'w>, Error> {
-    let mut r = Renderer::new(world, camera, settings)?.with_progress(progress);
+    let mut r = Renderer::new(world, camera, settings)?;
     r.add_samples(settings.spp);
     Ok(r)
 }
 
+/// Index in tile order of pixel `p` (row-major) of a `w x h` image: the tiles of
+/// [`TILE`] x [`TILE`] pixels one after the other (row-major; the last column and row of
+/// tiles narrower), the pixels of a tile row-major.
+fn slot(p: u32, w: u32, h: u32) -> usize {
+    let (x, y) = (p % w, p / w);
+    let (tx, ty) = (x / TILE, y / TILE);
+    let tile_h = TILE.min(h - ty * TILE);
+    let tile_w = TILE.min(w - tx * TILE);
+    (ty * TILE * w + tx * TILE * tile_h + (y % TILE) * tile_w + x % TILE) as usize
+}
+
+/// A pixel rectangle `(x0, y0, x1, y1)`, ends exclusive.
+type Rect = (u32, u32, u32, u32);
+
 /// Pixel rectangle `(x0, y0, x1, y1)` (exclusive ends) of tile `t` of a `w x h` image with
 /// `tiles_x` tiles per row.
-fn tile_rect(t: u32, tiles_x: u32, w: u32, h: u32) -> (u32, u32, u32, u32) {
+fn tile_rect(t: u32, tiles_x: u32, w: u32, h: u32) -> Rect {
     let (x0, y0) = ((t % tiles_x) * TILE, (t / tiles_x) * TILE);
     (x0, y0, (x0 + TILE).min(w), (y0 + TILE).min(h))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tile_order_is_a_permutation_with_each_tile_contiguous() {
+        for (w, h) in [(1u32, 1u32), (16, 16), (17, 5), (40, 33), (320, 180)] {
+            let tiles_x = w.div_ceil(TILE);
+            let mut next = 0usize;
+            let mut seen = vec![false; (w * h) as usize];
+            for t in 0..tiles_x * h.div_ceil(TILE) {
+                let (x0, y0, x1, y1) = tile_rect(t, tiles_x, w, h);
+                for y in y0..y1 {
+                    for x in x0..x1 {
+                        let s = slot(y * w + x, w, h);
+                        assert_eq!(s, next, "{w}x{h} pixel ({x}, {y})");
+                        assert!(!seen[s]);
+                        seen[s] = true;
+                        next += 1;
+                    }
+                }
+            }
+            assert_eq!(next, (w * h) as usize);
+        }
+    }
 }

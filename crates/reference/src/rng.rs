@@ -51,17 +51,23 @@ impl Rng {
     }
 }
 
-/// Sub-pixel position of sample `k` of pixel `pixel`: point `k` of the (0,2)-sequence (van
-/// der Corput in x, Sobol's second dimension in y; every run of `2^m` consecutive samples
-/// from a multiple of `2^m` puts one point in each of the `2^m` elementary intervals of the
-/// pixel), shifted by a per-pixel random offset (Cranley-Patterson rotation) so neighbouring
-/// pixels do not share a pattern. Stratifying the pixel matters where a pixel holds an edge
-/// or a highlight smaller than itself (the sun's highlight on chrome): the error falls
-/// faster than with independent jitter. Depends only on `(seed, pixel, k)`.
+/// Sub-pixel position of sample `k` of pixel `pixel`: sample `k` belongs to batch
+/// `b = k % BATCHES` ([`crate::stats::BATCHES`]) and is point `k / BATCHES` of the
+/// (0,2)-sequence (van der Corput in x, Sobol's second dimension in y; every run of `2^m`
+/// consecutive points from a multiple of `2^m` puts one point in each of the `2^m`
+/// elementary intervals of the pixel), shifted by a random offset of its own for each
+/// `(pixel, batch)` (Cranley-Patterson rotation): each batch is stratified over the pixel by
+/// itself and independent of the others, so the spread of the batch means measures the
+/// error (see [`crate::PixelSums`]), and neighbouring pixels do not share a pattern.
+/// Stratifying the pixel matters where a pixel holds an edge or a highlight smaller than
+/// itself (the sun's highlight on chrome): the error falls faster than with independent
+/// jitter. Depends only on `(seed, pixel, k)`.
 pub fn pixel_jitter(seed: u64, pixel: u64, k: u64) -> (f32, f32) {
-    let mut shift = Rng::for_sample(seed ^ 0x0F1E_2D3C_4B5A_6978, pixel, u64::MAX);
+    let batches = crate::stats::BATCHES as u64;
+    let batch = k % batches;
+    let mut shift = Rng::for_sample(seed ^ 0x0F1E_2D3C_4B5A_6978, pixel, u64::MAX - batch);
     let (sx, sy) = shift.next_2d();
-    let (x, y) = sobol_02(k as u32);
+    let (x, y) = sobol_02((k / batches) as u32);
     let wrap = |v: f32| if v >= 1.0 { v - 1.0 } else { v };
     (wrap(x + sx), wrap(y + sy))
 }
@@ -114,6 +120,28 @@ mod tests {
         }
         assert_ne!(pixel_jitter(7, 3, 0), pixel_jitter(7, 4, 0));
         assert_eq!(pixel_jitter(7, 3, 5), pixel_jitter(7, 3, 5));
+    }
+
+    /// Each batch is its own shifted (0,2)-sequence: the x of a batch's first `2^m` points
+    /// lie exactly `2^-m` apart (modulo 1), and batches are shifted apart.
+    #[test]
+    fn each_batch_is_a_stratified_sequence_of_its_own() {
+        let batches = crate::stats::BATCHES as u64;
+        let m = 4;
+        let mut firsts = Vec::new();
+        for b in 0..batches {
+            let mut xs: Vec<f32> =
+                (0..1u64 << m).map(|j| pixel_jitter(7, 3, b + j * batches).0).collect();
+            firsts.push(xs[0]);
+            xs.sort_by(f32::total_cmp);
+            let gaps = xs.windows(2).map(|w| w[1] - w[0]).chain([xs[0] + 1.0 - xs[xs.len() - 1]]);
+            for g in gaps {
+                assert!((g - 1.0 / (1 << m) as f32).abs() < 1e-5, "batch {b}: gap {g}");
+            }
+        }
+        firsts.sort_by(f32::total_cmp);
+        firsts.dedup();
+        assert_eq!(firsts.len(), batches as usize, "batches share a shift");
     }
 
     #[test]

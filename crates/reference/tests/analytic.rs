@@ -17,7 +17,7 @@ fn furnace_converges_to_the_analytic_radiance() {
     world.validate().unwrap();
     let cam = Camera::look_at(Vec3::new(0.1, 0.05, 0.0), Vec3::new(1.0, 0.2, -1.0), 90.0);
     let s = RenderSettings { width: 24, height: 24, spp: 16, ..RenderSettings::DEFAULT };
-    let r = render(&world, cam, s, false).unwrap();
+    let r = render(&world, cam, s).unwrap();
     let (mean, se) = pooled(&r.estimates());
     let expected = (e / (1.0 - a)) as f64;
     assert!(se > 0.0 && se < 0.02, "standard error {se}");
@@ -128,7 +128,6 @@ fn plane_under_a_constant_sky_receives_pi_l() {
         &world,
         cam,
         RenderSettings { width: 8, height: 8, spp: 4, ..RenderSettings::DEFAULT },
-        false,
     )
     .unwrap();
     for p in r.mean().pixels {

@@ -56,8 +56,8 @@ fn caustic_estimator_and_path_tracing_agree_without_double_counting() {
         ..RenderSettings::DEFAULT
     };
     let on = RenderSettings { path: off.path.with_caustics(photons, 0.0), ..off };
-    let a = render(&world, camera(), off, false).unwrap().estimates();
-    let b = render(&world, camera(), on, false).unwrap().estimates();
+    let a = render(&world, camera(), off).unwrap().estimates();
+    let b = render(&world, camera(), on).unwrap().estimates();
     let ((ma, sa), (mb, sb)) = (pooled(&a), pooled(&b));
     // The camera streams are the same: only the caustic differs (fireflies against the
     // photons' density estimate), so the off image's error bar bounds the difference.
@@ -67,7 +67,7 @@ fn caustic_estimator_and_path_tracing_agree_without_double_counting() {
     // The caustic is many error bars large (a double count or a dropped caustic would show):
     // with one bounce neither estimator has it.
     let one = RenderSettings { path: PathSettings::new(1, 3).with_caustics(photons, 0.0), ..off };
-    let (m1, _) = pooled(&render(&world, camera(), one, false).unwrap().estimates());
+    let (m1, _) = pooled(&render(&world, camera(), one).unwrap().estimates());
     assert!(mb - m1 > 10.0 * sa, "caustic {} vs error bar {sa}", mb - m1);
     eprintln!("image: off {ma} +- {sa}, on {mb} +- {sb}, one bounce {m1}");
 
@@ -110,10 +110,10 @@ fn a_sharp_glossy_reflector_is_counted_once() {
         ..RenderSettings::DEFAULT
     };
     let on = RenderSettings { path: off.path.with_caustics(photons, 0.0), ..off };
-    let (ma, sa) = pooled(&render(&world, camera(), off, false).unwrap().estimates());
-    let (mb, sb) = pooled(&render(&world, camera(), on, false).unwrap().estimates());
+    let (ma, sa) = pooled(&render(&world, camera(), off).unwrap().estimates());
+    let (mb, sb) = pooled(&render(&world, camera(), on).unwrap().estimates());
     let one = RenderSettings { path: PathSettings::new(1, 3).with_caustics(photons, 0.0), ..off };
-    let (m1, _) = pooled(&render(&world, camera(), one, false).unwrap().estimates());
+    let (m1, _) = pooled(&render(&world, camera(), one).unwrap().estimates());
     eprintln!("glossy: off {ma} +- {sa}, on {mb} +- {sb}, one bounce {m1}");
     assert!((ma - mb).abs() < 4.0 * sa.hypot(sb), "off {ma} +- {sa}, on {mb} +- {sb}");
     assert!(mb - m1 > 6.0 * sa.hypot(sb), "caustic {} vs error bar {sa}", mb - m1);
@@ -130,13 +130,13 @@ fn caustic_images_are_deterministic_whatever_the_thread_count_and_progressive() 
         ..RenderSettings::DEFAULT
     };
     let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
-    let a = one.install(|| render(&world, camera(), s, false).unwrap().mean());
+    let a = one.install(|| render(&world, camera(), s).unwrap().mean());
     let mut r = Renderer::new(&world, camera(), s).unwrap();
     r.add_samples(3);
     r.add_samples(8);
     assert_eq!(a, r.mean());
     let off = RenderSettings { path: PathSettings::new(6, 3), ..s };
-    assert_ne!(a, render(&world, camera(), off, false).unwrap().mean());
+    assert_ne!(a, render(&world, camera(), off).unwrap().mean());
 }
 
 #[test]
@@ -160,8 +160,8 @@ fn without_mirrors_or_glass_the_caustic_setting_changes_nothing() {
     };
     let on = RenderSettings { path: off.path.with_caustics(5_000, 0.0), ..off };
     for c in [Component::Full, Component::Reflections, Component::SunIndirectDiffuse] {
-        let a = render(&world, cam, off.with_component(c), false).unwrap();
-        let b = render(&world, cam, on.with_component(c), false).unwrap();
+        let a = render(&world, cam, off.with_component(c)).unwrap();
+        let b = render(&world, cam, on.with_component(c)).unwrap();
         assert_eq!(a.mean(), b.mean(), "{c:?}");
         assert_eq!(a.std_error(), b.std_error(), "{c:?}");
     }

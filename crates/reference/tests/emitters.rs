@@ -112,14 +112,10 @@ fn emitter_sampling_cuts_the_noise_of_a_small_light_under_the_same_mean() {
         path: PathSettings::new(4, 2),
         ..RenderSettings::DEFAULT
     };
-    let with = render(&world, cam, s, false).unwrap();
-    let without = render(
-        &world,
-        cam,
-        RenderSettings { path: s.path.with_emitter_sampling(false), ..s },
-        false,
-    )
-    .unwrap();
+    let with = render(&world, cam, s).unwrap();
+    let without =
+        render(&world, cam, RenderSettings { path: s.path.with_emitter_sampling(false), ..s })
+            .unwrap();
     let pooled = |e: &[Estimate]| {
         let n = e.len() as f64;
         let m = e.iter().map(|e| e.mean.x as f64).sum::<f64>() / n;

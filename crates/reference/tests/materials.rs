@@ -143,7 +143,7 @@ fn rendering_is_deterministic_whatever_the_thread_count_and_progressive() {
     let cam = Camera::look_at(Vec3::new(2.0, 1.5, 3.0), Vec3::new(0.0, 0.4, 0.0), 50.0);
     let s = RenderSettings { width: 40, height: 24, spp: 4, ..RenderSettings::DEFAULT };
     let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
-    let a = one.install(|| reference::render(&world, cam, s, false).unwrap().mean());
+    let a = one.install(|| reference::render(&world, cam, s).unwrap().mean());
     let mut r = Renderer::new(&world, cam, s).unwrap();
     r.add_samples(1);
     r.add_samples(3);

@@ -8,7 +8,7 @@ mod common;
 use glam::Vec3;
 use reference::{
     Camera, Component, Error, Material, PathSettings, Refinement, RenderSettings, Renderer, Sun,
-    World, compare, glint_pixels, luminance, render,
+    World, glint_pixels, luminance, render,
 };
 
 /// A smooth mirror sphere (interpolated normals) on a grey ground under a sun of radius
@@ -62,7 +62,7 @@ fn brightest(r: &Renderer) -> u32 {
 fn the_glint_probe_marks_the_glint_and_nothing_without_one() {
     let (world, cam) = glint_world(SUN);
     let marked = glint_pixels(&world, &cam, SIZE.0, SIZE.1);
-    let truth = render(&world, cam, settings(1024, 99), false).unwrap();
+    let truth = render(&world, cam, settings(1024, 99)).unwrap();
     assert!(marked.contains(&brightest(&truth)), "glint pixel not in {marked:?}");
     assert!(marked.len() <= 6, "the probe marks more than the glint: {marked:?}");
     // A sun below the ground: every reflection leaving the sphere towards it meets the
@@ -74,7 +74,7 @@ fn the_glint_probe_marks_the_glint_and_nothing_without_one() {
 #[test]
 fn refinement_goes_to_the_glint_leaves_the_rest_and_is_unbiased() {
     let (world, cam) = glint_world(SUN);
-    let mut r = render(&world, cam, settings(16, 1), false).unwrap();
+    let mut r = render(&world, cam, settings(16, 1)).unwrap();
     let before = r.estimates();
     let chosen = r.refine(&REFINE).unwrap();
     let after = r.estimates();
@@ -91,7 +91,7 @@ fn refinement_goes_to_the_glint_leaves_the_rest_and_is_unbiased() {
     }
     assert_eq!(r.samples(), 16, "the base count stays the first stage's");
 
-    let truth = render(&world, cam, settings(4096, 99), false).unwrap();
+    let truth = render(&world, cam, settings(4096, 99)).unwrap();
     let glint = brightest(&truth);
     assert!(chosen.contains(&glint), "glint pixel {glint} not in {chosen:?}");
     // Every refined pixel agrees with the long render (the first stage's samples were
@@ -117,7 +117,7 @@ fn refinement_beats_spreading_the_same_samples_over_every_pixel() {
     let refined: Vec<_> = [1u64, 2]
         .into_iter()
         .map(|seed| {
-            let mut r = render(&world, cam, settings(16, seed), false).unwrap();
+            let mut r = render(&world, cam, settings(16, seed)).unwrap();
             r.refine(&REFINE).unwrap();
             total = total.max(r.estimates().iter().map(|e| e.samples as u64).sum());
             r.mean()
@@ -127,10 +127,10 @@ fn refinement_beats_spreading_the_same_samples_over_every_pixel() {
     let spp = total.div_ceil(pixels) as u32;
     let plain: Vec<_> = [1u64, 2]
         .into_iter()
-        .map(|seed| render(&world, cam, settings(spp, seed), false).unwrap().mean())
+        .map(|seed| render(&world, cam, settings(spp, seed)).unwrap().mean())
         .collect();
-    let e_refined = compare(&refined[0], &refined[1], None).unwrap().rel_rms;
-    let e_plain = compare(&plain[0], &plain[1], None).unwrap().rel_rms;
+    let e_refined = errors(&refined[0], &refined[1]).rel_rms;
+    let e_plain = errors(&plain[0], &plain[1]).rel_rms;
     eprintln!("rel RMS between seeds: refined {e_refined}, plain {e_plain} at {spp} spp");
     assert!(
         e_refined < 0.5 * e_plain,
@@ -144,7 +144,7 @@ fn refinement_is_the_same_on_any_number_of_threads() {
     let run = |threads| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
         pool.install(|| {
-            let mut r = render(&world, cam, settings(8, 3), false).unwrap();
+            let mut r = render(&world, cam, settings(8, 3)).unwrap();
             let chosen = r.refine(&REFINE).unwrap();
             (chosen, r.estimates())
         })
@@ -157,7 +157,12 @@ fn refining_nothing_or_with_bad_settings_is_a_typed_error() {
     let (world, cam) = glint_world(SUN);
     let mut empty = Renderer::new(&world, cam, settings(8, 1)).unwrap();
     assert!(matches!(empty.refine(&REFINE), Err(Error::InvalidSettings(_))));
-    let mut r = render(&world, cam, settings(2, 1), false).unwrap();
+    let mut r = render(&world, cam, settings(2, 1)).unwrap();
     let bad = Refinement { target: -1.0, ..REFINE };
     assert!(matches!(r.refine(&bad), Err(Error::InvalidSettings(_))));
+}
+
+/// `gi_report`'s image errors of `a` against `b` (images of one size).
+fn errors(a: &reference::Image, b: &reference::Image) -> gi_report::ImageErrors {
+    gi_report::image_errors(&a.as_arrays(), &b.as_arrays(), None).expect("images of one size")
 }

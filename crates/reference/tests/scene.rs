@@ -36,7 +36,7 @@ fn generated_scenes_render_finite_non_negative_images() {
         let s = g.build(1);
         let world = world_from_scene(&s, &SceneLighting::low()).unwrap();
         let settings = RenderSettings { width: 16, height: 9, spp: 1, ..RenderSettings::low() };
-        let r = render(&world, camera_from_scene(&s), settings, false).unwrap();
+        let r = render(&world, camera_from_scene(&s), settings).unwrap();
         let img = r.mean();
         assert!(img.pixels.iter().all(|p| p.is_finite() && p.min_element() >= 0.0), "{}", g.name());
         match g {
@@ -64,10 +64,10 @@ fn cornell_area_light_sampling_is_unbiased_and_far_less_noisy() {
         seed: 3,
         ..RenderSettings::DEFAULT
     };
-    let new = render(&world, cam, settings, false).unwrap();
+    let new = render(&world, cam, settings).unwrap();
     let old_settings =
         RenderSettings { path: settings.path.with_emitter_sampling(false), ..settings };
-    let old = render(&world, cam, old_settings, false).unwrap();
+    let old = render(&world, cam, old_settings).unwrap();
     let pooled = |r: &reference::Renderer| {
         let e = r.estimates();
         let n = e.len() as f64;
