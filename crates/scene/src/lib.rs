@@ -6,7 +6,7 @@
 //! real-time GI engine, Table 3.1: albedo, glossiness, Phong specular power, normal maps) extended
 //! with what its ray tracer needs (mirror reflectivity, transparency with an index of
 //! refraction, alpha testing), the sun (a direction, or a date, time and place through
-//! [`atmosphere::solar_position`]), point lights, occlusion quads (thesis 5.3.3, with the
+//! [`atmosphere::solar_position`]), point and spot lights, occlusion quads (thesis 5.3.3, with the
 //! opacity and tint its future work proposes; derived from the geometry for scenes that
 //! author none, [`Scene::sky_occluders`]), and where the sky volume and LPV cascades go.
 //!
@@ -62,6 +62,7 @@
 mod bounds;
 mod camera;
 mod change;
+mod defaults;
 mod error;
 mod generate;
 #[cfg(feature = "gpu")]
@@ -79,14 +80,21 @@ mod volumes;
 
 pub use atmosphere::CivilDate;
 pub use bounds::Aabb;
-pub use camera::{Camera, Frustum};
+pub use camera::{Camera, DEFAULT_ASPECT, DEFAULT_FOV_Y_DEG, FRAMING_ELEVATION_DEG, Frustum};
 pub use change::{SceneChange, SceneState};
+pub use defaults::{
+    DEFAULT_SUN_DATE, DEFAULT_SUN_LATITUDE_DEG, DEFAULT_SUN_LONGITUDE_DEG, DEFAULT_SUN_UTC_HOURS,
+    default_sun,
+};
 pub use error::{Cause, LoadError, LoadErrorKind, SceneError};
 pub use generate::{
     FURNACE_ALBEDO, FURNACE_EMISSION, Generated, city, cornell_window, furnace, furnace_radiance,
     plane_box, two_rooms,
 };
-pub use light::{PointLight, SUN_ANGULAR_RADIUS, Sun, SunPosition};
+pub use light::{
+    PointLight, SOLAR_ILLUMINANCE_LUX, SUN_ANGULAR_RADIUS, SpotCone, Sun, SunPosition,
+    from_photometric,
+};
 pub use load::gltf::{load_gltf, load_gltf_slice};
 pub use load::obj::{load_obj, load_obj_slice};
 pub use load::scene_file::{load_scene_file, load_scene_str};

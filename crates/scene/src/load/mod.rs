@@ -6,6 +6,7 @@ pub(crate) mod context;
 pub(crate) mod gltf;
 pub(crate) mod image;
 pub(crate) mod obj;
+mod punctual;
 pub(crate) mod scene_file;
 mod uri;
 
