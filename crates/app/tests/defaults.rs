@@ -74,7 +74,8 @@ fn the_command_line_sets_the_camera() {
     // --fov alone keeps the framed position and direction.
     let j = app::cli::RenderJob { fov_deg: Some(40.0), ..job.clone() };
     let c = load_scene_noted(&j).unwrap().0.camera;
-    assert_eq!((c.position, c.forward, c.fov_y_deg), (framed.position, framed.forward, 40.0));
+    assert_eq!((c.position, c.fov_y_deg), (framed.position, 40.0));
+    assert!((c.forward - framed.forward).length() < 1e-5, "{c:?} vs {framed:?}");
     // --camera and --look-at.
     let j = app::cli::RenderJob {
         camera: Some("1,2,3".into()),
