@@ -10,6 +10,16 @@ struct PointLight {
     color: vec4<f32>,
     // cube near, cube far, cube face size, unused
     shadow: vec4<f32>,
+    // a spot light's cone: xyz the unit axis times the falloff's scale, w its offset
+    // (scene::SpotCone::scale_offset); (0, 0, 0, 1) for a point light
+    cone: vec4<f32>,
+}
+
+// The intensity factor of light i in unit direction `dir` from it: glTF's spot falloff,
+// saturate(cos * scale + offset)^2 (1 for a point light).
+fn cone_falloff(i: u32, dir: vec3<f32>) -> f32 {
+    let t = saturate(dot(lights[i].cone.xyz, dir) + lights[i].cone.w);
+    return t * t;
 }
 
 // The base BRDF times the cosine for light from `l` seen from `v`: the reference's
@@ -40,8 +50,9 @@ fn point_visibility(i: u32, p: vec3<f32>, gn: vec3<f32>) -> f32 {
     return cube_visibility(cubes, cube_cmp, i32(c), lights[i].position.xyz, s.x, s.y, s.z, p, gn);
 }
 
-// The light of every point light in reach reflected by the base BRDF at p (shading normal
-// n, geometric normal gn, towards v). The lights in reach are found first, one distance each,
+// The light of every point and spot light in reach reflected by the base BRDF at p (shading
+// normal n, geometric normal gn, towards v). The lights in reach (in range and, for a spot, in
+// its cone) are found first, one distance each,
 // and only they are shaded: llvmpipe runs both sides of a branch under a lane mask, so a
 // light out of reach skipped inside one loop still cost its BRDF and shadow lookup, where a
 // loop over the lights in reach runs as many rounds as a SIMD group's lanes have lights.
@@ -53,7 +64,9 @@ fn point_lights(albedo: vec3<f32>, g: f32, power: f32, n: vec3<f32>, v: vec3<f32
         for (var j = 0u; j < min(frame.size.z - first, 32u); j = j + 1u) {
             let l = lights[first + j].position;
             let d = l.xyz - p;
-            if max(dot(d, d), 1e-4) <= l.w * l.w {
+            let d2 = max(dot(d, d), 1e-4);
+            // In range, and (a spot) inside its cone.
+            if d2 <= l.w * l.w && cone_falloff(first + j, -d * inverseSqrt(d2)) > 0.0 {
                 reach |= 1u << j;
             }
         }
@@ -64,7 +77,8 @@ fn point_lights(albedo: vec3<f32>, g: f32, power: f32, n: vec3<f32>, v: vec3<f32
             let dist2 = max(dot(d, d), 1e-4);
             let f = base_brdf_cos(albedo, g, power, n, d * inverseSqrt(dist2), v);
             if any(f > vec3<f32>(0.0)) {
-                sum += f * lights[i].color.rgb / dist2 * point_visibility(i, p, gn);
+                let cone = cone_falloff(i, -d * inverseSqrt(dist2));
+                sum += f * lights[i].color.rgb * (cone / dist2) * point_visibility(i, p, gn);
             }
         }
     }

@@ -15,6 +15,18 @@ pub struct RenderJob {
     /// `YYYY-MM-DD`, if set.
     pub date: Option<String>,
     pub utc_offset_h: f64,
+    /// The sky: the scene's (and the default for a scene without light), on, or off.
+    pub sky: Switch,
+    /// The sun: the scene's (and the default for a scene without light), on (the default
+    /// sun where the scene has none), or off.
+    pub sun: Switch,
+    /// The camera's position, `x,y,z` (metres), if set.
+    pub camera: Option<String>,
+    /// The point the camera looks at, `x,y,z`, if set (with only `camera` set: the centre of
+    /// the scene's bounds).
+    pub look_at: Option<String>,
+    /// The camera's vertical field of view, degrees, if set.
+    pub fov_deg: Option<f32>,
     pub width: u32,
     pub height: u32,
     pub preset: Preset,
@@ -63,6 +75,11 @@ impl Default for RenderJob {
             time: None,
             date: None,
             utc_offset_h: 1.0,
+            sky: Switch::Auto,
+            sun: Switch::Auto,
+            camera: None,
+            look_at: None,
+            fov_deg: None,
             width: 1600,
             height: 900,
             preset: Preset::Default,
@@ -103,6 +120,24 @@ pub struct SceneArgs {
     /// Hours the local time is ahead of UTC (Lisbon in summer: 1).
     #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
     pub utc_offset: f64,
+    /// The sky: auto (the scene's; a scene without any light gets the default sun and sky),
+    /// on, off.
+    #[arg(long, default_value = "auto")]
+    pub sky: Switch,
+    /// The sun: auto (the scene's; a scene without any light gets the default sun, Lisbon on
+    /// 2024-06-21 at 17:30), on (that sun where the scene has none), off.
+    #[arg(long, default_value = "auto")]
+    pub sun: Switch,
+    /// Camera position, x,y,z in metres (default: the scene's; a file without a camera gets
+    /// one framing its bounds).
+    #[arg(long, allow_hyphen_values = true)]
+    pub camera: Option<String>,
+    /// The point the camera looks at, x,y,z (with --camera alone: the scene's centre).
+    #[arg(long, allow_hyphen_values = true)]
+    pub look_at: Option<String>,
+    /// Vertical field of view of the camera, degrees.
+    #[arg(long)]
+    pub fov: Option<f32>,
     /// Seed of generated scenes.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -110,6 +145,15 @@ pub struct SceneArgs {
     /// the loaders do not support, is an error instead of a warning and a stand-in.
     #[arg(long)]
     pub strict: bool,
+}
+
+/// A light the command line leaves to the scene (`auto`), turns on or turns off.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum Switch {
+    #[default]
+    Auto,
+    On,
+    Off,
 }
 
 impl SceneArgs {
@@ -120,6 +164,11 @@ impl SceneArgs {
             time: self.time.clone(),
             date: self.date.clone(),
             utc_offset_h: self.utc_offset,
+            sky: self.sky,
+            sun: self.sun,
+            camera: self.camera.clone(),
+            look_at: self.look_at.clone(),
+            fov_deg: self.fov,
             seed: self.seed,
             strict: self.strict,
             ..Default::default()
@@ -176,9 +225,17 @@ fn parse_date(s: &str) -> Result<scene::CivilDate, EngineError> {
 }
 
 /// Loads the job's scene: a generated scene by name, else a file (strict with
-/// [`RenderJob::strict`]); prints each of the load's warnings (`Scene::warnings`) once on
-/// stderr.
+/// [`RenderJob::strict`]); see [`load_scene_noted`].
 pub fn load_scene(job: &RenderJob) -> Result<scene::Scene, EngineError> {
+    Ok(load_scene_noted(job)?.0)
+}
+
+/// Loads the job's scene (a generated scene by name, else a file) and applies the defaults a
+/// person expects and the command line's choices: a scene without any light gets the default
+/// sun and sky ([`scene::Scene::light_if_dark`], unless `--sun off` / `--sky off`); then the
+/// time and date, the sun and sky switches, and the camera. Returns the notices (the default
+/// light), each also printed on stderr, for the report.
+pub fn load_scene_noted(job: &RenderJob) -> Result<(scene::Scene, Vec<String>), EngineError> {
     let mut s = match scene::Generated::from_name(&job.scene) {
         Some(g) => g.build(job.seed),
         None => {
@@ -189,17 +246,27 @@ pub fn load_scene(job: &RenderJob) -> Result<scene::Scene, EngineError> {
     for w in warning_lines(&s) {
         eprintln!("warning: {w}");
     }
+    let mut notes = Vec::new();
+    if let Some(n) = s.light_if_dark(job.sun != Switch::Off, job.sky != Switch::Off) {
+        eprintln!("note: {n}");
+        notes.push(n);
+    }
     if job.time.is_some() || job.date.is_some() {
-        let sun = s.sun.get_or_insert_with(|| {
-            scene::Sun::at_time(scene::CivilDate::new(2024, 6, 21), 16.5, 38.72, -9.14)
-        });
+        if s.sun.is_none() && job.sky != Switch::Off {
+            // A sun by the time of day is seen through the atmosphere.
+            s.sky = true;
+        }
+        let sun = s.sun.get_or_insert_with(scene::default_sun);
         let (mut date, mut utc, lat, lon) = match sun.position {
             scene::SunPosition::Time { date, utc_hours, latitude_deg, longitude_deg } => {
                 (date, utc_hours, latitude_deg, longitude_deg)
             }
-            scene::SunPosition::Direction(_) => {
-                (scene::CivilDate::new(2024, 6, 21), 16.5, 38.72, -9.14)
-            }
+            scene::SunPosition::Direction(_) => (
+                scene::DEFAULT_SUN_DATE,
+                scene::DEFAULT_SUN_UTC_HOURS,
+                scene::DEFAULT_SUN_LATITUDE_DEG,
+                scene::DEFAULT_SUN_LONGITUDE_DEG,
+            ),
         };
         if let Some(t) = &job.time {
             if !job.utc_offset_h.is_finite() || job.utc_offset_h.abs() > 24.0 {
@@ -220,7 +287,66 @@ pub fn load_scene(job: &RenderJob) -> Result<scene::Scene, EngineError> {
             longitude_deg: lon,
         };
     }
-    Ok(s)
+    match job.sun {
+        Switch::Auto => {}
+        Switch::On => {
+            s.sun.get_or_insert_with(scene::default_sun);
+        }
+        Switch::Off => s.sun = None,
+    }
+    match job.sky {
+        Switch::Auto => {}
+        Switch::On => s.sky = true,
+        Switch::Off => s.sky = false,
+    }
+    set_camera(&mut s, job)?;
+    Ok((s, notes))
+}
+
+/// `x,y,z` to a finite vector.
+fn parse_vec3(what: &str, s: &str) -> Result<glam::Vec3, EngineError> {
+    let bad = || EngineError::Settings(format!("{what} {s:?}: expected x,y,z (metres)"));
+    let v: Vec<f32> = s
+        .split(',')
+        .map(|c| c.trim().parse::<f32>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| bad())?;
+    match v[..] {
+        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok(glam::Vec3::new(x, y, z)),
+        _ => Err(bad()),
+    }
+}
+
+/// The command line's camera (`--camera`, `--look-at`, `--fov`), each part in place of the
+/// scene camera's.
+fn set_camera(s: &mut scene::Scene, job: &RenderJob) -> Result<(), EngineError> {
+    if job.camera.is_none() && job.look_at.is_none() && job.fov_deg.is_none() {
+        return Ok(());
+    }
+    let old = s.camera;
+    let eye = match &job.camera {
+        Some(c) => parse_vec3("--camera", c)?,
+        None => old.position,
+    };
+    let target = match (&job.look_at, &job.camera) {
+        (Some(t), _) => parse_vec3("--look-at", t)?,
+        (None, Some(_)) if !s.bounds().is_empty() => s.bounds().center(),
+        _ => eye + old.forward,
+    };
+    if (target - eye).length_squared() < 1e-12 {
+        return Err(EngineError::Settings(format!(
+            "--look-at {target}: the camera at {eye} cannot look at itself"
+        )));
+    }
+    let fov = job.fov_deg.unwrap_or(old.fov_y_deg);
+    if !(fov > 0.0 && fov < 180.0) {
+        return Err(EngineError::Settings(format!("--fov {fov}: expected 0 < degrees < 180")));
+    }
+    let mut cam = scene::Camera::look_at(eye, target, fov, old.aspect);
+    cam.near = old.near;
+    cam.far = old.far.max(2.0 * (target - eye).length());
+    s.camera = cam;
+    Ok(())
 }
 
 /// The scene's load warnings, one line each with its cause (`engine::error_chain`).
@@ -231,7 +357,7 @@ pub fn warning_lines(scene: &scene::Scene) -> Vec<String> {
 /// Renders the job and writes `frame.exr`, `frame.png`, `report.md`, `report.json`,
 /// `timeline.svg` (and `reference.exr`, `reference.png`, `difference.png` with a reference).
 pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
-    let scene = load_scene(job)?;
+    let (scene, scene_notes) = load_scene_noted(job)?;
     let name = scene.name.clone();
     let warnings = warning_lines(&scene);
     let ss = job.supersample.clamp(1, MAX_SUPERSAMPLE);
@@ -293,14 +419,10 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
         )?),
         None => None,
     };
-    let mut notes: Vec<String> = frame
-        .needs
-        .iter()
-        .iter()
-        .map(|(n, need)| {
-            format!("{n}: {} ({})", if need.needed { "needed" } else { "not needed" }, need.reason)
-        })
-        .collect();
+    let mut notes: Vec<String> = scene_notes;
+    notes.extend(frame.needs.iter().iter().map(|(n, need)| {
+        format!("{n}: {} ({})", if need.needed { "needed" } else { "not needed" }, need.reason)
+    }));
     notes.push(format!("sky volume complete: {}", renderer.sky_volume_complete()));
     notes.push(format!(
         "the images (and the comparison with a reference) are of that view once settled: \

@@ -11,7 +11,7 @@
 //! - Sun: with `scene.sky` the irradiance is `sun.color * atmosphere::Sky::sun_colour` (the
 //!   Earth atmosphere's transmittance, in units of the solar irradiance at the top) and the
 //!   sky radiance comes from an `atmosphere::SkyMap`; without a sky the sun's colour is read
-//!   as its irradiance and there is no sky light. Point lights map one to one.
+//!   as its irradiance and there is no sky light. Point and spot lights map one to one.
 //! - Ground: a scene's ground ends at its edge, and the world stands on a dark ground that
 //!   reaches the horizon ([`crate::WorldBuilder::dark_ground`]): the sky lights surfaces from
 //!   above the horizon only, as the engine's sky volume does, while what the eye sees below
@@ -124,7 +124,12 @@ pub fn world_from_scene(scene: &scene::Scene, lighting: &SceneLighting) -> Resul
         b.sun(sun);
     }
     for l in &scene.point_lights {
-        b.point_light(PointLight { position: l.position, intensity: l.color, radius: l.radius });
+        b.point_light(PointLight {
+            position: l.position,
+            intensity: l.color,
+            radius: l.radius,
+            cone: l.spot,
+        });
     }
     b.build()
 }

@@ -196,7 +196,7 @@ fn point_lights(world: &World, p: Vec3, n: Vec3, mut f: impl FnMut(Vec3) -> Vec3
         }
         let wi = d / dist;
         let cos = wi.dot(n);
-        if cos <= 0.0 {
+        if cos <= 0.0 || l.intensity_towards(-wi) == Vec3::ZERO {
             continue;
         }
         let o = world.offset(p, n, wi);
@@ -204,7 +204,7 @@ fn point_lights(world: &World, p: Vec3, n: Vec3, mut f: impl FnMut(Vec3) -> Vec3
         if world.occluded(o, wi, dist_o * (1.0 - 1e-4)) {
             continue;
         }
-        sum += f(wi) * l.intensity * cos / (dist * dist);
+        sum += f(wi) * l.intensity_towards(-wi) * cos / (dist * dist);
     }
     sum
 }

@@ -57,12 +57,21 @@ impl Sun {
     }
 }
 
-/// A point light (radiant intensity in W/sr), contributing nothing beyond `radius`.
+/// A point light (radiant intensity in W/sr), contributing nothing beyond `radius`; a spot
+/// light with a `cone` (the intensity times [`scene::SpotCone::falloff`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PointLight {
     pub position: Vec3,
     pub intensity: Vec3,
     pub radius: f32,
+    pub cone: Option<scene::SpotCone>,
+}
+
+impl PointLight {
+    /// The intensity sent in unit direction `dir` from the light.
+    pub fn intensity_towards(&self, dir: Vec3) -> Vec3 {
+        self.cone.map_or(self.intensity, |c| self.intensity * c.falloff(dir))
+    }
 }
 
 /// Collects triangles, materials and lights; [`WorldBuilder::build`] makes a [`World`].

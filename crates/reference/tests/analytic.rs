@@ -271,6 +271,7 @@ fn point_light_irradiance_is_i_cos_over_d2_within_its_radius() {
         position: Vec3::new(0.0, 2.0, 0.0),
         intensity: Vec3::splat(8.0),
         radius: 5.0,
+        cone: None,
     });
     let world = b.build().unwrap();
     let q = QuerySettings { samples: 1, path: PathSettings::new(0, 0), ..QuerySettings::DEFAULT };

@@ -24,6 +24,7 @@ fn world() -> World {
         position: Vec3::new(0.0, 2.0, 0.0),
         intensity: Vec3::splat(8.0),
         radius: 100.0,
+        cone: None,
     });
     b.build().unwrap()
 }
@@ -84,6 +85,7 @@ fn one_bounce_world(with_wall: bool) -> World {
         position: Vec3::new(0.0, 1.5, 1.0),
         intensity: Vec3::splat(3.0),
         radius: 100.0,
+        cone: None,
     });
     b.sky(|d| Vec3::new(0.2, 0.3, 0.6) * (0.5 + 0.5 * d.y.max(0.0)));
     b.build().unwrap()

@@ -18,13 +18,49 @@ pub struct Camera {
     pub far: f32,
 }
 
+/// The default camera's vertical field of view, degrees.
+pub const DEFAULT_FOV_Y_DEG: f32 = 60.0;
+/// The default camera's aspect (width / height).
+pub const DEFAULT_ASPECT: f32 = 16.0 / 9.0;
+/// How far above the horizontal [`Camera::framing`] looks down at a scene's centre, degrees.
+pub const FRAMING_ELEVATION_DEG: f32 = 25.0;
+
 impl Default for Camera {
+    /// Eye height (1.7 m) 5 m in front of the origin, looking along -Z: the camera of a scene
+    /// built in code. A loaded file without a camera gets [`Camera::framing`] instead.
     fn default() -> Self {
-        Self::look_at(Vec3::new(0.0, 1.7, 5.0), Vec3::new(0.0, 1.7, 0.0), 60.0, 16.0 / 9.0)
+        Self::look_at(
+            Vec3::new(0.0, 1.7, 5.0),
+            Vec3::new(0.0, 1.7, 0.0),
+            DEFAULT_FOV_Y_DEG,
+            DEFAULT_ASPECT,
+        )
     }
 }
 
 impl Camera {
+    /// A camera that frames `bounds`: it looks at the box's centre from the front (+Z, the
+    /// side glTF assets face) and [`FRAMING_ELEVATION_DEG`] above it, far enough that the
+    /// whole bounding sphere is in view at `fov_y_deg` and `aspect` (its narrower field of
+    /// view). Near and far planes follow the scene's size. An empty box gives the default
+    /// camera.
+    pub fn framing(bounds: &Aabb, fov_y_deg: f32, aspect: f32) -> Self {
+        if bounds.is_empty() || !bounds.min.is_finite() || !bounds.max.is_finite() {
+            return Self { fov_y_deg, aspect, ..Self::default() };
+        }
+        let centre = bounds.center();
+        let radius = (0.5 * bounds.size().length()).max(1e-3);
+        let half_v = 0.5 * fov_y_deg.to_radians();
+        let half_h = (half_v.tan() * aspect).atan();
+        let distance = radius / half_v.min(half_h).sin();
+        let e = FRAMING_ELEVATION_DEG.to_radians();
+        let eye = centre + distance * Vec3::new(0.0, e.sin(), e.cos());
+        let mut c = Self::look_at(eye, centre, fov_y_deg, aspect);
+        c.near = (0.01 * radius).clamp(1e-3, 0.1);
+        c.far = (4.0 * (distance + radius)).max(1000.0);
+        c
+    }
+
     /// A camera at `eye` looking at `target` (near 0.1 m, far 1000 m).
     pub fn look_at(eye: Vec3, target: Vec3, fov_y_deg: f32, aspect: f32) -> Self {
         let forward = (target - eye).try_normalize().unwrap_or(Vec3::NEG_Z);

@@ -8,7 +8,7 @@
 //! real-time GI engine, 3.3.2 and Table 3.1: albedo, glossiness, Phong specular power, normal
 //! maps) extended with what its ray tracer needs (mirror reflectivity, transparency with an index of
 //! refraction, alpha testing), the sun (a direction, or a date, time and place through
-//! [`atmosphere::solar_position`]), point lights, occlusion quads (thesis 5.3.3, with the
+//! [`atmosphere::solar_position`]), point and spot lights, occlusion quads (thesis 5.3.3, with the
 //! opacity and tint its future work proposes; derived from the geometry for scenes that
 //! author none, [`Scene::sky_occluders`]), and where the sky volume and LPV cascades go.
 //!
@@ -39,6 +39,7 @@
 mod bounds;
 mod camera;
 mod change;
+mod defaults;
 mod error;
 #[cfg(feature = "generate")]
 mod generate;
@@ -59,15 +60,22 @@ mod warning;
 
 pub use atmosphere::CivilDate;
 pub use bounds::Aabb;
-pub use camera::{Camera, Frustum};
+pub use camera::{Camera, DEFAULT_ASPECT, DEFAULT_FOV_Y_DEG, FRAMING_ELEVATION_DEG, Frustum};
 pub use change::{SceneChange, SceneState};
+pub use defaults::{
+    DEFAULT_SUN_DATE, DEFAULT_SUN_LATITUDE_DEG, DEFAULT_SUN_LONGITUDE_DEG, DEFAULT_SUN_UTC_HOURS,
+    default_sun,
+};
 pub use error::{Cause, LoadError, LoadErrorKind, SceneError};
 #[cfg(feature = "generate")]
 pub use generate::{
     FURNACE_ALBEDO, FURNACE_EMISSION, Generated, city, cornell_window, furnace, furnace_radiance,
     plane_box, two_rooms,
 };
-pub use light::{PointLight, SUN_ANGULAR_RADIUS, Sun, SunPosition};
+pub use light::{
+    PointLight, SOLAR_ILLUMINANCE_LUX, SUN_ANGULAR_RADIUS, SpotCone, Sun, SunPosition,
+    from_photometric,
+};
 #[cfg(feature = "load")]
 pub use load::gltf::{load_gltf, load_gltf_slice};
 #[cfg(feature = "load")]

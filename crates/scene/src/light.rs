@@ -1,5 +1,6 @@
 //! The sun (from an explicit direction, or from a date, time and place through
-//! `atmosphere::solar_position`) and point lights with a radius of influence.
+//! `atmosphere::solar_position`) and point lights with a radius of influence, optionally
+//! restricted to a cone (spot lights, glTF's `KHR_lights_punctual` falloff).
 
 use crate::SceneError;
 use atmosphere::{CivilDate, solar_position};
@@ -90,7 +91,9 @@ impl Sun {
     }
 }
 
-/// An omnidirectional light with a finite radius of influence.
+/// A point light with a finite radius of influence: omnidirectional, or a spot light when
+/// it has a [`SpotCone`] (a spot is a point light whose intensity is scaled by the cone's
+/// falloff; it shares the point lights' cube shadows).
 #[derive(Clone, Debug, PartialEq)]
 pub struct PointLight {
     pub name: String,
@@ -100,11 +103,85 @@ pub struct PointLight {
     /// Beyond this distance the light contributes nothing (its cube shadow map's far plane).
     pub radius: f32,
     pub casts_shadows: bool,
+    /// `Some`: a spot light, lighting only within its cone.
+    pub spot: Option<SpotCone>,
+}
+
+/// A spot light's cone, as glTF's `KHR_lights_punctual` describes it: full intensity within
+/// `inner_angle` of the axis, nothing beyond `outer_angle`, and between them the square of
+/// a linear ramp in the cosine of the angle (the falloff the extension's specification
+/// recommends; [`SpotCone::falloff`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpotCone {
+    /// Unit vector the light points along (glTF: the node's -Z).
+    pub direction: Vec3,
+    /// Angle from the axis where the falloff starts, radians.
+    pub inner_angle: f32,
+    /// Angle from the axis beyond which the light sends nothing, radians (at most pi/2).
+    pub outer_angle: f32,
+}
+
+impl SpotCone {
+    /// The falloff as a linear function of the cosine before it is clamped and squared:
+    /// `(scale, offset)` with `falloff = saturate(cos * scale + offset)^2`. The renderers'
+    /// shaders evaluate it from these two numbers (an omnidirectional light is `(0, 1)`).
+    pub fn scale_offset(&self) -> (f32, f32) {
+        let (ci, co) = (self.inner_angle.cos(), self.outer_angle.cos());
+        // The specification's guard against a zero-width ramp (inner == outer).
+        let scale = 1.0 / (ci - co).max(1e-3);
+        (scale, -co * scale)
+    }
+
+    /// The intensity factor in unit direction `dir` from the light (0 outside the cone, 1
+    /// within the inner cone, smooth between).
+    pub fn falloff(&self, dir: Vec3) -> f32 {
+        let (scale, offset) = self.scale_offset();
+        let t = (self.direction.dot(dir) * scale + offset).clamp(0.0, 1.0);
+        t * t
+    }
+
+    /// Checks a finite unit direction and `0 <= inner_angle <= outer_angle <= pi/2`.
+    pub fn validate(&self) -> Result<(), String> {
+        if !self.direction.is_finite() || (self.direction.length() - 1.0).abs() > 1e-3 {
+            return Err(format!("spot direction {} is not a unit vector", self.direction));
+        }
+        let (i, o) = (self.inner_angle, self.outer_angle);
+        if !(0.0 <= i && i <= o && o <= std::f32::consts::FRAC_PI_2 + 1e-6) {
+            return Err(format!(
+                "spot cone angles inner {i} / outer {o} rad: expected 0 <= inner <= outer <= pi/2"
+            ));
+        }
+        Ok(())
+    }
 }
 
 impl PointLight {
     pub fn new(name: impl Into<String>, position: Vec3, color: Vec3, radius: f32) -> Self {
-        Self { name: name.into(), position, color, radius, casts_shadows: true }
+        Self { name: name.into(), position, color, radius, casts_shadows: true, spot: None }
+    }
+
+    /// A spot light at `position` pointing along `direction` (normalised here), with the
+    /// cone's inner and outer angles in radians.
+    pub fn spot(
+        name: impl Into<String>,
+        position: Vec3,
+        direction: Vec3,
+        color: Vec3,
+        radius: f32,
+        inner_angle: f32,
+        outer_angle: f32,
+    ) -> Self {
+        let direction = direction.normalize_or(Vec3::NEG_Y);
+        Self {
+            spot: Some(SpotCone { direction, inner_angle, outer_angle }),
+            ..Self::new(name, position, color, radius)
+        }
+    }
+
+    /// The factor of the intensity sent in unit direction `dir` from the light: 1 for an
+    /// omnidirectional light, the cone's [`SpotCone::falloff`] for a spot.
+    pub fn falloff(&self, dir: Vec3) -> f32 {
+        self.spot.map_or(1.0, |c| c.falloff(dir))
     }
 
     pub fn validate(&self) -> Result<(), SceneError> {
@@ -118,6 +195,27 @@ impl PointLight {
         if !(self.radius > 0.0 && self.radius.is_finite()) {
             return Err(SceneError::invalid(el(), format!("radius {}", self.radius)));
         }
+        if let Some(c) = &self.spot {
+            c.validate().map_err(|r| SceneError::invalid(el(), r))?;
+        }
         Ok(())
     }
+}
+
+/// The illuminance of the sun at the top of the atmosphere, lux: the luminous solar constant,
+/// 133.8 klx (Darula, Kittler & Gueymard, "Reference luminous solar constant and solar
+/// luminance for illuminance calculations", Solar Energy 79, 2005). This crate's lights are
+/// in the sun's units: an irradiance of 1 is the sun's at the top of the atmosphere
+/// (`atmosphere::Atmosphere::sun_irradiance` = 1), so 1 lx is `1 / SOLAR_ILLUMINANCE_LUX`.
+pub const SOLAR_ILLUMINANCE_LUX: f32 = 133_800.0;
+
+/// glTF's photometric light units to this crate's radiometric ones, the one place they are
+/// converted: a `KHR_lights_punctual` light of linear RGB `color` and `intensity` in candela
+/// (point and spot lights: lm/sr) or lux (directional lights: lm/m²) becomes a radiant
+/// intensity ([`PointLight::color`]) or an irradiance ([`Sun::color`] without an
+/// atmosphere) of `color * intensity / SOLAR_ILLUMINANCE_LUX` in the sun's units. The colour
+/// is taken as it is (white (1, 1, 1) has luminance 1 in linear sRGB, so a white light keeps
+/// its luminous value); the spectral weighting of the sun and of a lamp are not told apart.
+pub fn from_photometric(color: Vec3, intensity: f32) -> Vec3 {
+    color * (intensity / SOLAR_ILLUMINANCE_LUX)
 }

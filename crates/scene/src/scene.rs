@@ -202,6 +202,9 @@ impl Scene {
         for mut l in other.point_lights {
             l.position = transform.transform_point3(l.position);
             l.radius *= scale;
+            if let Some(c) = &mut l.spot {
+                c.direction = transform.transform_vector3(c.direction).normalize_or(c.direction);
+            }
             self.point_lights.push(l);
         }
         for mut q in other.occlusion_quads {

@@ -499,7 +499,7 @@ impl Tracer<'_> {
             }
             let d = d2.sqrt();
             let l = to / d;
-            let cos = n.dot(l);
+            let cos = n.dot(l) * light.falloff(-l);
             if cos > 0.0 {
                 let through = if light.casts_shadows {
                     s.transmittance(po, l, d - s.epsilon(), self.alpha)

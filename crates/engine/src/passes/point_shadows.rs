@@ -20,8 +20,12 @@ pub struct GpuPointLight {
     pub color: [f32; 4],
     /// Cube near and far planes, cube face size, unused.
     pub shadow: [f32; 4],
+    /// A spot light's cone ([`scene::SpotCone::scale_offset`]): xyz the unit axis times the
+    /// falloff's scale, w its offset, so that the falloff in unit direction `dir` from the
+    /// light is `saturate(dot(xyz, dir) + w)²`; `(0, 0, 0, 1)` for a point light.
+    pub cone: [f32; 4],
 }
-const _: () = assert!(std::mem::size_of::<GpuPointLight>() == 48);
+const _: () = assert!(std::mem::size_of::<GpuPointLight>() == 64);
 
 /// Whether a light gets a cube: it casts shadows and its range is longer than the near plane.
 fn casts(l: &scene::PointLight) -> bool {
@@ -45,6 +49,10 @@ pub fn gpu_lights(lights: &[scene::PointLight], size: u32) -> Vec<GpuPointLight>
                 position: l.position.extend(l.radius).to_array(),
                 color: l.color.extend(index).to_array(),
                 shadow: [CUBE_NEAR, l.radius, size as f32, 0.0],
+                cone: l.spot.map_or([0.0, 0.0, 0.0, 1.0], |c| {
+                    let (scale, offset) = c.scale_offset();
+                    (c.direction * scale).extend(offset).to_array()
+                }),
             }
         })
         .collect()

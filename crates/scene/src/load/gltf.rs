@@ -23,7 +23,9 @@
 //! - normal texture = tangent-space normal map (linear); `doubleSided` kept.
 //!
 //! Node transforms are composed down the hierarchy; each (node, primitive) becomes a mesh.
-//! The first perspective camera, if any, becomes the scene's camera. Non-triangle primitives
+//! The first perspective camera, if any, becomes the scene's camera; a file without one gets a
+//! camera framing its bounds ([`Camera::framing`]). `KHR_lights_punctual` lights become point,
+//! spot and directional lights (see `punctual.rs` for the conversion). Non-triangle primitives
 //! are skipped; sparse accessors are not supported (typed error).
 //!
 //! What a file uses and this loader ignores gives one warning per feature (the table is in
@@ -145,6 +147,7 @@ fn load_gltf_ctx(
     let mut stack: Vec<(gltf::Node, Mat4, usize)> =
         roots.into_iter().map(|n| (n, Mat4::IDENTITY, 0)).collect();
     let mut camera_set = false;
+    let mut lights = super::punctual::Punctual::default();
     while let Some((node, parent, depth)) = stack.pop() {
         let el = || format!("node {} \"{}\"", node.index(), node.name().unwrap_or(""));
         if depth > MAX_DEPTH {
@@ -158,6 +161,7 @@ fn load_gltf_ctx(
         if !world.is_finite() {
             return Err(err(el(), LoadErrorKind::NonFinite { attribute: "transform", vertex: 0 }));
         }
+        lights.node(doc.as_json(), node.index(), world).map_err(|k| err(el(), k))?;
         if let (Some(cam), false) = (node.camera(), camera_set)
             && let gltf::camera::Projection::Perspective(p) = cam.projection()
         {
@@ -226,6 +230,11 @@ fn load_gltf_ctx(
         }
     }
     let mut scene = loader.scene;
+    lights.finish(&mut scene, file);
+    if !camera_set {
+        scene.camera =
+            Camera::framing(&scene.bounds(), crate::DEFAULT_FOV_Y_DEG, crate::DEFAULT_ASPECT);
+    }
     scene.fit_volumes();
     // Catches what only shows in world space (transforms that overflow the positions).
     scene

@@ -9,6 +9,7 @@ pub(crate) mod gltf;
 mod gltf_support;
 pub(crate) mod image;
 pub(crate) mod obj;
+mod punctual;
 pub(crate) mod scene_file;
 mod uri;
 

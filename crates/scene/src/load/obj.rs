@@ -249,6 +249,9 @@ fn finish(
         scene.cleanup += c;
         scene.meshes.push(m);
     }
+    // OBJ has no camera: one that frames the geometry.
+    scene.camera =
+        crate::Camera::framing(&scene.bounds(), crate::DEFAULT_FOV_Y_DEG, crate::DEFAULT_ASPECT);
     scene.fit_volumes();
     scene
         .validate()

@@ -244,6 +244,11 @@ fn load_scene_ctx(
         scene.sun = k.sun;
         scene.sky = k.sky;
         scene.camera = k.camera;
+    } else {
+        // No part brought its world (sun, sky, camera): a camera framing the parts as placed
+        // (a `[camera]` below replaces it).
+        scene.camera =
+            Camera::framing(&scene.bounds(), crate::DEFAULT_FOV_Y_DEG, crate::DEFAULT_ASPECT);
     }
     if let Some(s) = &f.sun {
         scene.sun = Some(sun(s).map_err(|k| err("[sun]".into(), k))?);

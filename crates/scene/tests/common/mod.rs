@@ -4,6 +4,7 @@
 
 pub mod closed_room;
 pub mod cube;
+pub mod lit;
 
 pub use cube::base64;
 
