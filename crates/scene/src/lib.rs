@@ -60,6 +60,7 @@
 //! ```
 
 mod bounds;
+pub mod brdf;
 mod camera;
 mod change;
 mod error;
@@ -79,6 +80,7 @@ mod volumes;
 
 pub use atmosphere::CivilDate;
 pub use bounds::Aabb;
+pub use brdf::{Brdf, BrdfSample, PhongParams, TRACED_ROUGHNESS};
 pub use camera::{Camera, Frustum};
 pub use change::{SceneChange, SceneState};
 pub use error::{Cause, LoadError, LoadErrorKind, SceneError};
