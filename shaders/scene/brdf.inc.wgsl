@@ -34,6 +34,17 @@ fn brdf_smith_v(alpha: f32, n_dot_v: f32, n_dot_l: f32) -> f32 {
     return 0.5 / (gv + gl);
 }
 
+// scene::brdf::SPECULAR_AA_MAX_WIDENING.
+const BRDF_SPECULAR_AA_MAX_WIDENING: f32 = 0.18;
+
+// scene::brdf::filtered_roughness: the roughness widened by the pixel's normal variance
+// (specular anti-aliasing: alpha^2 + min(2 variance, 0.18)).
+fn brdf_filtered_roughness(roughness: f32, normal_variance: f32) -> f32 {
+    let a2 = pow(roughness * roughness, 2.0);
+    let widen = min(2.0 * max(normal_variance, 0.0), BRDF_SPECULAR_AA_MAX_WIDENING);
+    return sqrt(sqrt(min(a2 + widen, 1.0)));
+}
+
 fn brdf_alpha(roughness: f32) -> f32 {
     return max(roughness * roughness, BRDF_MIN_ALPHA);
 }

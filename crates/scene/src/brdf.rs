@@ -115,6 +115,23 @@ pub fn specular_reflectance(f0: Vec3, n_dot_v: f32) -> Vec3 {
     fresnel_schlick(f0, n_dot_v)
 }
 
+/// Largest widening of `alpha^2` by [`filtered_roughness`] (Tokuyoshi and Kaplanyan's
+/// clamp): a pixel's normal spread never makes a surface rougher than this much.
+pub const SPECULAR_AA_MAX_WIDENING: f32 = 0.18;
+
+/// Specular anti-aliasing carried over to roughness: a pixel that sees a range of normals
+/// (variance `normal_variance` of the normal over the pixel's footprint, e.g.
+/// `|dn/dx|^2 / 12 + |dn/dy|^2 / 12` for a box pixel) sees the GGX lobe convolved with that
+/// spread, which widens `alpha^2` by twice the variance in slope space (Kaplanyan et al.
+/// 2016, "Filtering distributions of normals for shading antialiasing"; Tokuyoshi and
+/// Kaplanyan 2021, "Stable geometric specular antialiasing with projected-space NDF
+/// filtering"), clamped at [`SPECULAR_AA_MAX_WIDENING`]. Returns the widened roughness.
+pub fn filtered_roughness(roughness: f32, normal_variance: f32) -> f32 {
+    let a2 = (roughness * roughness).powi(2);
+    let widen = (2.0 * normal_variance.max(0.0)).min(SPECULAR_AA_MAX_WIDENING);
+    (a2 + widen).min(1.0).sqrt().sqrt()
+}
+
 /// Samples a visible normal of the GGX distribution of `alpha` seen from `v` (local frame,
 /// normal +Z, `v.z > 0`), from two uniform numbers in [0, 1) (Heitz 2018, section 3).
 pub fn sample_vndf(alpha: f32, v: Vec3, u: Vec2) -> Vec3 {
@@ -344,6 +361,22 @@ impl PhongParams {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn filtered_roughness_widens_only_with_a_normal_spread() {
+        for r in [0.0f32, 0.1, 0.5, 1.0] {
+            assert!((filtered_roughness(r, 0.0) - r).abs() < 1e-6);
+            let mut prev = r;
+            for v in [1e-4f32, 1e-3, 1e-2, 0.05, 0.09, 1.0, 100.0] {
+                let w = filtered_roughness(r, v);
+                assert!(w >= prev - 1e-7 && w <= 1.0, "{r} {v}: {w}");
+                prev = w;
+            }
+            // Alpha^2 grows by at most the clamp.
+            let a2 = |x: f32| (x * x).powi(2);
+            assert!(a2(filtered_roughness(r, 100.0)) <= a2(r) + SPECULAR_AA_MAX_WIDENING + 1e-6);
+        }
+    }
 
     #[test]
     fn phong_conversion_keeps_diffuse_and_mirrors() {

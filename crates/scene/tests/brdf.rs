@@ -113,7 +113,7 @@ proptest! {
         let wo = view(theta);
         let r = Vec3::new(-wo.x, 0.0, wo.z);
         let (t, b) = r.any_orthonormal_pair();
-        let (nt, np) = (1500, 96);
+        let (nt, np) = (3000, 384);
         let mut total = 0.0f64;
         for i in 0..nt {
             // psi = pi s^3: dense near the mirror direction.

@@ -216,7 +216,7 @@ fn gbuffer_pass_draws_depth_normals_materials_and_alpha_cut_outs() {
 }
 
 /// The BRDF's WGSL twin (`scene::gpu::BRDF_INC_WGSL`) returns what `scene::brdf` returns, lobe
-/// by lobe, on seeded random materials and directions (some below the horizon, some at
+/// by lobe, and the same specular anti-aliasing roughness, on seeded random materials and directions (some below the horizon, some at
 /// roughness 0).
 #[test]
 fn wgsl_brdf_equals_the_cpu_brdf() {
@@ -242,12 +242,13 @@ fn wgsl_brdf_equals_the_cpu_brdf() {
         let (t, b) = n.any_orthonormal_pair();
         let local = |l: Vec3| t * l.x + b * l.y + n * l.z;
         let wo = local(dir(&mut rng, -0.1));
+        let variance: f32 = if i % 5 == 0 { 0.0 } else { rng.random_range(0.0..0.2) };
         let wi = local(dir(&mut rng, -0.1));
         inputs.extend(
-            [c.extend(metallic), n.extend(roughness), wo.extend(0.0), wi.extend(0.0)]
+            [c.extend(metallic), n.extend(roughness), wo.extend(variance), wi.extend(0.0)]
                 .map(|v| v.to_array()),
         );
-        cases.push((scene::Brdf::new(c, metallic, roughness), n, wo, wi));
+        cases.push((scene::Brdf::new(c, metallic, roughness), n, wo, wi, variance));
     }
     let kernel = format!(
         "{BRDF_INC_WGSL}
@@ -259,9 +260,11 @@ fn wgsl_brdf_equals_the_cpu_brdf() {
             let m = cases[4u * i];
             let n = cases[4u * i + 1u];
             let wo = cases[4u * i + 2u].xyz;
+            let variance = cases[4u * i + 2u].w;
             let wi = cases[4u * i + 3u].xyz;
             lobes[3u * i] = vec4<f32>(brdf_eval_diffuse(m.xyz, m.w, n.xyz, wo, wi), 0.0);
-            lobes[3u * i + 1u] = vec4<f32>(brdf_eval_specular(m.xyz, m.w, n.w, n.xyz, wo, wi), 0.0);
+            lobes[3u * i + 1u] = vec4<f32>(brdf_eval_specular(m.xyz, m.w, n.w, n.xyz, wo, wi),
+                brdf_filtered_roughness(n.w, variance));
             lobes[3u * i + 2u] = vec4<f32>(brdf_eval(m.xyz, m.w, n.w, n.xyz, wo, wi),
                 brdf_specular_reflectance(brdf_f0(m.xyz, m.w), dot(n.xyz, wo)).x);
         }}"
@@ -279,11 +282,12 @@ fn wgsl_brdf_equals_the_cpu_brdf() {
         .expect("dispatch");
     let gpu: Vec<[f32; 4]> = gpu_harness::cast_vec(&out[1]);
     let mut worst = 0.0f32;
-    for (i, (b, n, wo, wi)) in cases.iter().enumerate() {
+    for (i, (b, n, wo, wi, variance)) in cases.iter().enumerate() {
         let spec_refl = scene::brdf::specular_reflectance(b.f0(), n.dot(*wo)).x;
         let cpu = [
             b.eval_diffuse(*n, *wo, *wi).extend(0.0),
-            b.eval_specular(*n, *wo, *wi).extend(0.0),
+            b.eval_specular(*n, *wo, *wi)
+                .extend(scene::brdf::filtered_roughness(b.roughness, *variance)),
             b.eval(*n, *wo, *wi).extend(spec_refl),
         ];
         for (k, c) in cpu.iter().enumerate() {
