@@ -53,6 +53,8 @@ impl Scene {
                 [m.glossiness, m.specular_power, m.reflectivity, m.transparency, m.ior],
             );
             hash_f32s(&mut h, m.emission.to_array());
+            hash_f32s(&mut h, m.base_color.extend(m.metallic).to_array());
+            hash_f32s(&mut h, [m.roughness]);
             (
                 m.albedo_texture,
                 m.normal_texture,

@@ -37,6 +37,7 @@
 //! "Fast extraction of viewing frustum planes" (2001).
 
 mod bounds;
+pub mod brdf;
 mod camera;
 mod change;
 mod defaults;
@@ -60,6 +61,7 @@ mod warning;
 
 pub use atmosphere::CivilDate;
 pub use bounds::Aabb;
+pub use brdf::{Brdf, BrdfSample, PhongParams, TRACED_ROUGHNESS};
 pub use camera::{Camera, DEFAULT_ASPECT, DEFAULT_FOV_Y_DEG, FRAMING_ELEVATION_DEG, Frustum};
 pub use change::{SceneChange, SceneState};
 pub use defaults::{

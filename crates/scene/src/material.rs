@@ -1,15 +1,24 @@
-//! The material model of the thesis's G-buffer (Table 3.1) plus what its ray tracer needs:
-//! albedo (colour x texture), glossiness (specular intensity), Phong specular power, a
-//! tangent-space normal map, mirror reflectivity, transparency with an index of refraction,
-//! an alpha-test mask, and emission (for the furnace test and area lights).
+//! A surface material: glTF 2.0's metallic-roughness parameters (base colour, metallic,
+//! roughness: the model of [`crate::brdf`]) beside the thesis's Phong parameters of its
+//! G-buffer (Table 3.1: albedo, glossiness, Phong power) that the renderers not yet moved to
+//! [`crate::brdf`] still read, plus what the ray tracer needs (mirror reflectivity,
+//! transparency with an index of refraction), a tangent-space normal map, an alpha-test mask,
+//! and emission.
+//!
+//! The two sets describe one surface: the constructors ([`Material::diffuse`],
+//! [`Material::glossy`], [`Material::mirror`], [`Material::glass`]) take the thesis's
+//! parameters and derive the metallic-roughness ones by
+//! [`crate::PhongParams::to_metallic_roughness`]; a caller that edits the Phong fields calls
+//! [`Material::with_phong_converted`] to derive them again, and a loader of glTF sets both
+//! (the glTF parameters read directly).
 
 use crate::{SceneError, TextureId};
 use glam::Vec3;
 
 /// The specular lobe of the model, energy-normalised Phong: `(n + 2) / (2 pi) cos^n` at
 /// the cosine `cos_r` between the mirror direction and the light, zero behind (a material's
-/// specular BRDF is its glossiness times this). Every renderer of the model (the engine's
-/// ray tracer, the reference) evaluates it here; the WGSL twin is `base_brdf_cos` in
+/// specular BRDF is its glossiness times this). The renderers not yet moved to
+/// [`crate::brdf`] evaluate it here; the WGSL twin is `base_brdf_cos` in
 /// `shaders/engine/lighting.wgsl`.
 pub fn phong_lobe(power: f32, cos_r: f32) -> f32 {
     if cos_r > 0.0 { (power + 2.0) / (2.0 * std::f32::consts::PI) * cos_r.powf(power) } else { 0.0 }
@@ -38,7 +47,15 @@ pub struct AlphaMask {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
     pub name: String,
-    /// Diffuse reflectivity, linear RGB in [0, 1].
+    /// glTF's base colour, linear RGB in [0, 1] ([`crate::brdf`]): the diffuse colour of a
+    /// dielectric and the specular colour of a metal. Multiplied by `albedo_texture`.
+    pub base_color: Vec3,
+    /// glTF's metallic factor in [0, 1].
+    pub metallic: f32,
+    /// glTF's perceptual roughness in [0, 1] (`alpha = roughness^2`); below
+    /// [`crate::TRACED_ROUGHNESS`] the specular reflection is ray traced.
+    pub roughness: f32,
+    /// Diffuse reflectivity of the thesis's Phong model, linear RGB in [0, 1].
     pub albedo: Vec3,
     /// Multiplies `albedo` (linear RGB after sRGB decoding).
     pub albedo_texture: Option<TextureId>,
@@ -76,6 +93,9 @@ impl Material {
     pub fn diffuse(name: impl Into<String>, albedo: Vec3) -> Self {
         Self {
             name: name.into(),
+            base_color: albedo,
+            metallic: 0.0,
+            roughness: 1.0,
             albedo,
             albedo_texture: None,
             glossiness: 0.0,
@@ -93,6 +113,7 @@ impl Material {
     /// A glossy material with a Phong lobe.
     pub fn glossy(name: impl Into<String>, albedo: Vec3, glossiness: f32, power: f32) -> Self {
         Self { glossiness, specular_power: power, ..Self::diffuse(name, albedo) }
+            .with_phong_converted()
     }
 
     /// A mirror with the given reflectivity.
@@ -103,6 +124,7 @@ impl Material {
             specular_power: 2048.0,
             ..Self::diffuse(name, Vec3::splat(0.02))
         }
+        .with_phong_converted()
     }
 
     /// Clear glass: mostly transmitted, some reflected.
@@ -116,11 +138,64 @@ impl Material {
             double_sided: true,
             ..Self::diffuse(name, Vec3::splat(0.02))
         }
+        .with_phong_converted()
     }
 
     /// A pure emitter that also reflects diffusely.
     pub fn emissive(name: impl Into<String>, albedo: Vec3, emission: Vec3) -> Self {
         Self { emission, ..Self::diffuse(name, albedo) }
+    }
+
+    /// A material of glTF's metallic-roughness model. The Phong fields that the renderers not
+    /// yet moved to [`crate::brdf`] read are derived as follows (`c` base colour, `m`
+    /// metallic, `r` roughness, `a = r^2`): albedo = `c (1 - m)`; glossiness =
+    /// `mix(0.04, max(c), m)`, the specular reflectance at normal incidence; specular power =
+    /// `2 / a^2 - 2` (the Blinn-Phong <-> GGX correspondence) clamped to [1, 8192]; mirror
+    /// reflectivity = `m max(c) max(0, 1 - r / TRACED_ROUGHNESS)`: only smooth metals are
+    /// traced mirrors, fading out by [`crate::TRACED_ROUGHNESS`].
+    pub fn metallic_roughness(
+        name: impl Into<String>,
+        base_color: Vec3,
+        metallic: f32,
+        roughness: f32,
+    ) -> Self {
+        let brdf = crate::Brdf::new(base_color, metallic, roughness);
+        let alpha = brdf.alpha();
+        let reflectivity = metallic
+            * base_color.max_element()
+            * (1.0 - roughness / crate::TRACED_ROUGHNESS).max(0.0);
+        Self {
+            base_color,
+            metallic,
+            roughness,
+            glossiness: brdf.f0().max_element(),
+            specular_power: (2.0 / (alpha * alpha) - 2.0).clamp(1.0, 8192.0),
+            reflectivity,
+            ..Self::diffuse(name, brdf.diffuse_color())
+        }
+    }
+
+    /// The BRDF of this material (before textures).
+    pub fn brdf(&self) -> crate::Brdf {
+        crate::Brdf::new(self.base_color, self.metallic, self.roughness)
+    }
+
+    /// The thesis's Phong parameters of this material.
+    pub fn phong(&self) -> crate::PhongParams {
+        crate::PhongParams {
+            albedo: self.albedo,
+            glossiness: self.glossiness,
+            specular_power: self.specular_power,
+            reflectivity: self.reflectivity,
+            transparency: self.transparency,
+        }
+    }
+
+    /// The same material with `base_color`, `metallic` and `roughness` derived again from
+    /// its Phong fields ([`crate::PhongParams::to_metallic_roughness`]), after editing them.
+    pub fn with_phong_converted(self) -> Self {
+        let (base_color, metallic, roughness) = self.phong().to_metallic_roughness();
+        Self { base_color, metallic, roughness, ..self }
     }
 
     pub fn is_mirror(&self) -> bool {
@@ -154,6 +229,17 @@ impl Material {
                 format!("albedo {} outside [0, 1]", self.albedo),
             ));
         }
+        if !self.base_color.is_finite()
+            || self.base_color.min_element() < 0.0
+            || self.base_color.max_element() > 1.0
+        {
+            return Err(SceneError::invalid(
+                el(),
+                format!("base colour {} outside [0, 1]", self.base_color),
+            ));
+        }
+        unit(self.metallic, "metallic")?;
+        unit(self.roughness, "roughness")?;
         unit(self.glossiness, "glossiness")?;
         unit(self.reflectivity, "reflectivity")?;
         unit(self.transparency, "transparency")?;

@@ -214,3 +214,88 @@ fn gbuffer_pass_draws_depth_normals_materials_and_alpha_cut_outs() {
     assert_eq!(gpu_harness::bind_groups_created(), groups);
     assert_eq!(Targets::read(&ctx, &gbuffer).texels, t.texels, "the same frame again");
 }
+
+/// The BRDF's WGSL twin (`scene::gpu::BRDF_INC_WGSL`) returns what `scene::brdf` returns, lobe
+/// by lobe, and the same specular anti-aliasing roughness, on seeded random materials and directions (some below the horizon, some at
+/// roughness 0).
+#[test]
+fn wgsl_brdf_equals_the_cpu_brdf() {
+    use rand::{Rng, SeedableRng};
+    use scene::gpu::BRDF_INC_WGSL;
+    gpu_harness::validate_wgsl(BRDF_INC_WGSL).unwrap_or_else(|e| panic!("brdf: {e}"));
+    let Some(ctx) = gpu_test_context() else { return };
+    let mut rng = rand_pcg::Pcg64::seed_from_u64(5353);
+    let dir = |rng: &mut rand_pcg::Pcg64, up: f32| {
+        let z: f32 = rng.random_range(up..1.0);
+        let phi: f32 = rng.random_range(0.0..std::f32::consts::TAU);
+        let s = (1.0 - z * z).max(0.0).sqrt();
+        Vec3::new(s * phi.cos(), s * phi.sin(), z)
+    };
+    let count = 1024usize;
+    let mut inputs: Vec<[f32; 4]> = Vec::new();
+    let mut cases = Vec::new();
+    for i in 0..count {
+        let c = Vec3::new(rng.random(), rng.random(), rng.random());
+        let metallic: f32 = if i % 3 == 0 { 1.0 } else { rng.random() };
+        let roughness: f32 = if i % 17 == 0 { 0.0 } else { rng.random() };
+        let n = dir(&mut rng, -1.0);
+        let (t, b) = n.any_orthonormal_pair();
+        let local = |l: Vec3| t * l.x + b * l.y + n * l.z;
+        let wo = local(dir(&mut rng, -0.1));
+        let variance: f32 = if i % 5 == 0 { 0.0 } else { rng.random_range(0.0..0.2) };
+        let wi = local(dir(&mut rng, -0.1));
+        inputs.extend(
+            [c.extend(metallic), n.extend(roughness), wo.extend(variance), wi.extend(0.0)]
+                .map(|v| v.to_array()),
+        );
+        cases.push((scene::Brdf::new(c, metallic, roughness), n, wo, wi, variance));
+    }
+    let kernel = format!(
+        "{BRDF_INC_WGSL}
+        @group(0) @binding(0) var<storage, read> cases: array<vec4<f32>>;
+        @group(0) @binding(1) var<storage, read_write> lobes: array<vec4<f32>>;
+        @compute @workgroup_size(64) fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
+            let i = id.x;
+            if i >= arrayLength(&cases) / 4u {{ return; }}
+            let m = cases[4u * i];
+            let n = cases[4u * i + 1u];
+            let wo = cases[4u * i + 2u].xyz;
+            let variance = cases[4u * i + 2u].w;
+            let wi = cases[4u * i + 3u].xyz;
+            lobes[3u * i] = vec4<f32>(brdf_eval_diffuse(m.xyz, m.w, n.xyz, wo, wi), 0.0);
+            lobes[3u * i + 1u] = vec4<f32>(brdf_eval_specular(m.xyz, m.w, n.w, n.xyz, wo, wi),
+                brdf_filtered_roughness(n.w, variance));
+            lobes[3u * i + 2u] = vec4<f32>(brdf_eval(m.xyz, m.w, n.w, n.xyz, wo, wi),
+                brdf_specular_reflectance(brdf_f0(m.xyz, m.w), dot(n.xyz, wo)).x);
+        }}"
+    );
+    let out = ctx
+        .run_compute(
+            &kernel,
+            "main",
+            &[
+                gpu_harness::Binding::Read(bytemuck::cast_slice(&inputs)),
+                gpu_harness::Binding::Output((count * 3 * 16) as u64),
+            ],
+            [count.div_ceil(64) as u32, 1, 1],
+        )
+        .expect("dispatch");
+    let gpu: Vec<[f32; 4]> = gpu_harness::cast_vec(&out[1]);
+    let mut worst = 0.0f32;
+    for (i, (b, n, wo, wi, variance)) in cases.iter().enumerate() {
+        let spec_refl = scene::brdf::specular_reflectance(b.f0(), n.dot(*wo)).x;
+        let cpu = [
+            b.eval_diffuse(*n, *wo, *wi).extend(0.0),
+            b.eval_specular(*n, *wo, *wi)
+                .extend(scene::brdf::filtered_roughness(b.roughness, *variance)),
+            b.eval(*n, *wo, *wi).extend(spec_refl),
+        ];
+        for (k, c) in cpu.iter().enumerate() {
+            let g = Vec4::from_array(gpu[3 * i + k]);
+            let err = (g - *c).abs().max_element() / c.abs().max_element().max(1.0);
+            worst = worst.max(err);
+            assert!(err < 2e-4, "case {i} lobe {k} ({b:?}): GPU {g} vs CPU {c}");
+        }
+    }
+    eprintln!("worst relative difference GPU vs CPU: {worst:e}");
+}

@@ -37,6 +37,8 @@ fn gltf_quad_loads_with_transforms_cleanup_and_material_mapping() {
     assert!((m.reflectivity - 0.9).abs() < 1e-6);
     assert!((m.glossiness - 0.9).abs() < 1e-6);
     assert_eq!(m.specular_power, 8192.0);
+    // glTF's own parameters are read as they are.
+    assert_eq!((m.base_color, m.metallic, m.roughness), (Vec3::splat(0.9), 1.0, 0.0));
 }
 
 #[test]
@@ -112,6 +114,12 @@ fn obj_with_mtl_maps_materials_and_drops_degenerate_faces() {
     assert!((m.albedo - Vec3::new(0.5, 0.4, 0.3)).length() < 1e-6);
     assert!((m.reflectivity - 0.9).abs() < 1e-6 && m.specular_power == 200.0);
     assert!((m.ior - 1.33).abs() < 1e-6 && m.transparency == 0.0);
+    // Converted to metallic-roughness: a mirror (illum 3) is a smooth metal whose F0 is the
+    // Phong reflectance at normal incidence.
+    assert_eq!(m.brdf(), scene::Brdf::new(m.base_color, m.metallic, 0.0));
+    assert!(m.brdf().is_smooth() && m.metallic > 0.9, "{:?}", m.brdf());
+    let s_phong = m.phong().reflectivity + (1.0 - m.reflectivity) * m.glossiness;
+    assert!((m.brdf().f0().max_element() - s_phong).abs() < 1e-3, "{:?}", m.brdf());
 }
 
 #[test]
@@ -222,6 +230,7 @@ fn gltf_rough_translucent_dielectric_maps_as_documented() {
     assert!((m.glossiness - 0.04).abs() < 1e-6);
     assert!((m.specular_power - 30.0).abs() < 1e-3); // a = 0.25: 2 / a^2 - 2
     assert_eq!(m.reflectivity, 0.0);
+    assert_eq!((m.base_color, m.metallic, m.roughness), (Vec3::new(0.5, 0.25, 0.1), 0.0, 0.5));
     assert!((m.transparency - 0.6).abs() < 1e-6 && m.ior == 1.5);
     assert_eq!(m.emission, Vec3::new(1.0, 0.5, 0.0));
     assert!(m.double_sided);

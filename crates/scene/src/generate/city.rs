@@ -154,10 +154,13 @@ fn build(seed: u64) -> Result<Scene, SceneError> {
     let m_metal =
         scene.add_material(Material::glossy("metal", Vec3::new(0.25, 0.26, 0.28), 0.5, 64.0));
     let m_mirror = scene.add_material(Material::mirror("mirror", 0.95));
-    let m_statue = scene.add_material(Material {
-        reflectivity: 0.6,
-        ..Material::glossy("statue_chrome", Vec3::new(0.3, 0.28, 0.25), 0.9, 256.0)
-    });
+    let m_statue = scene.add_material(
+        Material {
+            reflectivity: 0.6,
+            ..Material::glossy("statue_chrome", Vec3::new(0.3, 0.28, 0.25), 0.9, 256.0)
+        }
+        .with_phong_converted(),
+    );
     let m_bark = scene.add_material(textured("bark", Vec3::ONE, t_bark));
     let m_leaves = scene.add_material(Material {
         alpha_mask: Some(AlphaMask { texture: t_leaves, cutoff: 0.5 }),

@@ -38,6 +38,11 @@ use glam::Vec3;
 pub const MATERIAL_INC_WGSL: &str =
     include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/material.inc.wgsl"));
 
+/// The WGSL twin of [`crate::brdf`] (`brdf_eval`, `brdf_eval_diffuse`, `brdf_eval_specular`,
+/// `brdf_specular_reflectance`, ...): every shader that lights a surface includes it.
+pub const BRDF_INC_WGSL: &str =
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/brdf.inc.wgsl"));
+
 /// One vertex (world space; scenes are static, so transforms are applied at upload).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]

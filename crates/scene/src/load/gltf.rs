@@ -3,18 +3,13 @@
 //!
 //! # Metallic-roughness mapping
 //!
-//! glTF describes surfaces with the metallic-roughness model; this crate's material model is the
-//! thesis's (albedo, glossiness = specular intensity, Phong power, mirror reflectivity,
-//! transparency + IOR). The mapping, with `c` the base colour, `m` metallic, `r` roughness:
+//! glTF describes surfaces with the metallic-roughness model, which is this crate's
+//! ([`crate::brdf`]): `pbrMetallicRoughness`'s base colour factor, metallic factor and
+//! roughness factor are the material's `base_color`, `metallic` and `roughness`; the
+//! base-colour texture is the albedo texture, decoded from sRGB to linear. The thesis's Phong
+//! fields that some renderers still read are derived by [`Material::metallic_roughness`]
+//! (its doc gives the mapping). Further:
 //!
-//! - albedo = `c.rgb * (1 - m)` (metals have no diffuse term); albedo texture = base-colour
-//!   texture, decoded from sRGB to linear;
-//! - glossiness = `mix(0.04, max(c.rgb), m)`: the specular reflectance at normal incidence
-//!   (4% for dielectrics);
-//! - specular power = `2 / a^2 - 2` with `a = r^2` (the usual Blinn-Phong <-> GGX
-//!   correspondence), clamped to [1, 8192];
-//! - mirror reflectivity = `m * max(c.rgb) * max(0, 1 - r / 0.2)`: only smooth metals become
-//!   ray-traced mirrors, fading out by roughness 0.2;
 //! - transparency = `KHR_materials_transmission` factor if present, else `1 - c.a` for
 //!   `alphaMode: BLEND`; IOR from `KHR_materials_ior` (default 1.5); reflectivity is capped at
 //!   `1 - transparency`;
@@ -431,9 +426,6 @@ impl Loader<'_> {
             Some(n) => Some(self.texture(n.texture(), ColorSpace::Linear, &user)?),
             None => None,
         };
-        let glossiness = 0.04 + (rgb.max_element() - 0.04) * metal;
-        let a = (rough * rough).max(1e-4);
-        let specular_power = (2.0 / (a * a) - 2.0).clamp(1.0, 8192.0);
         let mut transparency = match m.transmission() {
             Some(t) => t.transmission_factor().clamp(0.0, 1.0),
             None if m.alpha_mode() == gltf::material::AlphaMode::Blend => 1.0 - c[3],
@@ -442,8 +434,8 @@ impl Loader<'_> {
         if !transparency.is_finite() {
             transparency = 0.0;
         }
-        let reflectivity =
-            (metal * rgb.max_element() * (1.0 - rough / 0.2).max(0.0)).min(1.0 - transparency);
+        let base = Material::metallic_roughness(name.clone(), rgb, metal, rough);
+        let reflectivity = base.reflectivity.min(1.0 - transparency);
         let ior = m.ior().filter(|i| i.is_finite() && *i >= 1.0).unwrap_or(1.5);
         let alpha_mask = if m.alpha_mode() == gltf::material::AlphaMode::Mask {
             let cutoff = m.alpha_cutoff().filter(|c| *c > 0.0 && *c <= 1.0).unwrap_or(0.5);
@@ -464,11 +456,7 @@ impl Loader<'_> {
         let strength = m.emissive_strength().filter(|s| s.is_finite() && *s >= 0.0).unwrap_or(1.0);
         let emission = Vec3::from(m.emissive_factor()).max(Vec3::ZERO) * strength;
         let mat = Material {
-            name,
-            albedo: rgb * (1.0 - metal),
             albedo_texture,
-            glossiness,
-            specular_power,
             normal_texture,
             reflectivity,
             transparency,
@@ -476,6 +464,7 @@ impl Loader<'_> {
             alpha_mask,
             emission: if emission.is_finite() { emission } else { Vec3::ZERO },
             double_sided: m.double_sided(),
+            ..base
         };
         mat.validate(self.scene.textures.len())
             .map_err(|e| self.err(user, LoadErrorKind::InvalidValue(e.to_string())))?;

@@ -10,6 +10,10 @@
 //! `Scene::warnings`) and a stand-in: the default grey material for the objects of a missing
 //! library, [`crate::STAND_IN_TEXTURE`] for a texture; with [`LoadOptions::strict`] it is the
 //! load's error. Paths written with backslashes are read with them as separators.
+//!
+//! The metallic-roughness parameters (base colour, metallic, roughness) are converted from
+//! those Phong ones by [`crate::PhongParams::to_metallic_roughness`] (`Ns` -> roughness by the
+//! Beckmann-Phong equivalence, `Ks` and `Kd` -> metallic and base colour).
 
 use super::context::{Ctx, LoadOptions};
 use super::image::{decode, missing, stand_in};
@@ -196,17 +200,15 @@ fn finish(
         let mut mat = Material {
             name: m.name.clone(),
             albedo: clamp3(m.diffuse, 0.8),
-            albedo_texture: None,
             glossiness: ks,
             specular_power: m.shininess.filter(|s| s.is_finite()).unwrap_or(1.0).clamp(1.0, 8192.0),
-            normal_texture: None,
             reflectivity,
             transparency,
             ior: m.optical_density.filter(|i| i.is_finite() && *i >= 1.0).unwrap_or(1.5),
-            alpha_mask: None,
             emission: if emission.is_finite() { emission.max(Vec3::ZERO) } else { Vec3::ZERO },
-            double_sided: false,
-        };
+            ..Material::default()
+        }
+        .with_phong_converted();
         if let Some(t) = m.diffuse_texture.as_deref().filter(|t| !t.is_empty()) {
             mat.albedo_texture = Some(texture(&mut scene, t, ColorSpace::Srgb, &m.name, false)?);
         }

@@ -40,6 +40,9 @@
 //! name = "glass"
 //! transparency = 0.9
 //! ior = 1.52
+//! # Also: base_color, metallic, roughness (glTF's metallic-roughness parameters), or the
+//! # thesis's albedo, glossiness, specular_power, reflectivity (converted to them by
+//! # scene::PhongParams::to_metallic_roughness, applied before the glTF keys).
 //!
 //! [camera]
 //! position = [0.0, 1.7, 8.0]
@@ -123,6 +126,9 @@ struct QuadDef {
 struct MaterialDef {
     name: String,
     albedo: Option<[f32; 3]>,
+    base_color: Option<[f32; 3]>,
+    metallic: Option<f32>,
+    roughness: Option<f32>,
     glossiness: Option<f32>,
     specular_power: Option<f32>,
     reflectivity: Option<f32>,
@@ -297,6 +303,18 @@ fn load_scene_ctx(
         m.reflectivity = o.reflectivity.unwrap_or(m.reflectivity);
         m.transparency = o.transparency.unwrap_or(m.transparency);
         m.ior = o.ior.unwrap_or(m.ior);
+        let phong_edited = o.albedo.is_some()
+            || o.glossiness.is_some()
+            || o.specular_power.is_some()
+            || o.reflectivity.is_some();
+        if phong_edited {
+            *m = m.clone().with_phong_converted();
+        }
+        if let Some(c) = o.base_color {
+            m.base_color = c.into();
+        }
+        m.metallic = o.metallic.unwrap_or(m.metallic);
+        m.roughness = o.roughness.unwrap_or(m.roughness);
         m.double_sided = o.double_sided.unwrap_or(m.double_sided);
         m.validate(textures).map_err(|e| err(el, LoadErrorKind::InvalidValue(e.to_string())))?;
     }
