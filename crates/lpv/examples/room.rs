@@ -22,9 +22,9 @@ fn main() -> Result<(), lpv::LpvError> {
     let normal = vec![Vec3::Y; position.len()];
     let flux = vec![Vec3::splat(0.5 * texel * texel); position.len()];
 
-    let vpls = rsm_vpls(&position, &normal, &flux);
+    let vpls = rsm_vpls(&position, &normal, &flux)?;
     // The same texels as blockers of the propagation (the geometry volume).
-    let surfels = rsm_surfels(&position, &normal, texel * texel, Vec3::Y);
+    let surfels = rsm_surfels(&position, &normal, texel * texel, Vec3::Y)?;
 
     // Built once; every frame: follow the camera, inject and propagate.
     let mut lpv = Lpv::new(LpvSettings::DEFAULT)?;

@@ -13,6 +13,13 @@ pub enum LpvError {
     /// and got).
     #[error("LPV resident pass: {0}")]
     Mismatch(String),
+    /// An RSM's texel planes (positions, normals, fluxes) of different lengths given to
+    /// [`crate::rsm_vpls`] or [`crate::rsm_surfels`]: each names its length (`flux` is 0 for
+    /// the surfels, which take none).
+    #[error(
+        "RSM texel planes of different lengths: {position} positions, {normal} normals, {flux} fluxes"
+    )]
+    PlaneLengths { position: usize, normal: usize, flux: usize },
     /// A GPU entry point could not run (no adapter, validation failure, read-back failure).
     #[cfg(feature = "gpu")]
     #[error("LPV GPU path")]

@@ -13,6 +13,7 @@
 //! [`Lpv`]: crate::Lpv
 //! [`Lpv::update`]: crate::Lpv::update
 
+use crate::LpvError;
 use crate::vpl::{Surfel, Vpl};
 use glam::Vec3;
 
@@ -36,37 +37,47 @@ fn covered(normal: Vec3) -> bool {
 }
 
 /// One VPL per covered texel (position, normal, flux as they are; [`Lpv::update`] skips
-/// VPLs that emit nothing). Panics if the slices differ in length.
+/// VPLs that emit nothing). Slices of different lengths are [`LpvError::PlaneLengths`].
 ///
 /// [`Lpv::update`]: crate::Lpv::update
-pub fn rsm_vpls(position: &[Vec3], normal: &[Vec3], flux: &[Vec3]) -> Vec<Vpl> {
-    assert!(
-        position.len() == normal.len() && normal.len() == flux.len(),
-        "RSM planes of different lengths"
-    );
-    position
+pub fn rsm_vpls(position: &[Vec3], normal: &[Vec3], flux: &[Vec3]) -> Result<Vec<Vpl>, LpvError> {
+    same_lengths(position, normal, Some(flux))?;
+    Ok(position
         .iter()
         .zip(normal)
         .zip(flux)
         .filter(|((_, n), _)| covered(**n))
         .map(|((&p, &n), &f)| Vpl::new(p, n, f))
-        .collect()
+        .collect())
 }
 
 /// One surfel per covered texel, of area [`surfel_area`] for texels `texel_area` across (in
 /// world units², perpendicular to the light) and the unit direction `to_light` towards the
-/// light. Panics if the slices differ in length.
+/// light. Slices of different lengths are [`LpvError::PlaneLengths`].
 pub fn rsm_surfels(
     position: &[Vec3],
     normal: &[Vec3],
     texel_area: f32,
     to_light: Vec3,
-) -> Vec<Surfel> {
-    assert_eq!(position.len(), normal.len(), "RSM planes of different lengths");
-    position
+) -> Result<Vec<Surfel>, LpvError> {
+    same_lengths(position, normal, None)?;
+    Ok(position
         .iter()
         .zip(normal)
         .filter(|(_, n)| covered(**n))
         .map(|(&p, &n)| Surfel::new(p, n, surfel_area(n, texel_area, to_light)))
-        .collect()
+        .collect())
+}
+
+/// The planes' lengths agree (`flux` only where the caller takes one).
+fn same_lengths(position: &[Vec3], normal: &[Vec3], flux: Option<&[Vec3]>) -> Result<(), LpvError> {
+    let flux_len = flux.map_or(position.len(), <[Vec3]>::len);
+    if position.len() == normal.len() && flux_len == position.len() {
+        return Ok(());
+    }
+    Err(LpvError::PlaneLengths {
+        position: position.len(),
+        normal: normal.len(),
+        flux: flux.map_or(0, <[Vec3]>::len),
+    })
 }

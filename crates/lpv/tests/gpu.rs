@@ -105,7 +105,7 @@ fn resident_update_from_rsm_textures_matches_the_cpu() {
     // The CPU twin of the shader's texels-as-surfels (the normals here are unit already).
     let surfels_of = |t: &[(Vec3, Vec3, Vec3)]| -> Vec<lpv::Surfel> {
         let (p, n): (Vec<Vec3>, Vec<Vec3>) = t.iter().map(|t| (t.0, t.1)).unzip();
-        lpv::rsm_surfels(&p, &n, 0.05, to_light)
+        lpv::rsm_surfels(&p, &n, 0.05, to_light).unwrap()
     };
     let split = texels.len() * 2 / 3;
     let (sun, sky) = texels.split_at(split);

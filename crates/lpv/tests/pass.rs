@@ -53,8 +53,10 @@ fn lpv_pass_on_both_paths_matches_the_cpu_lpv() {
         texel_area,
         max_texel_flux: flux.iter().map(|f| f.max_element()).fold(0.0, f32::max),
     };
-    let (vpls, surfels) =
-        (lpv::rsm_vpls(&pos, &nrm, &flux), lpv::rsm_surfels(&pos, &nrm, texel_area, to_light));
+    let (vpls, surfels) = (
+        lpv::rsm_vpls(&pos, &nrm, &flux).unwrap(),
+        lpv::rsm_surfels(&pos, &nrm, texel_area, to_light).unwrap(),
+    );
     let (s, cpu, _) = updated_on_cpu(true, &vpls, &surfels);
     let camera = Vec3::new(4.0, 1.5, 2.0);
     // Seeded queries inside the rooms, with random unit normals.

@@ -15,17 +15,17 @@ fn texels() -> (Vec<Vec3>, Vec<Vec3>, Vec<Vec3>) {
 #[test]
 fn vpls_are_the_covered_texels_as_they_are() {
     let (p, n, f) = texels();
-    let vpls = rsm_vpls(&p, &n, &f);
+    let vpls = rsm_vpls(&p, &n, &f).unwrap();
     let expected: Vec<Vpl> = [0, 2, 4].iter().map(|&i| Vpl::new(p[i], n[i], f[i])).collect();
     assert_eq!(vpls, expected, "empty texels dropped, the rest kept in order, unchanged");
-    assert!(rsm_vpls(&[], &[], &[]).is_empty());
+    assert!(rsm_vpls(&[], &[], &[]).unwrap().is_empty());
 }
 
 #[test]
 fn surfels_cover_the_texel_area_spread_over_the_tilt_clamped_at_grazing_angles() {
     let (p, n, _) = texels();
     let to_light = Vec3::Y;
-    let surfels = rsm_surfels(&p, &n, 0.04, to_light);
+    let surfels = rsm_surfels(&p, &n, 0.04, to_light).unwrap();
     let pos: Vec<Vec3> = surfels.iter().map(|s| s.position).collect();
     assert_eq!(pos, [p[0], p[2], p[4]], "one surfel per covered texel, in order");
     assert_eq!(surfels[0].normal, Vec3::Y);
@@ -47,10 +47,16 @@ fn surfels_cover_the_texel_area_spread_over_the_tilt_clamped_at_grazing_angles()
 }
 
 #[test]
-#[should_panic(expected = "different lengths")]
 fn texel_planes_of_different_lengths_are_refused() {
     let (p, n, f) = texels();
-    rsm_vpls(&p, &n[..4], &f);
+    let lengths = |e| match e {
+        lpv::LpvError::PlaneLengths { position, normal, flux } => (position, normal, flux),
+        other => panic!("expected PlaneLengths, got {other}"),
+    };
+    assert_eq!(lengths(rsm_vpls(&p, &n[..4], &f).unwrap_err()), (p.len(), 4, f.len()));
+    assert_eq!(lengths(rsm_vpls(&p, &n, &f[1..]).unwrap_err()), (p.len(), n.len(), f.len() - 1));
+    assert_eq!(lengths(rsm_surfels(&p[..3], &n, 0.04, Vec3::Y).unwrap_err()), (3, n.len(), 0));
+    assert!(rsm_vpls(&p, &n, &f).is_ok() && rsm_surfels(&p, &n, 0.04, Vec3::Y).is_ok());
 }
 
 /// The sun's RSM must cover the coarsest cascade: the sphere through its corners, around

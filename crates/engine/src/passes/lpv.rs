@@ -103,7 +103,7 @@ impl LpvState {
             vpls.extend(bounce.read_back(gpu)?);
         }
         let surfels = if self.pass.lpv().settings().geometry_volume {
-            lpv::rsm_surfels(&rsm.position, &rsm.normal, texel_area, sun.dir)
+            lpv::rsm_surfels(&rsm.position, &rsm.normal, texel_area, sun.dir).map_err(lpv_err)?
         } else {
             Vec::new()
         };

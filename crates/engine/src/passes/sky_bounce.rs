@@ -196,6 +196,7 @@ impl SkyBounce {
             Ok(texels.iter().map(|t| Vec3::new(t[0], t[1], t[2])).collect())
         };
         let [flux, normal, position] = &self.textures;
-        Ok(lpv::rsm_vpls(&texels(position)?, &texels(normal)?, &texels(flux)?))
+        lpv::rsm_vpls(&texels(position)?, &texels(normal)?, &texels(flux)?)
+            .map_err(|e| EngineError::technique("lpv", e))
     }
 }
