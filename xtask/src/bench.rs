@@ -74,5 +74,24 @@ pub fn run(root: &Path, quick: bool, json: Option<PathBuf>, only: &[String]) -> 
     if let Some(path) = json {
         std::fs::write(&path, &text).with_context(|| format!("writing {}", path.display()))?;
     }
-    report::redraw(&out_dir)
+    report::redraw(&out_dir)?;
+    eprintln!(
+        "composed benchmarks (criterion, not in this report): cargo bench -p serein --bench {}",
+        composed_benches(root).join(" | --bench ")
+    );
+    Ok(())
+}
+
+/// The root package's criterion benchmarks that compose crates (`benches/*.rs` but its
+/// shared `support.rs`), by name.
+fn composed_benches(root: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(root.join("benches"))
+        .into_iter()
+        .flatten()
+        .flatten()
+        .filter_map(|e| e.file_name().to_str()?.strip_suffix(".rs").map(str::to_owned))
+        .filter(|n| n != "support")
+        .collect();
+    names.sort();
+    names
 }

@@ -3,7 +3,9 @@
 //! - `cargo xtask test`: rustfmt check, clippy (warnings denied), WGSL validation, and the
 //!   whole workspace's tests with all features (GPU tests included).
 //! - `cargo xtask bench [--quick] [--json PATH] [--only CRATE]`: every crate's accuracy-vs-time
-//!   sweep, merged into `target/gi-report/` (report.json, report.md, one SVG per technique).
+//!   sweep, merged into `target/gi-report/` (report.json, report.md, one SVG per technique);
+//!   it ends by listing the root's criterion benchmarks that compose crates (`benches/`,
+//!   `cargo bench -p serein`).
 //! - `cargo xtask render [ARGS]`: the engine's main job (see `serein-render --help`).
 //! - `cargo xtask reference render|merge [ARGS]`: the reference on the CPU alone (see
 //!   `serein-reference --help`).
