@@ -181,7 +181,11 @@ fn a_failing_pass_aborts_the_rest_of_the_frame_only() {
     let err = s.run_frame(&true).unwrap_err();
     let FrameError::PassFailed { pass, report, .. } = &err;
     assert_eq!(pass, "fragile");
-    assert!(err.to_string().contains("out of rays"));
+    // The error names the pass and returns the pass's own error as its source (the chain
+    // names each cause once).
+    assert_eq!(err.to_string(), "pass 'fragile' failed");
+    let source = std::error::Error::source(&err).expect("the pass's error as the source");
+    assert_eq!(source.to_string(), "out of rays");
     assert_eq!(report.pass("after").unwrap().reason, Reason::Aborted);
     let r = s.run_frame(&false).unwrap();
     assert_eq!(r.pass("after").unwrap().outcome, Outcome::Ran);
