@@ -128,8 +128,9 @@ pub fn pbr_gallery(seed: u64) -> Scene {
         "spot",
         PBR_GALLERY_SPOT_POSITION,
         PBR_GALLERY_SPOT_TARGET - PBR_GALLERY_SPOT_POSITION,
-        // About 80 000 cd of warm white (the sun's units: 1 is 133 800 cd).
-        Vec3::new(1.0, 0.86, 0.65) * 0.6,
+        // About 270 000 cd of warm white, a follow spot (the sun's units: 1 is 133 800 cd):
+        // its pool, about 0.18 of the sun's irradiance, outshines the low sun on the floor.
+        Vec3::new(1.0, 0.86, 0.65) * 2.0,
         8.0,
         inner.to_radians(),
         outer.to_radians(),
