@@ -14,10 +14,11 @@
 //!
 //! It loads glTF 2.0 ([`load_gltf`]; the metallic-roughness mapping is documented there), OBJ
 //! with MTL ([`load_obj`]) and a TOML scene file ([`load_scene_file`]); textures are decoded from
-//! sRGB to linear at load and mip-mapped (thesis 3.5 and 6.2.3). It generates six test scenes
+//! sRGB to linear at load and mip-mapped (thesis 3.5 and 6.2.3). It generates seven test scenes
 //! from a seed ([`Generated`]: the reference `city`, `cornell_window`, `two_rooms`,
-//! `plane_box`, `furnace`, and `cornell_area`, a Cornell box lit only by a one-sided ceiling
-//! light), and answers the engine's per-frame question of which effects the
+//! `plane_box`, `furnace`, `cornell_area`, a Cornell box lit only by a one-sided ceiling
+//! light, and `pbr_gallery`, spheres of the metallic-roughness model from smooth to rough
+//! with a normal-mapped wall, a spot light and an emissive panel), and answers the engine's per-frame question of which effects the
 //! scene calls for, and why ([`SceneNeeds`]), and what changed since the last frame
 //! ([`SceneChange`]).
 //!
@@ -71,8 +72,11 @@ pub use defaults::{
 pub use error::{Cause, LoadError, LoadErrorKind, SceneError};
 #[cfg(feature = "generate")]
 pub use generate::{
-    FURNACE_ALBEDO, FURNACE_EMISSION, Generated, city, cornell_window, furnace, furnace_radiance,
-    plane_box, two_rooms,
+    FURNACE_ALBEDO, FURNACE_EMISSION, Generated, PBR_GALLERY_PANEL_EMISSION, PBR_GALLERY_ROUGHNESS,
+    PBR_GALLERY_ROWS, PBR_GALLERY_SPHERE_RADIUS, PBR_GALLERY_SPOT_CONE_DEG,
+    PBR_GALLERY_SPOT_POSITION, PBR_GALLERY_SPOT_TARGET, PBR_GALLERY_SUN_ELEVATION_DEG,
+    PBR_GALLERY_SUN_GRAZE_DEG, city, cornell_window, furnace, furnace_radiance, pbr_gallery,
+    pbr_gallery_sphere_center, plane_box, two_rooms,
 };
 pub use light::{
     PointLight, SOLAR_ILLUMINANCE_LUX, SUN_ANGULAR_RADIUS, SpotCone, Sun, SunPosition,

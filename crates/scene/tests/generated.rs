@@ -1,4 +1,4 @@
-//! The six generated scenes: valid, deterministic from a seed, and physically what they
+//! The generated scenes: valid, deterministic from a seed, and physically what they
 //! claim (the city's size and contents, closed rooms, a window the sun shines through).
 
 mod common;

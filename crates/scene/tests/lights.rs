@@ -45,6 +45,14 @@ fn punctual_lights_are_read_placed_and_converted() {
     ];
     let s = load(&floor_gltf(&lights, true, false));
     s.validate().unwrap();
+    // The extension is honoured: no "lights dropped" warning (the only warning is the extra
+    // directional light's, which goes to stderr), and a file may require it.
+    assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+    let required = floor_gltf(&lights, true, false).replace(
+        r#""extensionsUsed": ["KHR_lights_punctual"],"#,
+        r#""extensionsUsed": ["KHR_lights_punctual"], "extensionsRequired": ["KHR_lights_punctual"],"#,
+    );
+    assert_eq!(load(&required).point_lights.len(), 4);
     // The conversion: the luminous solar constant is irradiance 1.
     assert_eq!(from_photometric(Vec3::ONE, SOLAR_ILLUMINANCE_LUX), Vec3::ONE);
     assert_eq!(s.point_lights.len(), 4, "{:?}", s.point_lights);

@@ -4,8 +4,9 @@
 
 mod common;
 
-use common::closed_room;
+use common::{closed_room, write_gltf};
 use glam::Vec3;
+use std::path::Path;
 
 #[test]
 fn closed_room_file_is_what_its_generator_writes() {
@@ -47,4 +48,45 @@ fn closed_room_loads_and_its_derived_occluders_leave_only_the_window() {
         .count();
     let fraction = escaped as f64 / n as f64;
     assert!((0.01..0.025).contains(&fraction), "{escaped} of {n} directions escape the room");
+}
+
+/// `tests/data/pbr_gallery/` holds what `common/write_gltf.rs` writes of the generated
+/// gallery: the same JSON (compared as JSON, so key order does not matter), the same buffer
+/// bytes, PNGs of the same pixels (compared decoded, so the PNG encoder's version does not
+/// matter), nothing else, and under 300 KB in all.
+#[test]
+fn pbr_gallery_files_are_what_their_writer_writes() {
+    let written = write_gltf::gallery();
+    let dir = Path::new(write_gltf::GALLERY_DIR);
+    if std::env::var_os("SEREIN_BLESS").is_some() {
+        std::fs::create_dir_all(dir).expect("create the test data folder");
+        for (name, bytes) in written.files() {
+            std::fs::write(dir.join(name), bytes).expect("write the test data");
+        }
+    }
+    let stale =
+        |name: &str| format!("{}/{name} is stale: rerun with SEREIN_BLESS=1", dir.display());
+    let mut total = 0;
+    for (name, want) in written.files() {
+        let have = std::fs::read(dir.join(&name)).unwrap_or_else(|e| panic!("{name}: {e}"));
+        total += have.len();
+        if name.ends_with(".gltf") {
+            let parse = |b: &[u8]| serde_json::from_slice::<serde_json::Value>(b).expect("JSON");
+            assert!(parse(&have) == parse(&want), "{}", stale(&name));
+        } else if name.ends_with(".png") {
+            let decode = |b: &[u8]| image::load_from_memory(b).expect("a PNG").to_rgba8();
+            assert!(decode(&have) == decode(&want), "{}", stale(&name));
+        } else {
+            assert!(have == want, "{}", stale(&name));
+        }
+    }
+    let mut listed: Vec<String> = std::fs::read_dir(dir)
+        .expect("the folder")
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    listed.sort();
+    let mut expected: Vec<String> = written.files().into_iter().map(|(n, _)| n).collect();
+    expected.sort();
+    assert_eq!(listed, expected, "files in {} that the writer does not write", dir.display());
+    assert!(total < 300_000, "the gallery's files take {total} bytes");
 }

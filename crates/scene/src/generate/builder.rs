@@ -2,7 +2,7 @@
 //! grouped into one mesh per (part, material).
 
 use crate::{Cleanup, MaterialId, Mesh, MeshData};
-use glam::{Vec2, Vec3};
+use glam::{Affine3A, Vec2, Vec3};
 
 /// Vertices and triangles of one future mesh.
 #[derive(Default)]
@@ -180,18 +180,27 @@ impl Geo {
     }
 }
 
-/// Meshes under construction, one per (part name, material), in insertion order.
+/// Meshes under construction, one per (part name, material), in insertion order, each with
+/// its object-to-world transform (the identity unless placed with [`Parts::placed`]).
 #[derive(Default)]
 pub(crate) struct Parts {
-    parts: Vec<(String, MaterialId, Geo)>,
+    parts: Vec<(String, MaterialId, Geo, Affine3A)>,
 }
 
 impl Parts {
+    /// The part's geometry, in world space.
     pub fn get(&mut self, name: &str, material: MaterialId) -> &mut Geo {
-        let i = match self.parts.iter().position(|(n, m, _)| n == name && *m == material) {
+        self.placed(name, material, Affine3A::IDENTITY)
+    }
+
+    /// The part's geometry in object space, `transform` taking it to the world (an instance:
+    /// the same object-space geometry under several transforms, as a glTF file stores it).
+    /// A part met again keeps the transform it was first given.
+    pub fn placed(&mut self, name: &str, material: MaterialId, transform: Affine3A) -> &mut Geo {
+        let i = match self.parts.iter().position(|(n, m, _, _)| n == name && *m == material) {
             Some(i) => i,
             None => {
-                self.parts.push((name.to_owned(), material, Geo::default()));
+                self.parts.push((name.to_owned(), material, Geo::default(), transform));
                 self.parts.len() - 1
             }
         };
@@ -204,8 +213,8 @@ impl Parts {
         let meshes = self
             .parts
             .into_iter()
-            .filter(|(_, _, g)| !g.idx.is_empty())
-            .filter_map(|(name, mat, g)| {
+            .filter(|(_, _, g, _)| !g.idx.is_empty())
+            .filter_map(|(name, mat, g, transform)| {
                 let data = MeshData {
                     positions: g.p,
                     normals: Some(g.n),
@@ -214,7 +223,8 @@ impl Parts {
                 };
                 // Generated data is finite and in range by construction; a failure would be a
                 // bug, and the mesh is then left out (the scene tests would catch it).
-                let (m, c) = Mesh::build(name, data, mat).ok()?;
+                let (mut m, c) = Mesh::build(name, data, mat).ok()?;
+                m.transform = transform;
                 cleanup += c;
                 Some(m)
             })

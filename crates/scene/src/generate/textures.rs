@@ -145,3 +145,34 @@ pub(crate) fn bark(seed: u32) -> Result<Texture, SceneError> {
         [0.30 * v, 0.22 * v, 0.15 * v, 1.0]
     })
 }
+
+/// Side of [`studs`] in texels, and the studs across it.
+pub(crate) const STUDS_SIZE: u32 = 128;
+const STUDS_ACROSS: u32 = 8;
+
+/// A tangent-space normal map (linear) of round studs on a flat ground: `STUDS_ACROSS` x
+/// `STUDS_ACROSS` cells, each holding a smooth bump of radius 0.4 cell, the height field
+/// `h cos^2(pi r / 2R)`, whose height `h` the seed draws per cell (a quarter to an eighth of
+/// a cell: slopes of up to about 45 degrees). Tileable. `+X` of the map is `+U`, `+Y` is up
+/// the image (`-V`), so a stud's normals lean out of its centre on every side.
+pub(crate) fn studs(seed: u32) -> Result<Texture, SceneError> {
+    let cell = STUDS_SIZE / STUDS_ACROSS;
+    let radius = 0.4 * cell as f32;
+    build("wall_studs_normal", STUDS_SIZE, STUDS_SIZE, ColorSpace::Linear, |x, y| {
+        let (cx, cy) = (x / cell, y / cell);
+        // Offset from the cell's centre at the texel's centre, +Y up the image.
+        let dx = (x % cell) as f32 + 0.5 - 0.5 * cell as f32;
+        let dy = 0.5 * cell as f32 - ((y % cell) as f32 + 0.5);
+        let r = (dx * dx + dy * dy).sqrt();
+        let h = 0.125 * cell as f32 * (1.0 + hash(cx, cy, seed));
+        let n = if r < radius && r > 0.0 {
+            // -d/dr of the height field, along the offset.
+            let k = std::f32::consts::PI / radius;
+            let slope = 0.5 * h * k * (k * r).sin();
+            glam::Vec3::new(slope * dx / r, slope * dy / r, 1.0).normalize()
+        } else {
+            glam::Vec3::Z
+        };
+        [n.x * 0.5 + 0.5, n.y * 0.5 + 0.5, n.z * 0.5 + 0.5, 1.0]
+    })
+}

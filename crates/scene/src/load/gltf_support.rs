@@ -12,8 +12,12 @@ use crate::{LoadError, LoadErrorKind, LoadWarningKind};
 use gltf::json::{self, validation::Checked};
 
 /// Extensions the loader reads (see the mapping in `load::gltf`); a file may require them.
-pub(crate) const HONOURED_EXTENSIONS: &[&str] =
-    &["KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_emissive_strength"];
+pub(crate) const HONOURED_EXTENSIONS: &[&str] = &[
+    "KHR_materials_transmission",
+    "KHR_materials_ior",
+    "KHR_materials_emissive_strength",
+    "KHR_lights_punctual",
+];
 
 /// How a feature is found in a document.
 enum Find {
@@ -62,7 +66,6 @@ const NOT_HONOURED: &[NotHonoured] = &[
     core("sampler wrap modes other than REPEAT", "textures repeat", wrap_modes),
     core("nearest-neighbour sampler filters", "textures are filtered linearly", filters),
     ext("KHR_texture_transform", "textures are not offset, rotated or scaled"),
-    ext("KHR_lights_punctual", "the file's lights are dropped"),
     ext("KHR_materials_clearcoat", "no clear-coat layer"),
     ext("KHR_materials_sheen", "no sheen"),
     ext("KHR_materials_volume", "transmissive materials are thin-walled (no absorption)"),
