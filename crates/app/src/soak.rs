@@ -462,17 +462,21 @@ pub fn run(
         let mut sample = Sample { interval, ..Default::default() };
         let mut times = Vec::new();
         let mut pass_ms: BTreeMap<String, f64> = BTreeMap::new();
+        // The interval's last frame is rendered in the schedule's end state, even when the
+        // clock ran out before it (a slow frame): the samples compare like with like.
+        let mut last: Option<Plan> = None;
         loop {
             let phase = match opts.pace {
                 Pace::Seconds(s) => t0.elapsed().as_secs_f64() / s,
-                Pace::Frames(f) => f64::from(sample.frames) / f64::from(f.max(1)),
+                Pace::Frames(f) if sample.frames >= f => 1.0,
+                Pace::Frames(f) => f64::from(sample.frames) / f64::from(f.max(2) - 1),
             };
-            if phase >= 1.0 {
-                break;
-            }
             let mut plan = plan_at(phase);
             if !opts.presets {
                 plan.preset = Preset::Default;
+            }
+            if phase >= 1.0 && last == Some(plan) {
+                break;
             }
             let mut step = || -> Result<engine::FrameStats, EngineError> {
                 if plan.preset != preset {
@@ -508,6 +512,7 @@ pub fn run(
                     sample.read_back_bytes += stats.transfers.read_back_bytes;
                     sample.cpu_waits += stats.transfers.cpu_waits;
                     sample.frames += 1;
+                    last = Some(plan);
                     sample.rss_peak_kib = sample.rss_peak_kib.max(resident_kib().unwrap_or(0));
                 }
                 Err(e) => {
