@@ -357,9 +357,12 @@ pub fn object_total(gpu: &GpuObjects) -> i64 {
 }
 
 /// What grew from the end of the warm-up (`samples[warm_up - 1]`) to the end of the run: the
-/// resident memory by more than `rss_tolerance` (a fraction), any GPU object count by
-/// anything, the GPU memory counters (`*_bytes`, which follow the sizes the passes ask for)
-/// by more than `rss_tolerance` too; not the counters in [`UNRELIABLE`].
+/// resident memory by more than `rss_tolerance` (a fraction), any GPU object count (the
+/// allocator's live allocations and memory blocks included) by anything. The GPU byte
+/// counters (`*_bytes`) are in the table only: they follow the sizes the passes ask for from
+/// frame to frame (the city's buffer memory moves by about 6% between intervals at 160x90,
+/// up and down), and a leak of memory-backed objects shows in the counts. Nor are the
+/// counters in [`UNRELIABLE`] read.
 /// Fewer samples than the warm-up and one more is a failure too (nothing to compare).
 pub fn check_growth(samples: &[Sample], warm_up: u32, rss_tolerance: f64) -> Vec<String> {
     let w = warm_up.max(1) as usize;
@@ -386,14 +389,10 @@ pub fn check_growth(samples: &[Sample], warm_up: u32, rss_tolerance: f64) -> Vec
             ));
         }
     }
-    for (name, &after) in last.gpu.iter().filter(|(k, _)| !UNRELIABLE.contains(&k.as_str())) {
+    let counted = |k: &&String| !k.ends_with("_bytes") && !UNRELIABLE.contains(&k.as_str());
+    for (name, &after) in last.gpu.iter().filter(|(k, _)| counted(k)) {
         let before = base.gpu.get(name).copied().unwrap_or(0);
-        let grew = if name.ends_with("_bytes") {
-            after as f64 > before as f64 * (1.0 + rss_tolerance)
-        } else {
-            after > before
-        };
-        if grew {
+        if after > before {
             out.push(format!(
                 "GPU {name} grew from {before} (interval {}) to {after} (interval {})",
                 base.interval, last.interval
@@ -604,6 +603,14 @@ mod tests {
         let s = [sample(0, 50_000, 50), sample(1, 100_000, 50), sample(2, 101_000, 50)];
         assert!(check_growth(&s, 2, 0.02).is_empty());
         assert_eq!(check_growth(&s, 1, 0.02).len(), 1);
+    }
+
+    #[test]
+    fn byte_counters_and_the_texture_count_are_shown_not_checked() {
+        let mut s = [sample(0, 100_000, 50), sample(1, 100_000, 50)];
+        s[1].gpu.insert("buffer_memory_bytes".into(), 1 << 30);
+        s[1].gpu.insert("textures".into(), 99);
+        assert!(check_growth(&s, 1, 0.02).is_empty());
     }
 
     #[test]
