@@ -18,6 +18,13 @@
 //!   Chromium (a step of `cargo xtask test`).
 //! - `cargo xtask fuzz [--minutes N] [--target NAME] [--seed S]`: the loaders' structure-aware
 //!   fuzzer for N minutes (default 10) with a new seed; summary in `target/fuzz/`.
+//! - `cargo xtask soak [--minutes N] [--size WxH] [--out DIR]`: the renderer without a window
+//!   for N minutes (default 2) at 160x90 with the time of day, camera, presets, one-bounce
+//!   techniques and effects switched on a schedule (release build of `serein-soak`); per
+//!   interval resident memory, GPU objects alive, bytes moved, frame times into
+//!   `target/soak/` (soak.md, soak.json); fails when memory grows more than 2% after the
+//!   warm-up interval, when any GPU object count grows, or on any error. Not part of `test`
+//!   (two minutes is more than it may add); the app's `soak` test runs a short one.
 
 mod bench;
 mod browser;
@@ -104,6 +111,14 @@ enum Command {
         #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
         args: Vec<String>,
     },
+    /// Render without a window for minutes with everything switched on a schedule (release
+    /// build of `serein-soak`) and fail on growth of memory or GPU objects, or on any error.
+    /// `cargo xtask soak --help-soak` lists the options (--minutes, --size, --out, --interval).
+    Soak {
+        /// Arguments for serein-soak.
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+        args: Vec<String>,
+    },
     /// Open the engine in a window (release build of `serein-view`): fly through the city,
     /// change the time of day, switch effects. `cargo xtask view --help-view` lists the
     /// options (--scene, --time, --date, --size, --preset, --out, --record).
@@ -125,6 +140,7 @@ fn main() -> anyhow::Result<()> {
             fuzz::run(&root, minutes, target.as_deref(), seed.as_deref())
         }
         Command::Render { args } => run_bin(&root, "serein-render", "--help-render", &args),
+        Command::Soak { args } => run_bin(&root, "serein-soak", "--help-soak", &args),
         Command::View { args } => run_bin(&root, "serein-view", "--help-view", &args),
         Command::Reference { args } => {
             run_bin(&root, "serein-reference", "--help-reference", &args)

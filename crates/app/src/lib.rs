@@ -14,6 +14,8 @@
 //! - [`truth`]: `serein-reference`, the reference of any scene on the CPU alone, whole or
 //!   as partial renders that merge.
 //! - [`view`]: `serein-view`, the engine in a window.
+//! - [`soak`]: `serein-soak` (`cargo xtask soak`), the renderer for minutes on a schedule,
+//!   checked for growth of memory and GPU objects.
 
 pub mod beyond;
 pub mod cli;
@@ -22,6 +24,7 @@ pub mod contact_sheet;
 pub mod ledger;
 pub mod regions;
 pub mod report;
+pub mod soak;
 pub mod thesis;
 pub mod truth;
 pub mod view;
