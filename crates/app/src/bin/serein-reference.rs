@@ -19,8 +19,6 @@ struct Args {
     command: Command,
 }
 
-// Parsed once per run: the size difference between the variants costs nothing.
-#[allow(clippy::large_enum_variant)]
 #[derive(Subcommand)]
 enum Command {
     /// Render the reference: writes reference.exr (mean), std_error.exr, reference.png and
