@@ -1,0 +1,16 @@
+#![doc = include_str!("../README.md")]
+//!
+//! ## Contents
+//!
+//! - [`Sun`]: direction towards the sun, irradiance, angular radius.
+//! - [`OcclusionQuad`]: a rectangle standing in for a large occluder of sky light, with its
+//!   hit rule ([`hit_test`]) and [`InvalidQuad`].
+//! - [`Component`]: the lighting terms a frame splits into.
+
+mod component;
+mod quad;
+mod sun;
+
+pub use component::Component;
+pub use quad::{AXIS_TOLERANCE, InvalidQuad, OcclusionQuad, hit_test};
+pub use sun::Sun;
