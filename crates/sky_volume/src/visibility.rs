@@ -12,7 +12,7 @@
 #![allow(clippy::needless_range_loop)] // index loops over fixed-size coefficient arrays
 
 use crate::OcclusionQuad;
-use crate::quad::hit_test;
+use vocab::hit_test;
 use crate::samples::SamplePlan;
 use glam::Vec3;
 

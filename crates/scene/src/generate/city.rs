@@ -280,10 +280,10 @@ fn build(seed: u64) -> Result<Scene, SceneError> {
             ] {
                 roof.boxed(lo, hi, 2.0, [true, true, true, false, true, true]);
             }
-            scene.occlusion_quads.extend(OcclusionQuad::box_walls(crate::Aabb::new(
+            scene.occlusion_quads.extend(OcclusionQuad::box_walls(
                 min,
                 Vec3::new(max.x, top + 1.0, max.z),
-            )));
+            ));
         }
     }
     // Statue on its pedestal in the crossing, and the mirror facing it.
