@@ -7,83 +7,8 @@ use crate::rng::Rng;
 use crate::sampling::{cosine_hemisphere, uniform_cone};
 use crate::world::{SurfaceHit, World};
 use glam::Vec3;
+pub use vocab::Component;
 use std::f32::consts::PI;
-
-/// Which quantity a render or a query computes: one per real-time technique it is the
-/// truth for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Component {
-    /// Direct sunlight through the disk (area-light shadows with true penumbrae): the truth
-    /// for shadow maps (CSM, PCSS). Images: reflected radiance; points: irradiance.
-    SunDirect,
-    /// Sunlight after exactly one diffuse bounce: the truth for light propagation volumes.
-    /// Images: reflected (diffuse) radiance; points: irradiance.
-    SunIndirectDiffuse,
-    /// Sky light with occlusion: the truth for the sky volume. Images and points:
-    /// irradiance `E = int L_sky V cos` (images at the first visible surface).
-    SkyIrradiance,
-    /// Light reaching the eye through the first surface's mirror/glass part, with full
-    /// global illumination after it: the truth for ray-traced reflections and refractions.
-    Reflections,
-    /// Everything: emission, sun, point lights and sky, all bounces. Points: irradiance.
-    Full,
-    /// Direct light of the point lights, shadowed (one shadow ray each): the truth for the
-    /// engine's point lights with cube shadow maps. Images: reflected radiance; points:
-    /// irradiance.
-    PointLights,
-    /// Emission seen directly (no bounce). Images: the first surface's emitted radiance;
-    /// points: irradiance from emitters one cosine-sampled ray away.
-    Emission,
-    /// Sky light reflected diffusely at the first surface: `rho_d / pi` times the occluded
-    /// sky irradiance (what a real-time engine makes of its sky volume's lookup). Images:
-    /// reflected radiance; points: the occluded sky irradiance, as [`Self::SkyIrradiance`].
-    SkyDiffuse,
-}
-
-impl Component {
-    pub const ALL: [Self; 8] = [
-        Self::SunDirect,
-        Self::SunIndirectDiffuse,
-        Self::SkyIrradiance,
-        Self::Reflections,
-        Self::Full,
-        Self::PointLights,
-        Self::Emission,
-        Self::SkyDiffuse,
-    ];
-
-    /// The components a one-bounce engine computes, in radiance: their sum over the
-    /// pixels where a surface is seen is the reference's [`Self::Full`] less the light of
-    /// more than one bounce (sky light bouncing, sunlight bouncing twice or more, glossy
-    /// indirect light, sunlight through mirrors onto diffuse surfaces, light of emitters and
-    /// point lights after a bounce). Every path through the first surface's mirror or
-    /// glass part is in [`Self::Reflections`].
-    pub const ONE_BOUNCE: [Self; 6] = [
-        Self::SunDirect,
-        Self::SunIndirectDiffuse,
-        Self::SkyDiffuse,
-        Self::Reflections,
-        Self::PointLights,
-        Self::Emission,
-    ];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::SunDirect => "sun_direct",
-            Self::SunIndirectDiffuse => "sun_indirect_diffuse",
-            Self::SkyIrradiance => "sky_irradiance",
-            Self::Reflections => "reflections",
-            Self::Full => "full",
-            Self::PointLights => "point_lights",
-            Self::Emission => "emission",
-            Self::SkyDiffuse => "sky_diffuse",
-        }
-    }
-
-    pub fn from_name(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|c| c.name() == name)
-    }
-}
 
 /// Path-length controls.
 #[derive(Clone, Copy, Debug, PartialEq)]
