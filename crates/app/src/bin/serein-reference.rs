@@ -23,7 +23,7 @@ struct Args {
 enum Command {
     /// Render the reference: writes reference.exr (mean), std_error.exr, reference.png and
     /// reference.partial (for `merge`) into --out.
-    Render(RenderArgs),
+    Render(Box<RenderArgs>),
     /// Merge partial renders (reference.partial files of other seeds or other pixels of the
     /// same scene, view, size and settings) into the estimate of all their samples: writes
     /// the same four files into --out.
