@@ -131,6 +131,5 @@ pub fn world_from_scene(scene: &scene::Scene, lighting: &SceneLighting) -> Resul
 
 /// The scene's camera.
 pub fn camera_from_scene(scene: &scene::Scene) -> Camera {
-    let c = &scene.camera;
-    Camera { position: c.position, forward: c.forward, up: c.up, fov_y_deg: c.fov_y_deg }
+    scene.camera.pinhole()
 }

@@ -7,8 +7,8 @@ use crate::rng::Rng;
 use crate::sampling::{cosine_hemisphere, uniform_cone};
 use crate::world::{SurfaceHit, World};
 use glam::Vec3;
-pub use vocab::Component;
 use std::f32::consts::PI;
+pub use vocab::Component;
 
 /// Path-length controls.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -56,7 +56,8 @@ impl OcclusionQuad {
         self
     }
 
-    /// A horizontal quad (normal +Y), e.g. a roof: `half_x` along X, `half_z` along Z.
+    /// A horizontal quad, e.g. a roof: `half_x` along X, `half_z` along Z (normal `X x Z =
+    /// -Y`; a quad blocks light from either side).
     pub const fn horizontal(center: Vec3, half_x: f32, half_z: f32) -> Self {
         Self::new(center, Vec3::X, Vec3::Z, half_x, half_z)
     }
