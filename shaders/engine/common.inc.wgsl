@@ -54,6 +54,7 @@ const COMPONENT_SKY_IRRADIANCE: u32 = 3u;
 const COMPONENT_REFLECTIONS: u32 = 4u;
 const COMPONENT_POINT_LIGHTS: u32 = 5u;
 const COMPONENT_EMISSION: u32 = 6u;
+const COMPONENT_SKY_DIFFUSE: u32 = 7u;
 // G-buffer channel views (engine::views::Channel): CHANNEL_BASE + the channel's index in
 // Channel::ALL (albedo, glossiness, shading normal, geometry normal, depth, AO).
 const CHANNEL_BASE: u32 = 16u;

@@ -225,6 +225,8 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
         case COMPONENT_POINT_LIGHTS: { c = base * points; }
         // Irradiance at the surface, as the reference's SkyIrradiance image.
         case COMPONENT_SKY_IRRADIANCE: { c = sky_e * ao; }
+        // The sky light the full frame reflects, as the reference's SkyDiffuse image.
+        case COMPONENT_SKY_DIFFUSE: { c = diffuse / PI * sky_e * ao; }
         case COMPONENT_SUN_INDIRECT: { c = diffuse / PI * bounce_e * ao; }
         case COMPONENT_EMISSION: { c = m.emission.rgb; }
         // The sun seen in the mirror and glass parts; the combine pass adds the traced rays.

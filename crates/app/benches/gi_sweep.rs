@@ -590,7 +590,7 @@ fn components(
         .iter()
         .map(|&c| {
             sweep.stage(&format!("components {name} {w}x{h}: reference {}", c.name()));
-            let r = reference_component(&scene, &camera, (w, h), spp, app::to_reference(c), false)
+            let r = reference_component(&scene, &camera, (w, h), spp, c, false)
                 .expect("reference component");
             let rname = format!("engine/reference_{name}_{w}x{h}_{spp}spp_{}", c.name());
             sweep.entry(

@@ -66,7 +66,7 @@ fn main() -> anyhow::Result<()> {
     let (w, h) = (320u32, 180u32);
     let app::regions::View { scene: city, camera, regions } =
         app::regions::View::of(scene::Generated::City, w, h)?;
-    let truth = app::to_reference(BOUNCE);
+    let truth = BOUNCE;
     let reference = compare::reference_component(&city, &camera, (w, h), 16, truth, false)?;
     println!("radius, RSM | {}", REGIONS.join(" | "));
     for (radius, resolution) in

@@ -103,7 +103,7 @@ fn main() -> anyhow::Result<()> {
     let (w, h) = (320u32, 180u32);
     let app::regions::View { scene: city, camera, regions } =
         app::regions::View::of(scene::Generated::City, w, h)?;
-    let truth = app::to_reference(REFLECTIONS);
+    let truth = REFLECTIONS;
     println!("variant | {}", REGIONS.join(" | "));
     let mut reference = None;
     for (name, change) in VARIANTS {

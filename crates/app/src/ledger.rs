@@ -306,8 +306,7 @@ pub fn run_ledger(
     let mut engine_full = None;
     for ComponentImage { component: c, image } in &images {
         let image = crate::image_of(&image.box_downsample(ss));
-        let rc = crate::to_reference(*c);
-        let r = reference_component(&scene, &camera, (w, h), spp, rc, progress)?;
+        let r = reference_component(&scene, &camera, (w, h), spp, *c, progress)?;
         let row = component_ledger(*c, &image, &r, &regions, report);
         if let Some(dir) = out {
             let tech = |err| EngineError::technique("reference", err);
@@ -324,7 +323,7 @@ pub fn run_ledger(
             engine_full = Some(image);
         }
         rows.push(row);
-        refs.push((rc, r));
+        refs.push((*c, r));
     }
     if let Some(dir) = out {
         write_contact_sheet(&dir.join("components.png"), &tiles)?;

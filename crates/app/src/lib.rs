@@ -43,8 +43,3 @@ pub fn image_of(hdr: &engine::HdrFrame) -> reference::Image {
     im.pixels = hdr.rgb().collect();
     im
 }
-
-/// The reference's component of the same meaning as the engine's.
-pub fn to_reference(c: engine::Component) -> reference::Component {
-    reference::Component::from_name(c.name()).unwrap_or(reference::Component::Full)
-}

@@ -120,9 +120,11 @@ fn build(
 ) -> RegionMap {
     let mut names: Vec<String> = Vec::new();
     let mut raw = Vec::with_capacity((width * height) as usize);
+    // The region map's pixels are the render's: the image's aspect, as the reference's.
+    let cam = cam.with_aspect(width as f32 / height as f32);
     for y in 0..height {
         for x in 0..width {
-            let d = cam.direction(x as f32 + 0.5, y as f32 + 0.5, width, height);
+            let d = cam.pixel_direction(x as f32 + 0.5, y as f32 + 0.5, width, height);
             let name = world.intersect(cam.position, d, f32::INFINITY).map_or_else(
                 || BACKGROUND.to_string(),
                 |h| {

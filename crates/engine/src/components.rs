@@ -1,6 +1,6 @@
 //! The engine's frame split into lighting terms, each as a linear HDR image of the same view,
 //! with the passes that produce it: the terms the `reference` path tracer computes one by one
-//! (its `Component`, variant for variant), so that a comparison tool (the `app` crate's
+//! (the one [`vocab::Component`] both crates use), so that a comparison tool (the `app` crate's
 //! component ledger) can put each beside its truth.
 //!
 //! | component | engine | reference |
@@ -8,6 +8,7 @@
 //! | `sun_direct` | `w_b f_base cos E_sun V_pcss` | the same with the sun disk sampled and a shadow ray |
 //! | `sun_indirect_diffuse` | `w_b (1 - g) albedo / pi E_bounce ao` (E from the LPV or the RSM gather) | `rho_d / pi` times one-bounce sun irradiance |
 //! | `sky_irradiance` | `pi (E_sky / pi) ao`: **irradiance** at the first surface | occluded sky irradiance at the first surface |
+//! | `sky_diffuse` | `(1 - g) albedo / pi E_sky ao`: the sky light the full frame reflects | `rho_d / pi` times the occluded sky irradiance |
 //! | `reflections` | what the combine pass adds (traced mirror + glass radiance with Fresnel weights), and with `Settings::sun_glints` the sun's glint in those parts | light through the first surface's delta part, full GI after it |
 //! | `point_lights` | `w_b f_base cos I / d² V_cube` | the same with one shadow ray per light |
 //! | `emission` | the first surface's emission | the same |
@@ -24,39 +25,9 @@ use crate::renderer::HdrFrame;
 use crate::{EngineError, Renderer};
 use frame_scheduler::{FrameReport, Outcome, PassRecord};
 
-/// A lighting term the frame can show on its own.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Component {
-    /// The sun's direct light with its shadows.
-    SunDirect,
-    /// One bounce of sunlight (the LPV or the RSM gather, `Settings::indirect`).
-    SunIndirectDiffuse,
-    /// Sky irradiance at the first surface (the sky volume), with ambient occlusion.
-    SkyIrradiance,
-    /// What the traced mirror and glass rays add.
-    Reflections,
-    /// Point lights with their cube shadows.
-    PointLights,
-    /// Emissive surfaces.
-    Emission,
-    /// The whole frame.
-    Full,
-}
-
-impl Component {
-    /// The component's name, as the reference's component of the same meaning is named.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::SunDirect => "sun_direct",
-            Self::SunIndirectDiffuse => "sun_indirect_diffuse",
-            Self::SkyIrradiance => "sky_irradiance",
-            Self::Reflections => "reflections",
-            Self::PointLights => "point_lights",
-            Self::Emission => "emission",
-            Self::Full => "full",
-        }
-    }
-}
+/// A lighting term the frame can show on its own: the one [`vocab::Component`] the reference
+/// computes too.
+pub use vocab::Component;
 
 /// The components the engine can show, in the order of the ledger's rows.
 pub const COMPONENTS: [Component; 7] = [
@@ -79,6 +50,7 @@ pub fn code(component: Option<Component>) -> u32 {
         Some(Component::Reflections) => 4,
         Some(Component::PointLights) => 5,
         Some(Component::Emission) => 6,
+        Some(Component::SkyDiffuse) => 7,
     }
 }
 
@@ -90,7 +62,7 @@ pub fn passes(component: Component) -> &'static [&'static str] {
         Component::SunIndirectDiffuse => {
             &[pass::LPV, pass::SUN_RSM, pass::RADIANCE_CACHE, pass::GBUFFER, pass::LIGHTING]
         }
-        Component::SkyIrradiance => {
+        Component::SkyIrradiance | Component::SkyDiffuse => {
             &[pass::SKY_MAP, pass::SKY_VOLUME, pass::GBUFFER, pass::LIGHTING]
         }
         Component::Reflections => &[

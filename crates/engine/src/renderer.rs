@@ -6,7 +6,7 @@ use crate::effects::{Effect, Effects};
 use crate::gpu::TransferCounts;
 use crate::graph::{self, pass};
 use crate::passes::display::Shown;
-use crate::state::{FrameCtx, State, SunLight};
+use crate::state::{FrameCtx, State};
 use crate::views::View;
 use crate::{EngineError, Settings};
 use frame_scheduler::{FrameReport, PassId, Res, Scheduler, WgpuTimer};
@@ -354,14 +354,13 @@ impl Renderer {
         layers.div_ceil(self.state.settings.sky_layers_per_frame)
     }
 
-    fn sun_light(&self) -> Result<Option<SunLight>, EngineError> {
+    fn sun_light(&self) -> Result<Option<vocab::Sun>, EngineError> {
         let Some(sun) = &self.scene.sun else { return Ok(None) };
-        let dir = sun.direction()?;
-        let irradiance = match &self.state.sky {
-            Some(sky) => sky.sun_irradiance(sun.color, dir),
-            None => sun.color,
-        };
-        Ok(Some(SunLight { dir, irradiance, angular_radius: sun.angular_radius }))
+        let mut light = sun.light()?;
+        if let Some(sky) = &self.state.sky {
+            light.irradiance = sky.sun_irradiance(light.irradiance, light.direction);
+        }
+        Ok(Some(light))
     }
 
     /// Renders one frame and reads its images back (HDR and display).

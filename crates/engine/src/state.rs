@@ -15,7 +15,6 @@ use crate::passes::{
 };
 use crate::trace::TraceScene;
 use crate::{EngineError, Settings};
-use glam::Vec3;
 use traced_effects::gpu::{Combine, RayCasting};
 
 /// What every frame is rendered with, built once per scene and settings and never changed
@@ -49,22 +48,13 @@ pub struct State {
     pub reflectors: Vec<crate::mirrored_sun::Reflector>,
 }
 
-/// The sun as the passes light with it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SunLight {
-    /// Unit direction towards the sun.
-    pub dir: Vec3,
-    /// Irradiance at the ground (RGB).
-    pub irradiance: Vec3,
-    pub angular_radius: f32,
-}
-
 /// What one frame is rendered from.
 pub struct FrameCtx {
     pub state: std::sync::Arc<State>,
     pub camera: scene::Camera,
     pub needs: scene::SceneNeeds,
-    pub sun: Option<SunLight>,
+    /// The sun the passes light with (`None`: the scene has none).
+    pub sun: Option<vocab::Sun>,
     pub frame: u64,
     /// Which lighting component the frame shows (`crate::components::code`; 0 the full frame).
     pub component: u32,

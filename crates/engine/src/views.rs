@@ -82,11 +82,9 @@ impl View {
         if let Some(i) = code.checked_sub(CHANNEL_BASE) {
             return Channel::ALL.get(i as usize).map(|&c| View::Channel(c));
         }
-        components::COMPONENTS.into_iter().find(|&c| components::code(Some(c)) == code).map(|c| {
-            match c {
-                Component::Full => View::Frame,
-                c => View::Component(c),
-            }
+        Component::ALL.into_iter().find(|&c| components::code(Some(c)) == code).map(|c| match c {
+            Component::Full => View::Frame,
+            c => View::Component(c),
         })
     }
 
@@ -112,10 +110,7 @@ mod tests {
     fn codes_are_distinct_and_round_trip() {
         let mut views = vec![View::Frame];
         views.extend(
-            components::COMPONENTS
-                .iter()
-                .filter(|&&c| c != Component::Full)
-                .map(|&c| View::Component(c)),
+            Component::ALL.iter().filter(|&&c| c != Component::Full).map(|&c| View::Component(c)),
         );
         views.extend(Channel::ALL.map(View::Channel));
         let mut codes: Vec<u32> = views.iter().map(|v| v.code()).collect();

@@ -35,12 +35,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         lpv.update(&vpls, &surfels);
         lpvs.push(lpv);
     }
-    let camera = reference::camera_from_scene(&case.scene);
+    let camera = reference::camera_from_scene(&case.scene).with_aspect(W as f32 / H as f32);
     // (diffuse reflectance, position, normal towards the eye) per pixel.
     let hits: Vec<Option<(Vec3, Vec3, Vec3)>> = (0..W * H)
         .into_par_iter()
         .map(|i| {
-            let d = camera.direction((i % W) as f32 + 0.5, (i / W) as f32 + 0.5, W, H);
+            let d = camera.pixel_direction((i % W) as f32 + 0.5, (i / W) as f32 + 0.5, W, H);
             let h = case.world.intersect(camera.position, d, f32::INFINITY)?;
             let n = if h.normal.dot(d) > 0.0 { -h.normal } else { h.normal };
             Some((case.world.shade(&h).diffuse_reflectance(), h.position, n))

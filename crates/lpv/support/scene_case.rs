@@ -104,7 +104,7 @@ impl SceneCase {
         radius: f32,
         res: u32,
     ) -> (shadows::ShadowView, shadows::Rsm) {
-        let basis = shadows::LightBasis::new(-self.to_sun).expect("sun direction");
+        let basis = shadows::LightBasis::new(self.to_sun).expect("sun direction");
         let view = shadows::ShadowView::fit_sphere(
             basis,
             center.as_dvec3(),
@@ -227,10 +227,10 @@ impl SceneCase {
 
     /// Receivers seen by the scene camera through a `w x h` pixel grid, within `max_dist`.
     pub fn camera_receivers(&self, w: u32, h: u32, max_dist: f32) -> Vec<Receiver> {
-        let cam = reference::camera_from_scene(&self.scene);
+        let cam = self.scene.camera.pinhole().with_aspect(w as f32 / h as f32);
         (0..w * h)
             .filter_map(|i| {
-                let d = cam.direction((i % w) as f32 + 0.5, (i / w) as f32 + 0.5, w, h);
+                let d = cam.pixel_direction((i % w) as f32 + 0.5, (i / w) as f32 + 0.5, w, h);
                 self.hit(cam.position, d, 0)
             })
             .filter(|r| (r.position - cam.position).length() <= max_dist)

@@ -24,15 +24,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
 
     // The camera stands in the opening and looks in, slightly down.
-    let camera = Pinhole {
-        eye: Vec3::new(0.0, 1.6, 2.8),
-        forward: Vec3::new(0.0, -0.2, -1.0),
-        up: Vec3::Y,
-        fov_y: 60f32.to_radians(),
-        aspect: 16.0 / 9.0,
-        far: 100.0,
-    };
-    let points = view_points(&tree, normal, &camera, (64, 36));
+    let camera = Pinhole::new(
+        Vec3::new(0.0, 1.6, 2.8),
+        Vec3::new(0.0, -0.2, -1.0),
+        Vec3::Y,
+        60.0,
+        16.0 / 9.0,
+    );
+    let points = view_points(&tree, normal, &camera, 100.0, (64, 36));
     println!("{} of {} camera rays found a surface", points.len(), 64 * 36);
 
     // A 1 m² sunlit patch on the floor as 16 VPLs.
@@ -45,7 +44,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .collect();
     let mut cache = RadianceCache::new(Settings::LOW)?;
     for frame in 0..4 {
-        let summary = cache.refresh(camera.eye, &points, &vpls, &tree);
+        let summary = cache.refresh(camera.position, &points, &vpls, &tree);
         println!("frame {frame}: {summary}");
     }
     for p in points.iter().step_by(points.len() / 5) {

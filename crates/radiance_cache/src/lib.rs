@@ -8,7 +8,7 @@
 //!    the caches its lookup interpolates (the corners with a positive trilinear weight of
 //!    each cascade with a positive blend weight); only those are allocated and lit. A
 //!    renderer without a G-buffer on the CPU finds the points with [`view_points`]: a grid
-//!    of [`Pinhole`] camera rays traced through the same [`kdtree_tracer::RayQuery`].
+//!    of [`Pinhole`] (`vocab`'s camera) rays traced through the same [`kdtree_tracer::RayQuery`].
 //! 3. **Lighting** ([`RadianceCache::update`]): at most `budget` caches per frame, the
 //!    oldest first; each gathers `vpl_samples` VPLs importance-sampled by their unshadowed
 //!    contribution, each tested with a shadow ray through any [`kdtree_tracer::RayQuery`],
@@ -61,5 +61,5 @@ pub use light::{GatherParams, GatherResult, IRRADIANCE_FLOATS, MAX_COEFFS, gathe
 pub use lookup::{CRUSH_BELOW, VARIANCE_FLOOR, visibility_weight};
 pub use settings::Settings;
 pub use summary::CacheSummary;
-pub use view::{Pinhole, view_points};
+pub use view::{Pinhole, grid_directions, view_points};
 pub use vpls::PreparedVpls;

@@ -8,43 +8,26 @@ use glam::Vec3;
 use kdtree_tracer::{Hit, Ray, RayQuery};
 use rayon::prelude::*;
 
-/// A pinhole camera as plain data (a renderer fills it from its own camera type).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Pinhole {
-    /// Where the rays start.
-    pub eye: Vec3,
-    /// Viewing direction (need not be unit).
-    pub forward: Vec3,
-    /// Up, roughly (the image's up is made orthogonal to `forward`).
-    pub up: Vec3,
-    /// Vertical field of view, radians.
-    pub fov_y: f32,
-    /// Width / height.
-    pub aspect: f32,
-    /// Rays stop at this distance: surfaces farther away are not seen.
-    pub far: f32,
-}
+/// The camera [`view_points`] looks through: the one pinhole camera of the serein crates.
+pub use vocab::Pinhole;
 
-impl Pinhole {
-    /// Unit directions of a `cols x rows` grid of rays through pixel centres, row-major with
-    /// the top row first (`i = row * cols + col`), in parallel (indexed, so the order is kept).
-    /// A degenerate camera (zero `forward`, `up` along `forward`) gives zero directions.
-    pub fn directions(&self, cols: u32, rows: u32) -> impl IndexedParallelIterator<Item = Vec3> {
-        let forward = self.forward.normalize_or_zero();
-        let right = forward.cross(self.up).normalize_or_zero();
-        let up = right.cross(forward);
-        let tan_y = (self.fov_y * 0.5).tan();
-        let tan_x = tan_y * self.aspect;
-        (0..cols * rows).into_par_iter().map(move |i| {
-            let x = ((i % cols) as f32 + 0.5) / cols as f32 * 2.0 - 1.0;
-            let y = 1.0 - ((i / cols) as f32 + 0.5) / rows as f32 * 2.0;
-            (forward + right * (x * tan_x) + up * (y * tan_y)).normalize_or_zero()
-        })
-    }
+/// Unit directions of a `cols x rows` grid of rays through pixel centres of `camera`,
+/// row-major with the top row first (`i = row * cols + col`), in parallel (indexed, so the
+/// order is kept). A degenerate camera (zero `forward`, `up` along `forward`) gives zero
+/// directions.
+pub fn grid_directions(
+    camera: &Pinhole,
+    cols: u32,
+    rows: u32,
+) -> impl IndexedParallelIterator<Item = Vec3> + '_ {
+    (0..cols * rows).into_par_iter().map(move |i| {
+        let (x, y) = ((i % cols) as f32 + 0.5, (i / cols) as f32 + 0.5);
+        camera.pixel_direction(x, y, cols, rows)
+    })
 }
 
 /// The surface points `camera` sees through a `cols x rows` grid of rays
-/// ([`Pinhole::directions`]) traced through `tracer` up to `camera.far`, in the grid's order;
+/// ([`grid_directions`]) traced through `tracer` up to `far`, in the grid's order;
 /// rays that hit nothing give no point.
 ///
 /// `normal` gives the unit geometric normal of a hit's triangle (any orientation: each
@@ -60,17 +43,17 @@ pub fn view_points<T, N>(
     tracer: &T,
     normal: N,
     camera: &Pinhole,
+    far: f32,
     (cols, rows): (u32, u32),
 ) -> Vec<SurfacePoint>
 where
     T: RayQuery + ?Sized,
     N: Fn(&Hit) -> Vec3 + Sync,
 {
-    let eye = camera.eye;
-    camera
-        .directions(cols, rows)
+    let eye = camera.position;
+    grid_directions(camera, cols, rows)
         .filter_map(|d| {
-            let h = tracer.intersect(&Ray::new(eye, d), camera.far)?;
+            let h = tracer.intersect(&Ray::new(eye, d), far)?;
             let n = normal(&h);
             let n = if n.dot(d) > 0.0 { -n } else { n };
             Some(SurfacePoint::new(eye + d * h.t, n))

@@ -30,24 +30,25 @@ fn wound_normal(mesh: &Mesh) -> impl Fn(&Hit) -> Vec3 + Sync + '_ {
 /// A camera at (0.3, -0.2, 4) looking down -z at the plane z = 0, 4 m away.
 fn camera() -> Pinhole {
     Pinhole {
-        eye: Vec3::new(0.3, -0.2, 4.0),
+        position: Vec3::new(0.3, -0.2, 4.0),
         forward: Vec3::new(0.0, 0.0, -2.0), // need not be unit
         up: Vec3::Y,
-        fov_y: 60f32.to_radians(),
+        fov_y_deg: 60.0,
         aspect: 1.5,
-        far: 100.0,
     }
 }
 
 const GRID: (u32, u32) = (16, 9);
+/// The rays' length.
+const FAR: f32 = 100.0;
 
 /// Where the ray of grid cell `(col, row)` meets the plane z = 0, by the pinhole model.
 fn expected(c: &Pinhole, col: u32, row: u32) -> Vec3 {
-    let tan_y = (c.fov_y * 0.5).tan();
+    let tan_y = c.tan_half_fov_y();
     let x = ((col as f32 + 0.5) / GRID.0 as f32 * 2.0 - 1.0) * tan_y * c.aspect;
     let y = (1.0 - (row as f32 + 0.5) / GRID.1 as f32 * 2.0) * tan_y;
-    let d = c.eye.z;
-    Vec3::new(c.eye.x + x * d, c.eye.y + y * d, 0.0)
+    let d = c.position.z;
+    Vec3::new(c.position.x + x * d, c.position.y + y * d, 0.0)
 }
 
 /// The plane z = 0, 40 m square, wound towards +z (`facing_camera`) or -z.
@@ -62,7 +63,7 @@ fn every_ray_finds_the_plane_where_the_pinhole_puts_it() {
     for facing in [true, false] {
         let (mesh, tree) = scene(&[plane(facing)]);
         let c = camera();
-        let points = view_points(&tree, wound_normal(&mesh), &c, GRID);
+        let points = view_points(&tree, wound_normal(&mesh), &c, FAR, GRID);
         assert_eq!(points.len(), (GRID.0 * GRID.1) as usize, "every ray hits the plane");
         for (i, p) in points.iter().enumerate() {
             let (col, row) = (i as u32 % GRID.0, i as u32 / GRID.0);
@@ -77,8 +78,8 @@ fn every_ray_finds_the_plane_where_the_pinhole_puts_it() {
         }
         // Row-major from the top-left: x grows along a row, y falls down the columns.
         let (first, last) = (points[0].position, points[points.len() - 1].position);
-        assert!(first.x < c.eye.x && first.y > c.eye.y, "top left {first}");
-        assert!(last.x > c.eye.x && last.y < c.eye.y, "bottom right {last}");
+        assert!(first.x < c.position.x && first.y > c.position.y, "top left {first}");
+        assert!(last.x > c.position.x && last.y < c.position.y, "bottom right {last}");
     }
 }
 
@@ -86,22 +87,21 @@ fn every_ray_finds_the_plane_where_the_pinhole_puts_it() {
 fn rays_that_miss_give_no_point() {
     let c = camera();
     // Only the right half of the view has geometry: a quad from x = eye.x to 20 m.
-    let right = [Vec3::new(c.eye.x, -20.0, 0.0), Vec3::new(20.0, 0.0, 0.0), Vec3::Y * 40.0];
+    let right = [Vec3::new(c.position.x, -20.0, 0.0), Vec3::new(20.0, 0.0, 0.0), Vec3::Y * 40.0];
     let (mesh, tree) = scene(&[right]);
-    let points = view_points(&tree, wound_normal(&mesh), &c, GRID);
+    let points = view_points(&tree, wound_normal(&mesh), &c, FAR, GRID);
     assert_eq!(points.len(), (GRID.0 / 2 * GRID.1) as usize, "the right half of the grid");
-    assert!(points.iter().all(|p| p.position.x > c.eye.x && p.position.z.abs() < 1e-5));
+    assert!(points.iter().all(|p| p.position.x > c.position.x && p.position.z.abs() < 1e-5));
     // The hits keep the grid's order: the first is the top row's first column right of centre.
     let want = expected(&c, GRID.0 / 2, 0);
     assert!((points[0].position - want).length() < 1e-4, "{} vs {want}", points[0].position);
 
     let (mesh, tree) = scene(&[plane(true)]);
-    let short = Pinhole { far: 3.9, ..c };
-    assert!(view_points(&tree, wound_normal(&mesh), &short, GRID).is_empty(), "beyond far");
+    assert!(view_points(&tree, wound_normal(&mesh), &c, 3.9, GRID).is_empty(), "beyond far");
     let away = Pinhole { forward: Vec3::Z, ..c };
-    assert!(view_points(&tree, wound_normal(&mesh), &away, GRID).is_empty(), "looking away");
+    assert!(view_points(&tree, wound_normal(&mesh), &away, FAR, GRID).is_empty(), "looking away");
     let degenerate = Pinhole { forward: Vec3::ZERO, ..c };
-    assert!(view_points(&tree, wound_normal(&mesh), &degenerate, GRID).is_empty(), "no view");
+    assert!(view_points(&tree, wound_normal(&mesh), &degenerate, FAR, GRID).is_empty(), "no view");
 }
 
 /// Inside a closed box of random-ish size, seen from a seeded set of eyes and directions:
@@ -130,8 +130,8 @@ fn inside_a_box_every_point_is_on_a_wall_facing_the_eye() {
     for _ in 0..8 {
         let eye = lo + s * Vec3::new(next(), next(), next()) * 0.8 + s * 0.1;
         let forward = Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5);
-        let c = Pinhole { eye, forward, up: Vec3::Y, fov_y: 1.2, aspect: 1.3, far: 50.0 };
-        let points = view_points(&tree, wound_normal(&mesh), &c, (12, 8));
+        let c = Pinhole::new(eye, forward, Vec3::Y, 1.2f32.to_degrees(), 1.3);
+        let points = view_points(&tree, wound_normal(&mesh), &c, 50.0, (12, 8));
         assert_eq!(points.len(), 96, "a closed box: every ray hits");
         for p in &points {
             let SurfacePoint { position: q, normal: n } = *p;
@@ -143,7 +143,7 @@ fn inside_a_box_every_point_is_on_a_wall_facing_the_eye() {
             assert!(n.dot((lo + hi) * 0.5 - q) > 0.0, "n {n} at {q}");
         }
         let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
-        let serial = one.install(|| view_points(&tree, wound_normal(&mesh), &c, (12, 8)));
+        let serial = one.install(|| view_points(&tree, wound_normal(&mesh), &c, 50.0, (12, 8)));
         assert_eq!(serial, points, "the thread count changes nothing");
     }
 }

@@ -32,12 +32,12 @@ fn main() {
     sweep.stage("city world");
     let city = scene::Generated::City.build(1);
     let world = world_from_scene(&city, &SceneLighting::DEFAULT).expect("city world");
-    let cam = camera_from_scene(&city);
+    let cam = camera_from_scene(&city).with_aspect(320.0 / 180.0);
 
     sweep.stage("city primary rays");
     let (pw, ph) = (320u32, 180u32);
     let dirs: Vec<glam::Vec3> = (0..pw * ph)
-        .map(|i| cam.direction((i % pw) as f32 + 0.5, (i / pw) as f32 + 0.5, pw, ph))
+        .map(|i| cam.pixel_direction((i % pw) as f32 + 0.5, (i / pw) as f32 + 0.5, pw, ph))
         .collect();
     let (ms, hits) = time_ms(sweep.reps(10), || {
         use rayon::prelude::*;

@@ -21,7 +21,7 @@
 //!   0.036 of it from above the horizon (what the same facade gets on an endless ground).
 
 use crate::material::{AlbedoTexture, AlphaTest};
-use crate::world::{PointLight, Sun, World};
+use crate::world::{PointLight, World};
 use crate::{Camera, Error, Material};
 use atmosphere::{Sky, SkyMap, SkyMapSettings, SkyRadiance};
 use glam::{Vec2, Vec3};
@@ -100,10 +100,8 @@ pub fn world_from_scene(scene: &scene::Scene, lighting: &SceneLighting) -> Resul
         });
     }
     b.shaded_triangles(&tris.positions, &tris.normals, &tris.indices, &tris.materials);
-    let sun_dir = match &scene.sun {
-        Some(s) => Some(s.direction().map_err(scene_err)?),
-        None => None,
-    };
+    let sun = scene.sun.as_ref().map(scene::Sun::light).transpose().map_err(scene_err)?;
+    let sun_dir = sun.map(|s| s.direction);
     if scene.sky {
         let sky = Sky::earth().map_err(scene_err)?;
         let dir = sun_dir.unwrap_or(Vec3::new(0.0, -1.0, 0.0));
@@ -113,14 +111,11 @@ pub fn world_from_scene(scene: &scene::Scene, lighting: &SceneLighting) -> Resul
         // as the engine's sky volume does (the city's facades got 40% of their sky light
         // from below the horizon beyond the ground otherwise).
         b.dark_ground(true);
-        if let (Some(s), Some(d)) = (&scene.sun, sun_dir) {
-            let mut sun = Sun::new(d, s.color * sky.sun_colour(lighting.sky_map.altitude_km, d));
-            sun.angular_radius = s.angular_radius;
+        if let Some(mut sun) = sun {
+            sun.irradiance *= sky.sun_colour(lighting.sky_map.altitude_km, sun.direction);
             b.sun(sun);
         }
-    } else if let (Some(s), Some(d)) = (&scene.sun, sun_dir) {
-        let mut sun = Sun::new(d, s.color);
-        sun.angular_radius = s.angular_radius;
+    } else if let Some(sun) = sun {
         b.sun(sun);
     }
     for l in &scene.point_lights {
@@ -136,6 +131,5 @@ pub fn world_from_scene(scene: &scene::Scene, lighting: &SceneLighting) -> Resul
 
 /// The scene's camera.
 pub fn camera_from_scene(scene: &scene::Scene) -> Camera {
-    let c = &scene.camera;
-    Camera { position: c.position, forward: c.forward, up: c.up, fov_y_deg: c.fov_y_deg }
+    scene.camera.pinhole()
 }

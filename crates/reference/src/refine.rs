@@ -209,9 +209,10 @@ impl Default for Refinement {
 pub fn glint_pixels(world: &World, camera: &Camera, width: u32, height: u32) -> Vec<u32> {
     use rayon::prelude::*;
     let Some(sun) = world.sun() else { return Vec::new() };
+    let camera = crate::camera::for_image(camera, width, height);
     let leaving = |x: f32, y: f32| -> Option<glam::Vec3> {
         let mut origin = camera.position;
-        let mut dir = camera.direction(x, y, width, height);
+        let mut dir = camera.pixel_direction(x, y, width, height);
         for bounce in 0..=GLINT_BOUNCES {
             let Some(h) = world.intersect(origin, dir, f32::INFINITY) else {
                 return (bounce > 0).then_some(dir);

@@ -133,7 +133,8 @@ pub struct Renderer<'w> {
 impl<'w> Renderer<'w> {
     pub fn new(world: &'w World, camera: Camera, settings: RenderSettings) -> Result<Self, Error> {
         settings.validate()?;
-        camera.validate()?;
+        let camera = crate::camera::for_image(&camera, settings.width, settings.height);
+        crate::camera::validate(&camera)?;
         let n = settings.width * settings.height;
         Ok(Self {
             world,
@@ -268,7 +269,7 @@ impl<'w> Renderer<'w> {
         for k in ks {
             let mut rng = Rng::for_sample(seed, pixel as u64, k as u64);
             let (jx, jy) = pixel_jitter(seed, pixel as u64, k as u64);
-            let dir = camera.direction(x + jx, y + jy, w, h);
+            let dir = camera.pixel_direction(x + jx, y + jy, w, h);
             let map = if maps.is_empty() { None } else { maps.get((k - k0) as usize % maps.len()) };
             m.add(
                 k,

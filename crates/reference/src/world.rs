@@ -6,56 +6,15 @@ use crate::{Error, Material};
 use glam::{Vec2, Vec3};
 pub use kdtree_tracer::SurfaceHit;
 use kdtree_tracer::{Mesh, Settings, Surfaces};
-use std::f32::consts::PI;
 use std::sync::Arc;
 
 /// Sky radiance in a world direction (unit, pointing away from the viewer), without the sun
 /// disk. `atmosphere::SkyMap::sample` or a constant fit here.
 pub type SkyFn = dyn Fn(Vec3) -> Vec3 + Send + Sync;
 
-/// The sun: a uniform disk of angular radius `angular_radius` around `direction`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Sun {
-    /// Unit vector towards the sun's centre.
-    pub direction: Vec3,
-    /// Irradiance on a surface facing the sun (after the atmosphere), linear RGB.
-    pub irradiance: Vec3,
-    /// Angular radius, radians (the real sun: 0.004675). Zero is a point at infinity.
-    pub angular_radius: f32,
-}
-
-impl Sun {
-    /// The real sun's angular radius (radians).
-    pub const ANGULAR_RADIUS: f32 = 0.004675;
-
-    pub fn new(direction: Vec3, irradiance: Vec3) -> Self {
-        Self { direction, irradiance, angular_radius: Self::ANGULAR_RADIUS }
-    }
-
-    /// Cosine of the angular radius.
-    pub fn cos_max(&self) -> f32 {
-        self.angular_radius.cos()
-    }
-
-    /// `1 - cos(angular_radius)`, computed without cancellation.
-    pub fn one_minus_cos_max(&self) -> f32 {
-        let s = (0.5 * self.angular_radius).sin();
-        2.0 * s * s
-    }
-
-    /// Solid angle of the disk, `2 pi (1 - cos alpha)`.
-    pub fn solid_angle(&self) -> f32 {
-        2.0 * PI * self.one_minus_cos_max()
-    }
-
-    /// Radiance of the disk: the irradiance divided by the projected solid angle of a
-    /// cap seen head-on, `pi sin^2(alpha)`, so a surface facing the sun receives exactly
-    /// `irradiance`.
-    pub fn radiance(&self) -> Vec3 {
-        let s = self.angular_radius.sin();
-        self.irradiance / (PI * s * s)
-    }
-}
+/// The sun: a uniform disk of angular radius `angular_radius` around `direction` (towards
+/// the sun), `irradiance` on a surface facing it; the one sun type of every serein crate.
+pub use vocab::Sun;
 
 /// A point light (radiant intensity in W/sr), contributing nothing beyond `radius`; a spot
 /// light with a `cone` (the intensity times [`scene::SpotCone::falloff`]).

@@ -15,7 +15,7 @@ fn furnace_converges_to_the_analytic_radiance() {
     let (a, e) = (0.5, 0.5);
     let world = furnace(a, e);
     world.validate().unwrap();
-    let cam = Camera::look_at(Vec3::new(0.1, 0.05, 0.0), Vec3::new(1.0, 0.2, -1.0), 90.0);
+    let cam = Camera::look_at(Vec3::new(0.1, 0.05, 0.0), Vec3::new(1.0, 0.2, -1.0), 90.0, 1.0);
     let s = RenderSettings { width: 24, height: 24, spp: 16, ..RenderSettings::DEFAULT };
     let r = render(&world, cam, s).unwrap();
     let (mean, se) = pooled(&r.estimates());
@@ -123,7 +123,7 @@ fn plane_under_a_constant_sky_receives_pi_l() {
         }
     }
     // Seen from above, the lit plane's radiance is albedo * L (one bounce to the sky).
-    let cam = Camera::look_at(Vec3::new(0.0, 2.0, 0.0), Vec3::new(0.0, 0.0, -0.5), 40.0);
+    let cam = Camera::look_at(Vec3::new(0.0, 2.0, 0.0), Vec3::new(0.0, 0.0, -0.5), 40.0, 1.0);
     let r = render(
         &world,
         cam,

@@ -40,7 +40,7 @@ fn mirror_world() -> World {
 }
 
 fn camera() -> Camera {
-    Camera::look_at(Vec3::new(4.5, 3.5, 2.5), Vec3::new(1.0, 0.0, 0.3), 55.0)
+    Camera::look_at(Vec3::new(4.5, 3.5, 2.5), Vec3::new(1.0, 0.0, 0.3), 55.0, 1.0)
 }
 
 #[test]
@@ -150,7 +150,7 @@ fn without_mirrors_or_glass_the_caustic_setting_changes_nothing() {
     b.sun(Sun::new(dir(35.0, 60.0), Vec3::splat(4.0)));
     b.sky(|d| Vec3::new(0.2, 0.3, 0.5) * d.y.max(0.0));
     let world = b.build().unwrap();
-    let cam = Camera::look_at(Vec3::new(2.0, 1.5, 3.0), Vec3::new(0.0, 0.4, 0.0), 50.0);
+    let cam = Camera::look_at(Vec3::new(2.0, 1.5, 3.0), Vec3::new(0.0, 0.4, 0.0), 50.0, 1.0);
     let off = RenderSettings {
         width: 24,
         height: 16,

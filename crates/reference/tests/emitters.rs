@@ -104,7 +104,7 @@ fn emitter_sampling_cuts_the_noise_of_a_small_light_under_the_same_mean() {
     // A 1 m square light 2 m above the plane, seen by a camera: the image with light sampling
     // agrees with the one without and is far less noisy.
     let world = square_over_plane(2.0, true, false);
-    let cam = Camera::look_at(Vec3::new(0.0, 1.0, 3.0), Vec3::ZERO, 60.0);
+    let cam = Camera::look_at(Vec3::new(0.0, 1.0, 3.0), Vec3::ZERO, 60.0, 1.0);
     let s = RenderSettings {
         width: 12,
         height: 12,

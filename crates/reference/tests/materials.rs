@@ -140,7 +140,7 @@ fn lit_box() -> World {
 #[test]
 fn rendering_is_deterministic_whatever_the_thread_count_and_progressive() {
     let world = lit_box();
-    let cam = Camera::look_at(Vec3::new(2.0, 1.5, 3.0), Vec3::new(0.0, 0.4, 0.0), 50.0);
+    let cam = Camera::look_at(Vec3::new(2.0, 1.5, 3.0), Vec3::new(0.0, 0.4, 0.0), 50.0, 1.0);
     let s = RenderSettings { width: 40, height: 24, spp: 4, ..RenderSettings::DEFAULT };
     let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
     let a = one.install(|| reference::render(&world, cam, s).unwrap().mean());
@@ -225,7 +225,7 @@ fn bad_input_is_a_typed_error() {
     b.material(Material::diffuse(Vec3::splat(2.0)));
     assert!(b.build().is_err());
     let world = World::builder().build().unwrap();
-    let cam = Camera::look_at(Vec3::ZERO, -Vec3::Z, 60.0);
+    let cam = Camera::look_at(Vec3::ZERO, -Vec3::Z, 60.0, 1.0);
     assert!(
         Renderer::new(&world, cam, RenderSettings { spp: 0, ..RenderSettings::DEFAULT }).is_err()
     );
@@ -235,7 +235,7 @@ fn bad_input_is_a_typed_error() {
     assert!(
         Renderer::new(
             &world,
-            Camera::look_at(Vec3::ZERO, Vec3::ZERO, 60.0),
+            Camera::look_at(Vec3::ZERO, Vec3::ZERO, 60.0, 1.0),
             RenderSettings::DEFAULT
         )
         .is_err()

@@ -47,7 +47,7 @@ fn rms(z: &[f64]) -> f64 {
 #[test]
 fn batch_standard_errors_predict_seed_to_seed_differences_at_edges_and_elsewhere() {
     let world = world();
-    let cam = Camera::look_at(Vec3::new(0.0, 3.0, 3.0), Vec3::new(0.0, 0.3, 0.0), 45.0);
+    let cam = Camera::look_at(Vec3::new(0.0, 3.0, 3.0), Vec3::new(0.0, 0.3, 0.0), 45.0, 1.0);
 
     // The panels seen directly: each sample is L or 0, so the samples' own standard error
     // is the binomial `L sqrt(p (1 - p) / (n - 1))` with `p = mean / L`. Four pairs of

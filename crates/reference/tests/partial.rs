@@ -26,7 +26,7 @@ fn world() -> World {
 }
 
 fn camera() -> Camera {
-    Camera::look_at(Vec3::new(2.0, 1.5, 3.0), Vec3::new(0.0, 0.4, 0.0), 50.0)
+    Camera::look_at(Vec3::new(2.0, 1.5, 3.0), Vec3::new(0.0, 0.4, 0.0), 50.0, 1.0)
 }
 
 fn settings(spp: u32, seed: u64) -> RenderSettings {

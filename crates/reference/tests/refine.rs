@@ -29,7 +29,7 @@ fn glint_world(sun: Vec3) -> (World, Camera) {
     b.smooth_triangles(&positions, &normals, &indices, chrome);
     b.sun(Sun { angular_radius: 0.05, ..Sun::new(sun, Vec3::splat(3.0)) });
     b.sky(|_| Vec3::splat(0.2));
-    let cam = Camera::look_at(Vec3::new(0.0, 1.5, 6.0), Vec3::ZERO, 25.0);
+    let cam = Camera::look_at(Vec3::new(0.0, 1.5, 6.0), Vec3::ZERO, 25.0, 1.0);
     (b.build().unwrap(), cam)
 }
 

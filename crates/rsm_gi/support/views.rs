@@ -76,9 +76,10 @@ impl View {
         group: usize,
         max_dist: f32,
     ) -> Self {
+        let cam = cam.with_aspect(w as f32 / h as f32);
         let (mut position, mut normal) = (Vec::new(), Vec::new());
         for i in 0..w * h {
-            let d = cam.direction((i % w) as f32 + 0.5, (i / w) as f32 + 0.5, w, h);
+            let d = cam.pixel_direction((i % w) as f32 + 0.5, (i / w) as f32 + 0.5, w, h);
             match case.world.intersect(cam.position, d, max_dist) {
                 Some(hit) => {
                     position.push(hit.position);
@@ -94,7 +95,7 @@ impl View {
         let view_proj =
             glam::camera::rh::proj::directx::perspective(
                 cam.fov_y_deg.to_radians(),
-                w as f32 / h as f32,
+                cam.aspect,
                 0.02,
                 2000.0,
             ) * glam::camera::rh::view::look_at_mat4(cam.position, cam.position + f, cam.up);
@@ -113,7 +114,7 @@ impl View {
         ]
         .into_iter()
         .map(|(forward, up)| {
-            let cam = reference::Camera { position: origin, forward, up, fov_y_deg: 90.0 };
+            let cam = reference::Camera::new(origin, forward, up, 90.0, 1.0);
             Self::new(case, cam, face, face, group, f32::INFINITY)
         })
         .collect()

@@ -67,6 +67,12 @@ impl Camera {
         Self { position: eye, forward, up: Vec3::Y, fov_y_deg, aspect, near: 0.1, far: 1000.0 }
     }
 
+    /// The view as a [`vocab::Pinhole`] (position, orientation, field of view, aspect),
+    /// what a ray tracer or a path tracer takes; `near` and `far` stay with this camera.
+    pub fn pinhole(&self) -> vocab::Pinhole {
+        vocab::Pinhole::new(self.position, self.forward, self.up, self.fov_y_deg, self.aspect)
+    }
+
     pub fn view(&self) -> Mat4 {
         let fwd = self.forward.normalize_or(Vec3::NEG_Z);
         let up = self.up.normalize_or(Vec3::Y);

@@ -54,7 +54,6 @@ mod material;
 mod mesh;
 mod needs;
 mod occluders;
-mod quad;
 mod scene;
 mod texture;
 mod volumes;
@@ -94,11 +93,11 @@ pub use material::{AlphaMask, Material, MaterialId, RAY_TRACE_THRESHOLD, phong_l
 pub use mesh::{Cleanup, Mesh, MeshData};
 pub use needs::{Need, SKY_DARK_ELEVATION_DEG, SceneNeeds};
 pub use occluders::{DeriveSettings, derive_occlusion_quads};
-pub use quad::OcclusionQuad;
 pub use scene::{Scene, SceneStats, SceneTriangles};
 pub use texture::{
     ColorSpace, MAX_TEXTURE_SIZE, Texture, TextureId, TextureLevel, Wrap, linear_to_srgb,
     srgb_to_linear,
 };
+pub use vocab::OcclusionQuad;
 pub use volumes::{LpvPlacement, SkyVolumePlacement};
 pub use warning::{LoadWarning, LoadWarningKind, STAND_IN_COLORS, STAND_IN_TEXTURE};

@@ -27,7 +27,7 @@ pub struct Sun {
 }
 
 /// The real sun's angular radius, radians (the mean solar disk, 0.2679 deg).
-pub const SUN_ANGULAR_RADIUS: f32 = 0.004675;
+pub const SUN_ANGULAR_RADIUS: f32 = vocab::Sun::ANGULAR_RADIUS;
 
 impl Sun {
     /// A white sun in a direction.
@@ -59,6 +59,15 @@ impl Sun {
                 Ok(solar_position(date, utc_hours, latitude_deg, longitude_deg)?.direction())
             }
         }
+    }
+
+    /// The sun as a renderer lights with it: its [`Sun::direction`], its angular radius, and
+    /// [`Sun::color`] as the irradiance on a surface facing it (what a renderer without an
+    /// atmosphere lights with; one with an atmosphere scales `irradiance` by the sun's colour
+    /// after the atmosphere in that direction). Errors as [`Sun::direction`].
+    pub fn light(&self) -> Result<vocab::Sun, SceneError> {
+        let direction = self.direction()?;
+        Ok(vocab::Sun { direction, irradiance: self.color, angular_radius: self.angular_radius })
     }
 
     /// Elevation above the horizon in degrees (negative below).

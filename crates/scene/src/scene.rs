@@ -303,12 +303,8 @@ impl Scene {
             l.validate()?;
         }
         for (i, q) in self.occlusion_quads.iter().enumerate() {
-            q.validate().map_err(|e| match e {
-                SceneError::Invalid { reason, .. } => {
-                    SceneError::invalid(format!("occlusion quad {i}"), reason)
-                }
-                e => e,
-            })?;
+            q.validate()
+                .map_err(|e| SceneError::invalid(format!("occlusion quad {i}"), e.reason))?;
         }
         self.camera.validate()?;
         self.sky_volume.validate()?;

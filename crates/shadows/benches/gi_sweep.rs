@@ -255,7 +255,7 @@ fn city(sweep: &mut Sweep) {
             )),
     );
     let cam = case.csm_camera(w, h, far as f32);
-    let light = -case.to_sun;
+    let light = case.to_sun;
     let res = if quick { 1024 } else { 2048 };
     for n in 1..=4u32 {
         sweep.stage(&format!("city csm {n}"));
@@ -334,7 +334,7 @@ fn city(sweep: &mut Sweep) {
 fn shimmer(sweep: &mut Sweep) {
     let quick = sweep.quick();
     let scene = PlaneBox::DEFAULT;
-    let light = scene.sun_direction;
+    let light = scene.to_sun;
     let cam = Camera::look_to(
         DVec3::new(-4.0, 1.7, -5.0),
         Vec3::new(0.6, -0.25, 0.6),

@@ -43,9 +43,9 @@ fn main() -> Result<(), shadows::ShadowError> {
         0.1,
         200.0,
     )?;
-    let sun_travel = Vec3::new(0.5, -1.0, 0.2);
+    let to_sun = Vec3::new(-0.5, 1.0, -0.2);
     let settings = CsmSettings { resolution: 512, ..CsmSettings::DEFAULT };
-    let csm = CascadedShadowMap::fit(&camera, sun_travel, &settings)?;
+    let csm = CascadedShadowMap::fit(&camera, to_sun, &settings)?;
     csm.validate(&camera)?;
     let pcss_settings = PcssSettings::DEFAULT;
     let mut maps = Vec::new();

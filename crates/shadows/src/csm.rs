@@ -233,16 +233,12 @@ pub struct CascadedShadowMap {
 }
 
 impl CascadedShadowMap {
-    /// Fits `settings.cascades` cascades to `camera` for a sun travelling along
-    /// `light_direction`.
-    pub fn fit(
-        camera: &Camera,
-        light_direction: Vec3,
-        settings: &CsmSettings,
-    ) -> Result<Self, ShadowError> {
+    /// Fits `settings.cascades` cascades to `camera` for a sun in the direction `to_sun`
+    /// (towards it, a `vocab::Sun`'s `direction`; need not be normalised).
+    pub fn fit(camera: &Camera, to_sun: Vec3, settings: &CsmSettings) -> Result<Self, ShadowError> {
         camera.validate()?;
         settings.validate()?;
-        let basis = LightBasis::new(light_direction)?;
+        let basis = LightBasis::new(to_sun)?;
         let n = settings.cascades as usize;
         let mut splits = [0.0f64; 9];
         split_distances(

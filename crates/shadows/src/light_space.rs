@@ -6,26 +6,28 @@ use crate::pcss::Receiver;
 use glam::{DMat3, DMat4, DVec3, DVec4, Mat4, Vec3};
 
 /// An orthonormal light basis for a directional light. Rows of [`LightBasis::world_to_light`]
-/// are `right`, `up`, `back` (`back = -direction`), so the light looks down its `-Z` axis.
+/// are `right`, `up`, `back` (`back = to_light`), so the light looks down its `-Z` axis.
 ///
 /// The helper axis is the world axis least aligned with the direction, never the camera's up
 /// vector: a sun straight down or parallel to the camera's up gives a well-defined basis, and
 /// the basis depends on the light alone (a moving camera never rotates the shadow map).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LightBasis {
-    /// Unit direction the light travels (from the sun towards the scene).
-    pub direction: DVec3,
+    /// Unit direction towards the light (from the scene towards the sun); the light travels
+    /// along `-to_light`.
+    pub to_light: DVec3,
     /// World to light space (rotation only).
     pub world_to_light: DMat3,
 }
 
 impl LightBasis {
-    /// `direction` is the direction light travels; it need not be normalised.
-    pub fn new(direction: Vec3) -> Result<Self, ShadowError> {
-        if !direction.is_finite() {
+    /// `to_light` is the direction towards the light (a `vocab::Sun`'s `direction`); it
+    /// need not be normalised.
+    pub fn new(to_light: Vec3) -> Result<Self, ShadowError> {
+        if !to_light.is_finite() {
             return Err(ShadowError::NonFinite("light direction"));
         }
-        let d = direction.as_dvec3();
+        let d = to_light.as_dvec3();
         let len = d.length();
         if len < 1e-12 {
             return Err(ShadowError::InvalidParameter {
@@ -33,9 +35,8 @@ impl LightBasis {
                 reason: "zero length".into(),
             });
         }
-        let d = d / len;
-        let back = -d;
-        let a = d.abs();
+        let back = d / len;
+        let a = back.abs();
         let helper = if a.x <= a.y && a.x <= a.z {
             DVec3::X
         } else if a.y <= a.z {
@@ -45,7 +46,7 @@ impl LightBasis {
         };
         let right = helper.cross(back).normalize();
         let up = back.cross(right);
-        Ok(Self { direction: d, world_to_light: DMat3::from_cols(right, up, back).transpose() })
+        Ok(Self { to_light: back, world_to_light: DMat3::from_cols(right, up, back).transpose() })
     }
 }
 

@@ -80,17 +80,18 @@ pub struct OverlappedShadowMaps {
 }
 
 impl OverlappedShadowMaps {
-    /// Centres the maps on `camera_position` (snapped to whole texels per map).
+    /// Centres the maps on `camera_position` (snapped to whole texels per map), for a sun in
+    /// the direction `to_sun` (towards it, a `vocab::Sun`'s `direction`).
     pub fn fit(
         camera_position: DVec3,
-        light_direction: Vec3,
+        to_sun: Vec3,
         settings: &OsmSettings,
     ) -> Result<Self, ShadowError> {
         settings.validate()?;
         if !camera_position.is_finite() {
             return Err(ShadowError::NonFinite("camera position"));
         }
-        let basis = LightBasis::new(light_direction)?;
+        let basis = LightBasis::new(to_sun)?;
         let maps = (0..settings.maps)
             .map(|i| {
                 let r = settings.base_radius as f64 * (settings.growth as f64).powi(i as i32);

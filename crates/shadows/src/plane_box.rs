@@ -27,8 +27,8 @@ pub struct PlaneBox {
     pub plane_half: f32,
     pub box_min: Vec3,
     pub box_max: Vec3,
-    /// Unit direction the sunlight travels.
-    pub sun_direction: Vec3,
+    /// Unit direction towards the sun.
+    pub to_sun: Vec3,
     pub sun_angular_radius: f32,
     /// Receiver region on the plane: `[min.x, max.x] x [min.y, max.y]` in world (x, z).
     pub region_min: glam::Vec2,
@@ -43,14 +43,14 @@ impl PlaneBox {
         let finite = self.plane_half.is_finite()
             && self.box_min.is_finite()
             && self.box_max.is_finite()
-            && self.sun_direction.is_finite()
+            && self.to_sun.is_finite()
             && self.sun_angular_radius.is_finite()
             && self.region_min.is_finite()
             && self.region_max.is_finite();
         if !finite {
             return Err(ShadowError::NonFinite("plane_box configuration"));
         }
-        LightBasis::new(self.sun_direction)?;
+        LightBasis::new(self.to_sun)?;
         if self.box_min.cmpge(self.box_max).any()
             || self.region_min.cmpge(self.region_max).any()
             || self.sun_angular_radius < 0.0
@@ -77,7 +77,7 @@ impl PlaneBox {
         box_min: Vec3::new(-0.5, 0.0, -0.5),
         box_max: Vec3::new(0.5, 3.0, 0.5),
         // elevation 35 deg, azimuth 200 deg: to_sun = (cos e cos a, sin e, cos e sin a).
-        sun_direction: Vec3::new(0.769_751_4, -0.573_576_4, 0.280_166_3),
+        to_sun: Vec3::new(-0.769_751_4, 0.573_576_4, -0.280_166_3),
         sun_angular_radius: SUN_ANGULAR_RADIUS,
         region_min: glam::Vec2::new(-1.5, -2.5),
         region_max: glam::Vec2::new(5.5, 4.5),
@@ -130,7 +130,7 @@ impl PlaneBox {
     /// # Panics
     /// On an invalid configuration (see [`PlaneBox::validate`]).
     pub fn shadow_view(&self, resolution: u32) -> ShadowView {
-        let basis = LightBasis::new(self.checked().sun_direction).expect("validated");
+        let basis = LightBasis::new(self.checked().to_sun).expect("validated");
         let lo = Vec3::new(self.region_min.x, 0.0, self.region_min.y).min(self.box_min);
         let hi = Vec3::new(self.region_max.x, 0.0, self.region_max.y).max(self.box_max);
         let c = ((lo + hi) * 0.5).as_dvec3();
@@ -171,8 +171,8 @@ impl PlaneBox {
     /// # Panics
     /// On an invalid configuration (see [`PlaneBox::validate`]).
     pub fn reference_visibility(&self, p: Vec3, samples: usize) -> f32 {
-        let s = -self.checked().sun_direction.as_dvec3().normalize();
-        let basis = LightBasis::new(self.sun_direction).expect("validated");
+        let s = self.checked().to_sun.as_dvec3().normalize();
+        let basis = LightBasis::new(self.to_sun).expect("validated");
         let m = basis.world_to_light.transpose();
         let (e1, e2) = (m.x_axis, m.y_axis);
         let tan_r = (self.sun_angular_radius as f64).tan();

@@ -65,7 +65,7 @@ impl Rsm {
         let vp = view.view_proj_f64();
         rasterize(&mut depth, Some(&mut ids), &vp, triangles)?;
         let area = (view.texel_size * view.texel_size) as f32;
-        let to_light = -view.basis.direction.as_vec3();
+        let to_light = view.basis.to_light.as_vec3();
         let normals: Vec<Vec3> = triangles
             .iter()
             .map(|t| {

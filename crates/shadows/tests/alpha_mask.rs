@@ -134,14 +134,8 @@ fn masked_quad_casts_its_opaque_half_into_cubes_and_rsm() {
     assert!((share - 0.5).abs() < 0.08, "the opaque half casts {share} of the quad");
 
     // The RSM of a sun straight down over the same scene.
-    let view = ShadowView::fit_sphere(
-        LightBasis::new(Vec3::NEG_Y).unwrap(),
-        DVec3::ZERO,
-        4.0,
-        64,
-        1.0,
-        false,
-    );
+    let view =
+        ShadowView::fit_sphere(LightBasis::new(Vec3::Y).unwrap(), DVec3::ZERO, 4.0, 64, 1.0, false);
     let rsm = ReflectiveShadowMap::new(d, layout, 64, 2).unwrap();
     let lit_quad = |g: &Geometry<'_>| {
         submit(&|enc| rsm.record(q, enc, g, &[Vec3::ONE; 2], &view, Vec3::ONE).unwrap());

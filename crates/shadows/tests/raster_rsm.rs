@@ -45,7 +45,7 @@ fn rasteriser_is_deterministic_across_thread_counts() {
 fn plane_box_validates_its_configuration() {
     PlaneBox::DEFAULT.validate().unwrap();
     assert!(matches!(
-        PlaneBox { sun_direction: Vec3::ZERO, ..PlaneBox::DEFAULT }.validate(),
+        PlaneBox { to_sun: Vec3::ZERO, ..PlaneBox::DEFAULT }.validate(),
         Err(ShadowError::InvalidParameter { .. })
     ));
     assert!(matches!(

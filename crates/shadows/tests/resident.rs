@@ -62,7 +62,7 @@ fn cascades(eye: Vec3, resolution: u32) -> (CascadedShadowMap, Vec<Pcss>, Vec<Cs
     let cam =
         shadows::Camera::look_to(eye.as_dvec3(), fwd, Vec3::Y, 1.0, 16.0 / 9.0, 0.1, 60.0).unwrap();
     let settings = CsmSettings { cascades: 3, resolution, ..CsmSettings::DEFAULT };
-    let csm = CascadedShadowMap::fit(&cam, scene.sun_direction, &settings).unwrap();
+    let csm = CascadedShadowMap::fit(&cam, scene.to_sun, &settings).unwrap();
     let pcss: Vec<Pcss> = csm
         .cascades
         .iter()
@@ -155,8 +155,8 @@ fn csm_lookup_cpu_gpu_parity() {
     }
     // The box's shadow falls where the CPU reference says: a point just behind the box
     // (away from the sun) is shadowed, one in front of it lit.
-    let behind = Vec3::new(0.0, 0.0, 0.0) - scene.sun_direction.with_y(0.0).normalize() * -1.5;
-    let front = Vec3::new(0.0, 0.0, 0.0) - scene.sun_direction.with_y(0.0).normalize() * 1.5;
+    let behind = Vec3::new(0.0, 0.0, 0.0) - scene.to_sun.with_y(0.0).normalize() * 1.5;
+    let front = Vec3::new(0.0, 0.0, 0.0) + scene.to_sun.with_y(0.0).normalize() * 1.5;
     let vis = |p: Vec3| csm_visibility(&blocks, &pcss, &maps, p, Vec3::Y, (p - eye).dot(fwd));
     assert!(vis(behind) < 0.1 && vis(front) > 0.9, "{} {}", vis(behind), vis(front));
 }
@@ -177,9 +177,8 @@ fn osm_lookup_cpu_gpu_parity() {
         growth: 4.0,
         caster_extension: 20.0,
     };
-    let osm =
-        OverlappedShadowMaps::fit(glam::DVec3::new(0.5, 1.0, 0.5), scene.sun_direction, &settings)
-            .unwrap();
+    let osm = OverlappedShadowMaps::fit(glam::DVec3::new(0.5, 1.0, 0.5), scene.to_sun, &settings)
+        .unwrap();
     let pcss: Vec<Pcss> = osm
         .maps
         .iter()

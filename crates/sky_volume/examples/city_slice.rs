@@ -15,18 +15,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let scene = scene::city(1);
     let placement = scene.sky_volume;
     let grid = VolumeGrid::new(placement.bounds.min, placement.resolution, placement.spacing());
-    let quads: Vec<OcclusionQuad> = scene
-        .occlusion_quads
-        .iter()
-        .map(|q| {
-            OcclusionQuad::new(q.center, q.axis_u, q.axis_v, q.half_u, q.half_v)
-                .with_opacity(q.opacity, q.tint)
-        })
-        .collect();
+    // scene's quads are this crate's (`vocab::OcclusionQuad`): no conversion.
+    let quads: &[OcclusionQuad] = &scene.occlusion_quads;
     let sun =
         scene.sun.as_ref().and_then(|s| s.direction().ok()).unwrap_or(Vec3::new(0.4, 0.7, 0.3));
     let sky = AnalyticSky::new(sun);
-    let mut volume = SkyVolume::with_quads(grid, Settings::DEFAULT, &quads)?;
+    let mut volume = SkyVolume::with_quads(grid, Settings::DEFAULT, quads)?;
     let t = std::time::Instant::now();
     volume.fill(&sky);
     let fill_ms = t.elapsed().as_secs_f64() * 1e3;

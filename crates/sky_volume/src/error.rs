@@ -23,3 +23,14 @@ pub enum SkyVolumeError {
     #[error("sky volume invariant broken: {0}")]
     Invariant(String),
 }
+
+impl SkyVolumeError {
+    /// [`vocab::OcclusionQuad::validate`] of every quad, the first bad one as
+    /// [`SkyVolumeError::InvalidQuad`] with its index.
+    pub(crate) fn check_quads(quads: &[crate::OcclusionQuad]) -> Result<(), Self> {
+        for (index, q) in quads.iter().enumerate() {
+            q.validate().map_err(|e| Self::InvalidQuad { index, reason: e.reason })?;
+        }
+        Ok(())
+    }
+}

@@ -20,7 +20,6 @@ pub mod gpu;
 mod grid;
 mod lookup;
 mod masked;
-mod quad;
 #[cfg(feature = "gpu")]
 mod resident;
 mod samples;
@@ -32,7 +31,7 @@ mod volume;
 pub use demo::generated_city;
 pub use error::SkyVolumeError;
 pub use grid::{MAX_POINTS, VolumeGrid};
-pub use quad::OcclusionQuad;
 pub use settings::{FillMethod, Settings, Window};
 pub use sky::{AnalyticSky, ConstantSky, SkyRadiance};
+pub use vocab::OcclusionQuad;
 pub use volume::{Dirty, SkyVolume, UpdateReport};

@@ -12,9 +12,9 @@
 #![allow(clippy::needless_range_loop)] // index loops over fixed-size coefficient arrays
 
 use crate::OcclusionQuad;
-use crate::quad::hit_test;
 use crate::samples::SamplePlan;
 use glam::Vec3;
+use vocab::hit_test;
 
 /// One quad, prepared for testing.
 #[derive(Clone, Copy, Debug)]

@@ -111,9 +111,7 @@ impl SkyVolume {
     /// Only layers below the top of a quad that was added, removed or moved are marked for
     /// rebuild: directions are all upward, so a quad cannot shade a point at or above it.
     pub fn set_quads(&mut self, quads: &[OcclusionQuad]) -> Result<(), SkyVolumeError> {
-        for (i, q) in quads.iter().enumerate() {
-            q.validate(i)?;
-        }
+        SkyVolumeError::check_quads(quads)?;
         let mut top = f32::NEG_INFINITY;
         let n = self.quads.len().max(quads.len());
         for i in 0..n {
@@ -299,9 +297,7 @@ impl SkyVolume {
     pub fn validate(&self) -> Result<(), SkyVolumeError> {
         self.grid.validate()?;
         self.settings.validate()?;
-        for (i, q) in self.quads.iter().enumerate() {
-            q.validate(i)?;
-        }
+        SkyVolumeError::check_quads(&self.quads)?;
         let bad = |s: String| Err(SkyVolumeError::Invariant(s));
         if self.probes.len() != self.grid.len() {
             return bad(format!("{} probes for {} points", self.probes.len(), self.grid.len()));

@@ -198,7 +198,9 @@ proptest! {
         let is_quad_error = matches!(r, Err(SkyVolumeError::InvalidQuad { index: 0, .. }));
         prop_assert!(is_quad_error);
         let nan = OcclusionQuad::new(Vec3::NAN, Vec3::X, Vec3::Y, 1.0, 1.0);
-        let is_nan_error = matches!(nan.validate(3), Err(SkyVolumeError::InvalidQuad { index: 3, reason }) if reason.contains("centre"));
+        let ok = OcclusionQuad::horizontal(Vec3::Y, 1.0, 1.0);
+        let r = SkyVolume::with_quads(small_grid(), Settings::DEFAULT, &[ok, ok, ok, nan]);
+        let is_nan_error = matches!(r, Err(SkyVolumeError::InvalidQuad { index: 3, reason }) if reason.contains("centre"));
         prop_assert!(is_nan_error);
     }
 

@@ -9,7 +9,7 @@ use glam::{UVec2, Vec3};
 use traced_effects::combine::traced_radiance;
 use traced_effects::ray_casting::{ListedRay, RayKinds, batch, cast_rays};
 use traced_effects::screen::{ScreenGBuffer, ScreenView};
-use traced_effects::trace::{TraceLighting, TraceScene, TraceSettings, trace_rays};
+use traced_effects::trace::{Sun, TraceLighting, TraceScene, TraceSettings, trace_rays};
 
 fn main() {
     let scene = scene::Generated::PlaneBox.build(1);
@@ -36,7 +36,7 @@ fn main() {
     let sky = |_d: Vec3| Vec3::splat(0.5);
     let ambient = |_p: Vec3, _n: Vec3| Vec3::ZERO;
     let lighting = TraceLighting {
-        sun: Some((Vec3::new(0.3, 1.0, 0.2).normalize(), Vec3::splat(3.0))),
+        sun: Some(Sun::new(Vec3::new(0.3, 1.0, 0.2).normalize(), Vec3::splat(3.0))),
         point_lights: &[],
         sky: &sky,
         ambient: &ambient,

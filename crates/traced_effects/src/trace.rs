@@ -42,6 +42,8 @@ use kdtree_tracer::{Hit, Mesh, Ray, RayQuery, Settings, SurfaceHit, Surfaces};
 use rayon::prelude::*;
 use scene::{Material, Texture, TextureId};
 use std::f32::consts::PI;
+/// The sun of [`TraceLighting`], the one sun type of the serein crates.
+pub use vocab::Sun;
 
 /// Angle (radians) a ray's footprint spreads per unit of distance, for mip selection: one
 /// pixel of the thesis's quarter-resolution effect buffers (6.2.4), 60 degrees over 540 rows.
@@ -230,8 +232,9 @@ impl RayQuery for TraceScene {
 /// Light the traced hits are shaded with (plain data and closures, so the engine can pass its
 /// sky volume / sky map lookups).
 pub struct TraceLighting<'a> {
-    /// Unit direction towards the sun and its irradiance (RGB).
-    pub sun: Option<(Vec3, Vec3)>,
+    /// The sun: its direction (towards it) and irradiance; the hits see it as a point (its
+    /// angular radius is not used).
+    pub sun: Option<Sun>,
     pub point_lights: &'a [scene::PointLight],
     /// Radiance of the sky in a direction (rays that escape: the thesis's "sky correction").
     pub sky: &'a (dyn Fn(Vec3) -> Vec3 + Sync),
@@ -337,7 +340,7 @@ fn map_rays<T: Send + Sync + Copy>(
     invalid: T,
     f: impl Fn(&Tracer, Vec3, Vec3, u32) -> T + Sync,
 ) -> Vec<T> {
-    let sun = lighting.sun.and_then(|(d, e)| Some((d.try_normalize()?, finite(e))));
+    let sun = lighting.sun.and_then(|s| Some((s.direction.try_normalize()?, finite(s.irradiance))));
     let tracer = Tracer { scene, lighting, sun, alpha: settings.alpha_test };
     let depth = settings.max_depth.clamp(1, MAX_TRACE_DEPTH);
     rays.par_iter()

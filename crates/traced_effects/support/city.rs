@@ -65,7 +65,7 @@ impl City {
         let sky = |d: Vec3| self.world.sky_radiance(d);
         let ambient = |_p: Vec3, _n: Vec3| Vec3::ZERO;
         let lighting = TraceLighting {
-            sun: self.world.sun().map(|s| (s.direction.normalize(), s.irradiance)),
+            sun: self.world.sun().copied(),
             point_lights: &self.scene.point_lights,
             sky: &sky,
             ambient: &ambient,

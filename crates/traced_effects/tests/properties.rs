@@ -7,7 +7,7 @@ use glam::Vec3;
 use proptest::prelude::*;
 use std::sync::OnceLock;
 use traced_effects::trace::{
-    TraceLighting, TraceRay, TraceScene, TraceSettings, trace_rays, trace_surfaces,
+    Sun, TraceLighting, TraceRay, TraceScene, TraceSettings, trace_rays, trace_surfaces,
 };
 
 fn city() -> &'static (scene::Scene, TraceScene) {
@@ -24,7 +24,7 @@ fn trace(rays: &[TraceRay], depth: u32) -> Vec<Vec3> {
     let sky = |d: Vec3| Vec3::new(0.3, 0.5, 0.9) * (0.5 + 0.5 * d.y.max(0.0));
     let ambient = |_p: Vec3, n: Vec3| Vec3::splat(0.2 + 0.1 * n.y);
     let lighting = TraceLighting {
-        sun: Some((Vec3::new(0.4, 0.8, 0.3).normalize(), Vec3::splat(5.0))),
+        sun: Some(Sun::new(Vec3::new(0.4, 0.8, 0.3).normalize(), Vec3::splat(5.0))),
         point_lights: &scene.point_lights,
         sky: &sky,
         ambient: &ambient,

@@ -5,7 +5,7 @@
 use glam::{Vec2, Vec3};
 use scene::{AlphaMask, Generated, Material, MaterialId, MeshData, Scene, Texture};
 use std::f32::consts::PI;
-use traced_effects::trace::{TraceLighting, TraceRay, TraceScene, TraceSettings, trace_rays};
+use traced_effects::trace::{Sun, TraceLighting, TraceRay, TraceScene, TraceSettings, trace_rays};
 
 const E: Vec3 = Vec3::new(1.0, 0.9, 0.8);
 
@@ -45,7 +45,7 @@ fn trace(s: &Scene, sun: Vec3, ambient: Vec3, rays: &[TraceRay], st: TraceSettin
     let ts = TraceScene::new(s).unwrap();
     let amb = move |_: Vec3, _: Vec3| ambient;
     let lighting = TraceLighting {
-        sun: Some((sun.normalize(), E)),
+        sun: Some(Sun::new(sun.normalize(), E)),
         point_lights: &[],
         sky: &sky,
         ambient: &amb,
@@ -198,7 +198,7 @@ fn random_rays_in_a_generated_scene_are_finite() {
     ));
     let ts = TraceScene::new(&s).unwrap();
     assert_eq!(ts.triangle_count(), s.triangle_count());
-    let sun = s.sun.map(|sun| (sun.direction().unwrap(), sun.color));
+    let sun = s.sun.map(|sun| sun.light().unwrap());
     let amb = |_: Vec3, n: Vec3| n.abs() * 0.1;
     let lighting = TraceLighting {
         sun,
@@ -253,7 +253,7 @@ fn a_mirror_wall_mirrors_the_sun_onto_traced_hits() {
         assert_eq!(reflectors.len(), 1);
         let no_ambient = |_: Vec3, _: Vec3| Vec3::ZERO;
         let lighting = TraceLighting {
-            sun: Some((sun, E)),
+            sun: Some(Sun::new(sun, E)),
             point_lights: &[],
             sky: &sky,
             ambient: &no_ambient,

@@ -18,7 +18,7 @@ pub(super) fn sky_passes(
         .key("sun direction (0.06 deg)", sun_key)
         .run(move |io| -> PassResult {
             let c = io.ctx();
-            let (s, dir) = (&c.state, c.sun.map_or(Vec3::Y, |s| s.dir));
+            let (s, dir) = (&c.state, c.sun.map_or(Vec3::Y, |s| s.direction));
             let previous = io.take_previous(r.sky_map)?;
             let map = SkyMapState::build(&s.gpu, sky_setup(c)?, &s.settings, dir, previous)?;
             s.gpu.take_error()?;
@@ -86,7 +86,7 @@ pub(super) fn shadow_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
 /// The sun cascades the frame's camera and sun call for.
 fn sun_maps_plan(c: &FrameCtx) -> Result<SunMapsPlan, EngineError> {
     let (s, sun) = (&c.state, sun_of(c)?);
-    s.shadow.plan(&c.camera, sun.dir, sun.angular_radius, &s.settings)
+    s.shadow.plan(&c.camera, &sun, &s.settings)
 }
 
 /// The G-buffer of the camera.
@@ -233,9 +233,12 @@ pub(super) fn lighting_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
             let sky_map_size = sky.map_or(0, |k| k.map.size());
             write_frame_uniform(c, Bound { shadows, cubes, sky_map_size });
             let reflectors = match c.sun {
-                Some(sun) => {
-                    ReflectorSet::in_view(&s.reflectors, sun.dir, &s.bounds, &c.camera.frustum())
-                }
+                Some(sun) => ReflectorSet::in_view(
+                    &s.reflectors,
+                    sun.direction,
+                    &s.bounds,
+                    &c.camera.frustum(),
+                ),
                 None => ReflectorSet::new(&[]),
             };
             let inputs = LightingInputs {

@@ -21,7 +21,6 @@ use crate::passes::traced_lighting::{OsmPass, TracedInputs, TracedLightingPass};
 use crate::settings::TracedShading;
 use crate::settings::{Indirect, Specular};
 use crate::state::FrameCtx;
-use crate::state::SunLight;
 use crate::trace::{TraceLighting, TraceSettings, TracedHit, trace_rays, trace_surfaces};
 use frame_scheduler::{
     Budget, FrameGraph, PassBuilder, PassId, PassIo, PassResult, Res, quantise_dir,
@@ -96,7 +95,7 @@ fn camera_key(c: &FrameCtx) -> [i64; 6] {
 }
 
 fn sun_key(c: &FrameCtx) -> Option<[i64; 3]> {
-    c.sun.map(|s| quantise_dir(s.dir.to_array(), 1e-3))
+    c.sun.map(|s| quantise_dir(s.direction.to_array(), 1e-3))
 }
 
 /// What the lighting pass binds besides the G-buffer, as the frame uniform reports it to the
@@ -114,7 +113,7 @@ fn write_frame_uniform(c: &FrameCtx, bound: Bound) {
     let set = &s.settings;
     let mut u = FrameUniform::new(&c.camera, c.view_projection(), set.width, set.height);
     if let Some(sun) = c.sun.filter(|_| c.needs.sun_lighting.needed) {
-        u.sun_dir = sun.dir.extend(1.0).to_array();
+        u.sun_dir = sun.direction.extend(1.0).to_array();
         u.sun_irradiance = sun.irradiance.extend(sun.angular_radius).to_array();
     }
     let mut flags = 0;
@@ -174,7 +173,7 @@ fn sky_setup(c: &FrameCtx) -> Result<&crate::passes::sky::SkySetup, EngineError>
     c.state.sky.as_ref().ok_or_else(|| EngineError::Settings("the scene has no sky".into()))
 }
 
-fn sun_of(c: &FrameCtx) -> Result<SunLight, EngineError> {
+fn sun_of(c: &FrameCtx) -> Result<vocab::Sun, EngineError> {
     c.sun.ok_or_else(|| EngineError::Settings("no sun".into()))
 }
 

@@ -71,7 +71,7 @@ pub(super) fn trace_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) {
                     + cache.map_or(Vec3::ZERO, |k| k.cache.irradiance(p, n))
             };
             let lighting = TraceLighting {
-                sun: c.sun.filter(|_| c.needs.sun_lighting.needed).map(|s| (s.dir, s.irradiance)),
+                sun: c.sun.filter(|_| c.needs.sun_lighting.needed),
                 point_lights: &s.point_lights,
                 sky: &sky_fn,
                 ambient: &ambient,

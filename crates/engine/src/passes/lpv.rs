@@ -18,7 +18,6 @@ use super::sky::SkyLight;
 use super::sky_bounce::{SkyBounce, SkyBounceInputs};
 use super::sun_rsm::SunRsm;
 use crate::gpu::{Gpu, SceneBuffers};
-use crate::state::SunLight;
 use crate::{EngineError, Settings};
 use lpv::Lpv;
 use lpv::gpu::{LpvPass, LpvPath, RsmFrame};
@@ -72,7 +71,7 @@ impl LpvState {
         gpu: &Gpu,
         scene: &SceneBuffers,
         camera: &scene::Camera,
-        sun: &SunLight,
+        sun: &vocab::Sun,
         sky: Option<SkyLight<'_>>,
     ) -> Result<(), EngineError> {
         self.pass.follow(camera.position);
@@ -82,7 +81,7 @@ impl LpvState {
         let sky_frame = self.sky_bounce.as_ref().map(|b| b.record_frame(gpu, camera, region, sky));
         if self.pass.on_gpu() {
             let max_texel_flux = self.rsm.max_texel_flux(sun.irradiance, texel_area);
-            let mut frames = vec![RsmFrame { to_light: sun.dir, texel_area, max_texel_flux }];
+            let mut frames = vec![RsmFrame { to_light: sun.direction, texel_area, max_texel_flux }];
             frames.extend(sky_frame);
             let mut enc = gpu.device.create_command_encoder(&Default::default());
             self.pass.record_update(&gpu.queue, &mut enc, &frames).map_err(lpv_err)?;
@@ -103,7 +102,8 @@ impl LpvState {
             vpls.extend(bounce.read_back(gpu)?);
         }
         let surfels = if self.pass.lpv().settings().geometry_volume {
-            lpv::rsm_surfels(&rsm.position, &rsm.normal, texel_area, sun.dir).map_err(lpv_err)?
+            lpv::rsm_surfels(&rsm.position, &rsm.normal, texel_area, sun.direction)
+                .map_err(lpv_err)?
         } else {
             Vec::new()
         };

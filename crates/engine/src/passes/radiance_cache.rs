@@ -19,12 +19,11 @@
 
 use super::sun_rsm::{Region, SunRsm};
 use crate::gpu::{Gpu, SceneBuffers};
-use crate::state::SunLight;
 use crate::trace::TraceScene;
 use crate::{EngineError, Settings};
 use glam::{DVec3, Vec3};
 use radiance_cache::gpu::ResidentCache;
-use radiance_cache::{CacheSummary, Pinhole, RadianceCache, view_points};
+use radiance_cache::{CacheSummary, RadianceCache, view_points};
 use shadows::Vpl;
 
 /// VPLs per side of the RSM at most (the `radiance_cache` sweep's 256² map in 4² blocks).
@@ -81,12 +80,12 @@ impl CacheState {
         gpu: &Gpu,
         scene: &SceneBuffers,
         eye: Vec3,
-        sun: &SunLight,
+        sun: &vocab::Sun,
     ) -> Result<(), EngineError> {
         let sphere = self.region.sphere(eye);
         // The sphere moves in whole metres (the other bounce passes' camera cell).
         let sphere = (sphere.0.round(), sphere.1);
-        if self.vpls_for == Some((sphere, sun.dir)) {
+        if self.vpls_for == Some((sphere, sun.direction)) {
             return Ok(());
         }
         self.rsm.render(gpu, scene, sphere, sun)?;
@@ -96,7 +95,7 @@ impl CacheState {
         self.vpls =
             self.reduction.read(&gpu.device).map_err(|e| EngineError::technique("shadows", e))?;
         gpu.transfers.read_back(self.reduction.read_back_bytes());
-        self.vpls_for = Some((sphere, sun.dir));
+        self.vpls_for = Some((sphere, sun.direction));
         Ok(())
     }
 
@@ -108,19 +107,12 @@ impl CacheState {
         scene: &SceneBuffers,
         trace: &TraceScene,
         camera: &scene::Camera,
-        sun: &SunLight,
+        sun: &vocab::Sun,
         (queries, output, count): (&wgpu::Buffer, &wgpu::Buffer, u32),
     ) -> Result<(), EngineError> {
         self.refresh_vpls(gpu, scene, camera.position, sun)?;
-        let pinhole = Pinhole {
-            eye: camera.position,
-            forward: camera.forward,
-            up: camera.up,
-            fov_y: camera.fov_y_deg.to_radians(),
-            aspect: camera.aspect,
-            far: camera.far,
-        };
-        let points = view_points(trace, |h| trace.geometric_normal(h), &pinhole, self.points);
+        let normal = |h: &kdtree_tracer::Hit| trace.geometric_normal(h);
+        let points = view_points(trace, normal, &camera.pinhole(), camera.far, self.points);
         let summary = self.cache.refresh(camera.position, &points, &self.vpls, trace);
         let written = self.resident.write(&gpu.device, &gpu.queue, &self.cache);
         gpu.transfers.uploaded(written.bytes);

@@ -9,7 +9,6 @@
 
 use super::sun_rsm::{Region, SunRsm};
 use crate::gpu::{GBufferTargets, Gpu, SceneBuffers};
-use crate::state::SunLight;
 use crate::{EngineError, Settings};
 use glam::Vec3;
 use rsm_gi::gpu::{GatherBinding, GpuGBuffer, GpuGather, GpuRsm};
@@ -73,7 +72,7 @@ impl RsmGatherState {
         gpu: &Gpu,
         scene: &SceneBuffers,
         eye: Vec3,
-        sun: &SunLight,
+        sun: &vocab::Sun,
     ) -> Result<(), EngineError> {
         let view = self.rsm.render(gpu, scene, self.region.sphere(eye), sun)?;
         let res = self.rsm.resolution();

@@ -7,7 +7,6 @@
 
 use crate::gpu::{Gpu, SceneBuffers};
 use crate::{EngineError, Settings};
-use glam::Vec3;
 use shadows::gpu::{CascadeMaps, CascadeShadows};
 use shadows::{CascadedShadowMap, CsmCascade, CsmSettings, Pcss, PcssSettings, ShadowView};
 
@@ -45,15 +44,14 @@ impl ShadowPass {
         self.maps.maps(maps.map_or(0, |m| m.count))
     }
 
-    /// The cascades fitted to `camera` for a sun towards `sun_dir`, with PCSS filters for a
-    /// sun disk of `angular_radius` (hard shadows when the preset has no PCF taps): what
+    /// The cascades fitted to `camera` for `sun`, with PCSS filters for its disk (hard
+    /// shadows when the preset has no PCF taps): what
     /// [`Self::render`] renders. Stabilised cascades snap to their texels, so the plan stays
     /// equal while the camera moves by less than a texel of every cascade.
     pub fn plan(
         &self,
         camera: &scene::Camera,
-        sun_dir: Vec3,
-        angular_radius: f32,
+        sun: &vocab::Sun,
         settings: &Settings,
     ) -> Result<SunMapsPlan, EngineError> {
         let cam = shadows::Camera::look_to(
@@ -71,9 +69,9 @@ impl ShadowPass {
             resolution: self.maps.resolution(),
             ..CsmSettings::DEFAULT
         };
-        let csm = CascadedShadowMap::fit(&cam, -sun_dir, &csm_settings).map_err(tech)?;
+        let csm = CascadedShadowMap::fit(&cam, sun.direction, &csm_settings).map_err(tech)?;
         let views = csm.cascades.iter().map(|c| (&c.view, c.split_far as f32));
-        SunMapsPlan::new(views, angular_radius, settings)
+        SunMapsPlan::new(views, sun.angular_radius, settings)
     }
 
     /// Renders the maps of `plan` whose view changed since they were last rendered.

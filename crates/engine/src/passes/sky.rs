@@ -26,14 +26,7 @@ impl SkySetup {
         let grid = VolumeGrid::new(p.bounds.min, p.resolution, p.spacing());
         // The authored quads, or for a scene without any (a glTF or OBJ file) quads derived
         // from its planar surfaces, so that its rooms are not flooded with sky light.
-        let quads = scene
-            .sky_occluders()
-            .iter()
-            .map(|q| {
-                OcclusionQuad::new(q.center, q.axis_u, q.axis_v, q.half_u, q.half_v)
-                    .with_opacity(q.opacity, q.tint)
-            })
-            .collect();
+        let quads = scene.sky_occluders().into_owned();
         Ok(Self { atmosphere, grid, quads })
     }
 

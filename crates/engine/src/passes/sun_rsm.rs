@@ -4,7 +4,6 @@
 //! RSM gather (`rsm_gi`).
 
 use crate::gpu::{Gpu, SceneBuffers};
-use crate::state::SunLight;
 use crate::{EngineError, Settings};
 use glam::{DVec3, Vec3};
 use shadows::{LightBasis, ShadowView};
@@ -100,9 +99,9 @@ impl SunRsm {
         gpu: &Gpu,
         scene: &SceneBuffers,
         (center, radius): (DVec3, f64),
-        sun: &SunLight,
+        sun: &vocab::Sun,
     ) -> Result<ShadowView, EngineError> {
-        let basis = LightBasis::new(-sun.dir).map_err(tech)?;
+        let basis = LightBasis::new(sun.direction).map_err(tech)?;
         let view = ShadowView::fit_sphere(basis, center, radius, self.resolution(), 200.0, true);
         let mut enc = gpu.device.create_command_encoder(&Default::default());
         let geometry = scene.shadow_geometry(true);

@@ -10,7 +10,6 @@ use super::lpv::LpvState;
 use super::shadow::{SunMapsPlan, render_sun_maps};
 use super::sky::{SkyLight, SkyVolumeBinding};
 use crate::gpu::{Gpu, SceneBuffers, compute_pipeline, dispatch, empty_storage, uniform_buffer};
-use crate::state::SunLight;
 use crate::trace::TracedHit;
 use crate::{EngineError, Settings};
 use glam::Vec3;
@@ -50,9 +49,9 @@ impl OsmPass {
         gpu: &Gpu,
         scene: &SceneBuffers,
         eye: Vec3,
-        sun: &SunLight,
+        sun: &vocab::Sun,
     ) -> Result<(), EngineError> {
-        let osm = OverlappedShadowMaps::fit(eye.as_dvec3(), -sun.dir, &self.settings.osm)
+        let osm = OverlappedShadowMaps::fit(eye.as_dvec3(), sun.direction, &self.settings.osm)
             .map_err(tech)?;
         let views = osm.maps.iter().map(|v| (v, f32::INFINITY));
         let plan = SunMapsPlan::new(views, sun.angular_radius, &self.settings)?;

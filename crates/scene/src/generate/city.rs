@@ -280,10 +280,9 @@ fn build(seed: u64) -> Result<Scene, SceneError> {
             ] {
                 roof.boxed(lo, hi, 2.0, [true, true, true, false, true, true]);
             }
-            scene.occlusion_quads.extend(OcclusionQuad::box_walls(crate::Aabb::new(
-                min,
-                Vec3::new(max.x, top + 1.0, max.z),
-            )));
+            scene
+                .occlusion_quads
+                .extend(OcclusionQuad::box_walls(min, Vec3::new(max.x, top + 1.0, max.z)));
         }
     }
     // Statue on its pedestal in the crossing, and the mirror facing it.

@@ -153,7 +153,7 @@ pub fn two_rooms(seed: u64) -> Scene {
     let walls = parts.get("walls", white);
     let slab = |g: &mut Geo, q: &mut Vec<OcclusionQuad>, min: Vec3, max: Vec3| {
         g.cube(min, max, 1.0);
-        q.extend(OcclusionQuad::box_walls(Aabb::new(min, max)));
+        q.extend(OcclusionQuad::box_walls(min, max));
     };
     // Outer walls (thick) west, east, north; the shared thin wall.
     slab(walls, &mut quads, Vec3::new(a0 - t, 0.0, -d - t), Vec3::new(a0, h, t));

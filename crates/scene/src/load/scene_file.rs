@@ -282,7 +282,7 @@ fn load_scene_ctx(
             (Vec3::from(q.axis_u).normalize_or_zero(), Vec3::from(q.axis_v).normalize_or_zero());
         let quad = OcclusionQuad::new(q.center.into(), u, v, q.half_u, q.half_v)
             .with_opacity(q.opacity.unwrap_or(1.0), q.tint.map_or(Vec3::ONE, Vec3::from));
-        quad.validate().map_err(|e| err(el(), LoadErrorKind::InvalidValue(e.to_string())))?;
+        quad.validate().map_err(|e| err(el(), LoadErrorKind::InvalidValue(e.reason)))?;
         scene.occlusion_quads.push(quad);
     }
     for (i, o) in f.material_override.iter().enumerate() {

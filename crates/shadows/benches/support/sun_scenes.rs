@@ -60,9 +60,9 @@ impl SunScene {
         Self::new("city", scene::city(seed))
     }
 
-    /// The light basis of the sun (light travels along `-to_sun`).
+    /// The light basis of the sun.
     pub fn basis(&self) -> LightBasis {
-        LightBasis::new(-self.to_sun).expect("a unit sun direction")
+        LightBasis::new(self.to_sun).expect("a unit sun direction")
     }
 
     /// A snapped sun view of `resolution` texels covering the sphere `(center, radius)`,
@@ -119,12 +119,12 @@ impl SunScene {
     /// `None` where the ray leaves the scene), with the normal facing the camera, and each
     /// hit's distance along the camera's forward axis.
     pub fn camera_hits(&self, w: u32, h: u32) -> Vec<Option<(QueryPoint, f64)>> {
-        let cam = reference::camera_from_scene(&self.scene);
+        let cam = reference::camera_from_scene(&self.scene).with_aspect(w as f32 / h as f32);
         let fwd = cam.forward.normalize().as_dvec3();
         (0..w * h)
             .map(|i| {
                 let (x, y) = ((i % w) as f32 + 0.5, (i / w) as f32 + 0.5);
-                let dir = cam.direction(x, y, w, h);
+                let dir = cam.pixel_direction(x, y, w, h);
                 let hit = self.world.intersect(cam.position, dir, f32::INFINITY)?;
                 let n = if hit.normal.dot(dir) > 0.0 { -hit.normal } else { hit.normal };
                 let depth = (hit.position.as_dvec3() - cam.position.as_dvec3()).dot(fwd);

@@ -138,7 +138,7 @@ impl ReflectiveShadowMap {
             });
         }
         let texel_area = (view.texel_size * view.texel_size) as f32;
-        let to_light = (-view.basis.direction.as_vec3()).extend(0.0);
+        let to_light = view.basis.to_light.as_vec3().extend(0.0);
         for (i, a) in albedo.iter().enumerate() {
             finite3(*a, "albedo")?;
             let draw = RsmDraw {
