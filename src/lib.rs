@@ -22,3 +22,4 @@ pub use shadows;
 pub use sky_volume;
 pub use ssao;
 pub use traced_effects;
+pub use vocab;
