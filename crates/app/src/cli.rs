@@ -247,10 +247,9 @@ pub fn load_scene_noted(job: &RenderJob) -> Result<(scene::Scene, Vec<String>), 
         eprintln!("warning: {w}");
     }
     let mut notes = Vec::new();
-    if let Some(n) = s.light_if_dark(job.sun != Switch::Off, job.sky != Switch::Off) {
-        eprintln!("note: {n}");
-        notes.push(n);
-    }
+    notes.extend(s.light_if_dark(job.sun != Switch::Off, job.sky != Switch::Off));
+    let default_sun_time =
+        scene::sun_time_phrase(scene::DEFAULT_SUN_DATE, scene::DEFAULT_SUN_UTC_HOURS, 1.0);
     if job.time.is_some() || job.date.is_some() {
         if s.sun.is_none() && job.sky != Switch::Off {
             // A sun by the time of day is seen through the atmosphere.
@@ -286,6 +285,14 @@ pub fn load_scene_noted(job: &RenderJob) -> Result<(scene::Scene, Vec<String>), 
             latitude_deg: lat,
             longitude_deg: lon,
         };
+        // The default sun's notice states the time and date the sun was moved to.
+        let used = scene::sun_time_phrase(date, utc, job.utc_offset_h);
+        for n in &mut notes {
+            *n = n.replace(&default_sun_time, &used);
+        }
+    }
+    for n in &notes {
+        eprintln!("note: {n}");
     }
     match job.sun {
         Switch::Auto => {}
@@ -487,4 +494,19 @@ pub(crate) fn progress_bar(on: bool, len: u64, what: &str) -> indicatif::Progres
         bar.set_style(style);
     }
     bar
+}
+
+/// For a program without a window, called first in `main` (before any thread starts): on a
+/// machine with no Wayland session (`XDG_RUNTIME_DIR` unset) Mesa's Vulkan device-selection
+/// layer still tries to reach one and prints "error: XDG_RUNTIME_DIR is invalid or not set"
+/// twice per device, on runs that succeed. The layer only orders the adapters, which this
+/// workspace picks itself (`gpu_harness::GpuContext`), so it is switched off there
+/// (`NODEVICE_SELECT=1`, the layer's own switch), unless the caller set that variable.
+pub fn quiet_headless_vulkan() {
+    if std::env::var_os("XDG_RUNTIME_DIR").is_none()
+        && std::env::var_os("NODEVICE_SELECT").is_none()
+    {
+        // SAFETY: called at the start of `main`, before any other thread exists.
+        unsafe { std::env::set_var("NODEVICE_SELECT", "1") };
+    }
 }

@@ -57,6 +57,15 @@ fn a_file_without_light_renders_under_the_default_sun_and_says_so() {
         assert_eq!((s.sun.is_some(), s.sky), (has_sun, has_sky), "{sun:?} {sky:?}");
         assert_eq!(notes.len(), 1);
     }
+    // Moved by --time and --date: the notice states the time and date the sun was given.
+    let moved = app::cli::RenderJob {
+        time: Some("12:05".into()),
+        date: Some("2025-03-20".into()),
+        ..job.clone()
+    };
+    let (_, notes) = load_scene_noted(&moved).unwrap();
+    assert!(notes[0].contains("on 2025-03-20 at 12:05 local time (UTC+1)"), "{notes:?}");
+    assert!(!notes[0].contains("17:30"), "{notes:?}");
     // A lit file: nothing added, no notice.
     let (dir2, lit_path) =
         write("lit", &lit::floor_gltf(&[lit::spot_down(3.0, 500.0, 0.2, 0.4)], true, false));

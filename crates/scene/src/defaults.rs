@@ -25,6 +25,26 @@ pub fn default_sun() -> Sun {
     )
 }
 
+/// How [`Scene::light_if_dark`]'s notice states the sun's date and time: `on 2024-06-21 at
+/// 17:30 local time (UTC+1)` for `utc_hours` 16.5 and `utc_offset_h` 1. A program that moves
+/// the default sun (a `--time` or `--date`) states the time it used with the same phrase.
+pub fn sun_time_phrase(date: CivilDate, utc_hours: f64, utc_offset_h: f64) -> String {
+    let minutes = ((utc_hours + utc_offset_h) * 60.0).round().rem_euclid(24.0 * 60.0) as u32;
+    let offset = if utc_offset_h.fract() == 0.0 {
+        format!("{utc_offset_h:+}")
+    } else {
+        format!("{utc_offset_h:+.2}")
+    };
+    format!(
+        "on {:04}-{:02}-{:02} at {:02}:{:02} local time (UTC{offset})",
+        date.year,
+        date.month,
+        date.day,
+        minutes / 60,
+        minutes % 60
+    )
+}
+
 impl Scene {
     /// Whether anything in the scene emits light: a sun, a point or spot light of non-zero
     /// intensity, or an emissive material on some mesh. (The sky alone counts too.)
@@ -61,9 +81,12 @@ impl Scene {
              emissive surface): {what}{}",
             self.name,
             if sun {
-                ", the sun of Lisbon (38.72 N, 9.14 W) on 2024-06-21 at 17:30 local time (UTC+1)"
+                format!(
+                    ", the sun of Lisbon (38.72 N, 9.14 W) {}",
+                    sun_time_phrase(DEFAULT_SUN_DATE, DEFAULT_SUN_UTC_HOURS, 1.0)
+                )
             } else {
-                ""
+                String::new()
             }
         ))
     }

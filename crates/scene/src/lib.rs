@@ -66,7 +66,7 @@ pub use camera::{Camera, DEFAULT_ASPECT, DEFAULT_FOV_Y_DEG, FRAMING_ELEVATION_DE
 pub use change::{SceneChange, SceneState};
 pub use defaults::{
     DEFAULT_SUN_DATE, DEFAULT_SUN_LATITUDE_DEG, DEFAULT_SUN_LONGITUDE_DEG, DEFAULT_SUN_UTC_HOURS,
-    default_sun,
+    default_sun, sun_time_phrase,
 };
 pub use error::{Cause, LoadError, LoadErrorKind, SceneError};
 #[cfg(feature = "generate")]
@@ -89,7 +89,7 @@ pub use load::obj::{load_obj, load_obj_slice};
 pub use load::scene_file::{load_scene_file, load_scene_str};
 #[cfg(feature = "load")]
 pub use load::{LoadOptions, load, load_with};
-pub use material::{AlphaMask, Material, MaterialId, RAY_TRACE_THRESHOLD, phong_lobe};
+pub use material::{AlphaMask, Material, MaterialId, RAY_TRACE_THRESHOLD, phong_lobe, rough_share};
 pub use mesh::{Cleanup, Mesh, MeshData};
 pub use needs::{Need, SKY_DARK_ELEVATION_DEG, SceneNeeds};
 pub use occluders::{DeriveSettings, derive_occlusion_quads};

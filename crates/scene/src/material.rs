@@ -148,11 +148,18 @@ impl Material {
 
     /// A material of glTF's metallic-roughness model. The Phong fields that the renderers not
     /// yet moved to [`crate::brdf`] read are derived as follows (`c` base colour, `m`
-    /// metallic, `r` roughness, `a = r^2`): albedo = `c (1 - m)`; glossiness =
-    /// `mix(0.04, max(c), m)`, the specular reflectance at normal incidence; specular power =
+    /// metallic, `r` roughness, `a = r^2`, `t` the metal's [`rough_share`]): albedo =
+    /// `c (1 - m) + c m t`; glossiness = `mix(0.04, max(c), m (1 - t))`; specular power =
     /// `2 / a^2 - 2` (the Blinn-Phong <-> GGX correspondence) clamped to [1, 8192]; mirror
     /// reflectivity = `m max(c) max(0, 1 - r / TRACED_ROUGHNESS)`: only smooth metals are
     /// traced mirrors, fading out by [`crate::TRACED_ROUGHNESS`].
+    ///
+    /// The Phong model's specular term has no colour, so a metal's colour can only live in
+    /// the albedo: the rough share `t` of a metal's reflectance is moved there (its lobe is
+    /// broad enough that a diffuse lobe of its colour is the closer of the two Phong
+    /// stand-ins), and the rest stays a colourless highlight. Without it, glTF's default
+    /// material (metallic 1, roughness 1, so every file that leaves `metallicFactor` out)
+    /// rendered black apart from a grey highlight, its base colour and texture unseen.
     pub fn metallic_roughness(
         name: impl Into<String>,
         base_color: Vec3,
@@ -164,14 +171,16 @@ impl Material {
         let reflectivity = metallic
             * base_color.max_element()
             * (1.0 - roughness / crate::TRACED_ROUGHNESS).max(0.0);
+        let rough_metal = metallic * rough_share(roughness);
+        let highlight = crate::Brdf::new(base_color, metallic - rough_metal, roughness);
         Self {
             base_color,
             metallic,
             roughness,
-            glossiness: brdf.f0().max_element(),
+            glossiness: highlight.f0().max_element(),
             specular_power: (2.0 / (alpha * alpha) - 2.0).clamp(1.0, 8192.0),
             reflectivity,
-            ..Self::diffuse(name, brdf.diffuse_color())
+            ..Self::diffuse(name, brdf.diffuse_color() + base_color * rough_metal)
         }
     }
 
@@ -277,9 +286,44 @@ impl Material {
     }
 }
 
+/// The share of a metal's reflectance that [`Material::metallic_roughness`] gives the Phong
+/// fields as diffuse albedo (with the metal's colour): 0 up to [`crate::TRACED_ROUGHNESS`]
+/// (smooth metals stay traced mirrors and highlights), rising linearly to 1 at roughness 1.
+pub fn rough_share(roughness: f32) -> f32 {
+    ((roughness - crate::TRACED_ROUGHNESS) / (1.0 - crate::TRACED_ROUGHNESS)).clamp(0.0, 1.0)
+}
+
 #[cfg(test)]
 mod tests {
-    use super::phong_lobe;
+    use super::{Material, phong_lobe, rough_share};
+    use glam::Vec3;
+
+    /// glTF's default material is a rough metal: its colour must reach the Phong albedo (it
+    /// rendered black before), smooth metals stay colourless traced mirrors, and no derived
+    /// material reflects more than its base colour plus the dielectric coating.
+    #[test]
+    fn metals_keep_their_colour_in_the_phong_fields() {
+        let red = Vec3::new(0.8, 0.0, 0.0);
+        let rough = Material::metallic_roughness("box", red, 1.0, 1.0);
+        assert_eq!(rough.albedo, red);
+        assert!((rough.glossiness - 0.04).abs() < 1e-6 && rough.reflectivity == 0.0);
+        let smooth = Material::metallic_roughness("chrome", red, 1.0, 0.1);
+        assert_eq!(smooth.albedo, Vec3::ZERO);
+        assert!((smooth.glossiness - 0.8).abs() < 1e-6 && smooth.reflectivity > 0.3);
+        let mid = Material::metallic_roughness("brushed", red, 1.0, 0.6);
+        let t = rough_share(0.6);
+        assert!(t > 0.4 && t < 0.6, "{t}");
+        assert!((mid.albedo - red * t).length() < 1e-6);
+        // A dielectric is what it was: base colour times (1 - m), the coating's 0.04.
+        let plastic = Material::metallic_roughness("plastic", red, 0.0, 1.0);
+        assert_eq!(plastic.albedo, red);
+        assert!((plastic.glossiness - 0.04).abs() < 1e-6);
+        for (m, r) in [(0.0f32, 0.0f32), (0.5, 0.3), (1.0, 0.5), (0.3, 1.0), (1.0, 1.0)] {
+            let w = Material::metallic_roughness("w", Vec3::ONE, m, r);
+            assert!(w.albedo.max_element() + w.glossiness <= 1.04 + 1e-6, "{m} {r}");
+        }
+        assert_eq!((rough_share(0.0), rough_share(0.2), rough_share(1.0)), (0.0, 0.0, 1.0));
+    }
 
     /// At normal incidence the lobe times the cosine integrates to 1 over the hemisphere
     /// (midpoint rule in the polar angle), for any power; nothing comes from behind.

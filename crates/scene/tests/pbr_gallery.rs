@@ -167,11 +167,13 @@ fn the_gallery_is_a_roughness_by_material_ramp_of_metallic_roughness_materials()
             assert!(close(c, scene::pbr_gallery_sphere_center(row, column), 1e-5), "{label}: {c}");
         }
     }
-    // Gold and copper are coloured metals: their specular colour is their base colour.
+    // Gold and copper are coloured metals: their specular colour is their base colour, and
+    // the Phong fields keep it in the albedo for the rough share of the reflectance.
     for name in ["gold", "copper"] {
         let m = g.material(g.material_by_name(&format!("{name}_roughness_0.50")).unwrap()).unwrap();
-        assert_eq!(m.albedo, Vec3::ZERO);
         assert!(m.brdf().f0().max_element() - m.brdf().f0().min_element() > 0.2, "{name}");
+        assert!((m.albedo - m.base_color * scene::rough_share(0.5)).length() < 1e-6, "{name}");
+        assert!(m.albedo.x > 1.5 * m.albedo.z, "{name}: {}", m.albedo);
     }
     assert_eq!(g.materials.len(), 3 + 15);
 }

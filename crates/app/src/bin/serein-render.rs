@@ -75,6 +75,7 @@ struct Args {
 }
 
 fn main() -> anyhow::Result<()> {
+    app::cli::quiet_headless_vulkan();
     let a = Args::parse();
     let (width, height) = parse_size(&a.size)?;
     let job = RenderJob {

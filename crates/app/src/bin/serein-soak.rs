@@ -41,6 +41,7 @@ struct Args {
 }
 
 fn main() -> anyhow::Result<()> {
+    app::cli::quiet_headless_vulkan();
     let a = Args::parse();
     anyhow::ensure!(a.minutes.is_finite() && a.minutes > 0.0, "--minutes must be above 0");
     let (width, height) = parse_size(&a.size)?;
