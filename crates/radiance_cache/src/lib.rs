@@ -38,6 +38,7 @@
 // `!(a > b)` is used on purpose: it is also true when either side is NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+mod bounce;
 mod cache;
 mod error;
 mod lattice;
@@ -54,12 +55,13 @@ pub mod wgsl;
 #[cfg(feature = "gpu")]
 pub mod gpu;
 
+pub use bounce::{BounceHit, HitShading, HitSurface};
 pub use cache::{AllocationStats, RadianceCache, SurfacePoint, UpdateStats};
 pub use error::CacheError;
 pub use lattice::{Lattice, PlanStep, corners, plan};
 pub use light::{GatherParams, GatherResult, IRRADIANCE_FLOATS, MAX_COEFFS, gather, moments};
 pub use lookup::{CRUSH_BELOW, VARIANCE_FLOOR, visibility_weight};
-pub use settings::Settings;
+pub use settings::{Bounces, Settings};
 pub use summary::CacheSummary;
 pub use view::{Pinhole, grid_directions, view_points};
 pub use vpls::PreparedVpls;
