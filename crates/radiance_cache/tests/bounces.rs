@@ -131,7 +131,7 @@ fn errors(v: &[f32], truth: f32) -> (f32, f32) {
     (m, x)
 }
 
-/// 1. A closed box with uniform direct irradiance `E0` on its inner walls and albedo `rho`:
+/// Test 1: A closed box with uniform direct irradiance `E0` on its inner walls and albedo `rho`:
 /// the total irradiance on the walls is `E0 / (1 - rho)` (the cache holds the indirect part,
 /// `rho E0 / (1 - rho)`). With one bounce and no VPLs the cache stays dark.
 #[test]
@@ -221,7 +221,7 @@ fn one_bounce_is_todays_update() {
     }
 }
 
-/// 2. No bounce creates light: from dark, the mean total irradiance on the walls rises
+/// Test 2: No bounce creates light: from dark, the mean total irradiance on the walls rises
 /// monotonically and never exceeds `E0 / (1 - rho)`; no point exceeds it by more than the
 /// SH's ringing.
 #[test]
@@ -282,7 +282,7 @@ impl RayQuery for Counting<'_> {
     }
 }
 
-/// 3. Bounded cost: after every cache's first lighting (its depth moments), an update traces
+/// Test 3: Bounded cost: after every cache's first lighting (its depth moments), an update traces
 /// exactly `budget * bounce_rays` closest-hit rays (plus the VPLs' shadow rays, any-hit),
 /// and none with one bounce.
 #[test]
@@ -325,7 +325,7 @@ fn west(p: Vec3) -> bool {
     p.cmpgt(LO).all() && p.cmplt(ROOMS_HI).all() && p.x < WALL_X
 }
 
-/// 4. Two rooms: a box split by a wall (not on the cache lattice), direct light only in the
+/// Test 4: Two rooms: a box split by a wall (not on the cache lattice), direct light only in the
 /// west room; with many bounces the east room's walls stay dark (the bounce rays cannot
 /// cross the wall, and the lookups at their hits must not read the west room's caches).
 #[test]
