@@ -378,3 +378,24 @@ fn bounce_rays_are_validated() {
     assert!(s.validate().is_ok());
     assert_eq!(Settings::DEFAULT.bounces, Bounces::One);
 }
+
+/// Deterministic whatever the thread count: each cache reads only the previous update's light.
+#[test]
+fn many_bounces_are_deterministic() {
+    let scene = Scene::new(&box_quads(LO, HI));
+    let points = wall_points(LO, HI, 6);
+    let shading = Shading { normals: &scene.normals, rho: 0.7, e0: E0, lit: inside };
+    let s = Settings { budget: 200, ..box_settings(Bounces::Many, 0.85) };
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        let mut c = RadianceCache::new(s).unwrap();
+        c.allocate(Vec3::splat(2.0), &points);
+        pool.install(|| {
+            for _ in 0..6 {
+                c.update_bounces(&[], &scene.tree, &shading);
+            }
+        });
+        c
+    };
+    assert_eq!(run(1), run(3));
+}
