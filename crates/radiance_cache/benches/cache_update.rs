@@ -70,6 +70,8 @@ fn bench(c: &mut Criterion) {
     let mut cache = RadianceCache::new(Settings::DEFAULT).unwrap();
     let eye = Vec3::new(0.0, 1.5, -2.5);
     c.bench_function("allocate_320x180", |b| b.iter(|| black_box(cache.allocate(eye, &points))));
+    // Allocated here too, so that a filtered run (`-- update`) measures the same caches.
+    cache.allocate(eye, &points);
     c.bench_function("update_default_budget", |b| b.iter(|| black_box(cache.update(&vpls, &tree))));
     let mut many =
         RadianceCache::new(Settings { bounces: Bounces::Many, ..Settings::DEFAULT }).unwrap();
