@@ -11,6 +11,15 @@
 //! Also `radiance_cache/leak_two_rooms_{setting}`: the closed east room's mean irradiance
 //! over the lit west room's (`dark_over_lit`), beside the reference's own ratio.
 //!
+//! Many bounces, `radiance_cache/bounces_many_{cornell_window,two_rooms,city}_default`:
+//! `Bounces::Many` with the default preset's `bounce_rays`, the sun's first bounce from the
+//! VPLs and the hits shaded with the scene's albedo and no direct light (the sun is in the
+//! VPLs; this sweep's reference has no sky or point lights), so the rays carry the second
+//! and later bounces. `time_ms` is the steady update at the preset's budget; the settings
+//! carry `gain_over_one_bounce` (receivers' mean irradiance over the one-bounce cache's; the
+//! path tracer here is one-bounce, so there is no many-bounce error yet) and, for
+//! `two_rooms`, `dark_over_lit` beside the one-bounce cache's.
+//!
 //! Inputs: a CPU RSM of 256² texels of the scene from the sun (as lpv's sweep), reduced to
 //! VPLs by `shadows::Rsm::extract_vpls(rsm_block)`; shadow rays through a kd-tree of the
 //! scene's triangles; allocation from the receivers plus the 320x180 camera pixels.
@@ -21,7 +30,9 @@ mod scene_case;
 use gi_report::{Entry, Sweep, time_ms};
 use glam::Vec3;
 use kdtree_tracer::{KdTree, Mesh, Settings as TreeSettings};
-use radiance_cache::{RadianceCache, Settings, SurfacePoint};
+use radiance_cache::{
+    BounceHit, Bounces, HitShading, HitSurface, RadianceCache, Settings, SurfacePoint,
+};
 use scene::Generated;
 use scene_case::{Receiver, SceneCase, rel_rms};
 use shadows::Vpl;
@@ -79,6 +90,89 @@ impl Case {
         }
         let ratio = |s: [f64; 2]| (s[1] / counts[1]) / (s[0] / counts[0]).max(1e-30);
         (ratio(sums[0]), ratio(sums[1]))
+    }
+}
+
+/// The scene's albedo and geometric normal at a bounce hit, no direct light (the sun's
+/// first bounce is in the VPLs).
+struct SceneShading<'a>(&'a scene_case::SceneCase);
+
+impl HitShading for SceneShading<'_> {
+    fn shade(&self, hit: &BounceHit) -> Option<HitSurface> {
+        let t = hit.hit.triangle as usize;
+        let [a, b, c] = *self.0.triangles.get(t)?;
+        Some(HitSurface {
+            normal: (b - a).cross(c - a),
+            albedo: self.0.albedo[t],
+            direct_irradiance: Vec3::ZERO,
+        })
+    }
+}
+
+fn mean_sum(v: &[Vec3]) -> f64 {
+    v.iter().map(|e| e.element_sum() as f64).sum::<f64>() / v.len().max(1) as f64
+}
+
+/// The many-bounce entries (module doc).
+fn bounce_entries(
+    sweep: &mut Sweep,
+    pool: &rayon::ThreadPool,
+    cases: [(&Case, &str); 3],
+    converge_frames: usize,
+    reps: impl Fn(usize) -> usize,
+) {
+    let s = Settings { bounces: Bounces::Many, ..Settings::DEFAULT };
+    for (case, scene) in cases {
+        let name = format!("radiance_cache/bounces_many_{scene}_default");
+        sweep.stage(&name);
+        let points = case.points();
+        let shading = SceneShading(&case.case);
+        let mut one =
+            RadianceCache::new(Settings { budget: u32::MAX, ..Settings::DEFAULT }).expect("valid");
+        let mut many = RadianceCache::new(Settings { budget: u32::MAX, ..s }).expect("valid");
+        let alloc = one.allocate(case.camera, &points);
+        many.allocate(case.camera, &points);
+        pool.install(|| {
+            for _ in 0..converge_frames {
+                one.update(&case.vpls, &case.tree);
+                many.update_bounces(&case.vpls, &case.tree, &shading);
+            }
+        });
+        let mut steady = many.clone();
+        steady.set_budget(s.budget).expect("valid budget");
+        let n = reps(10);
+        let (ms, stats) =
+            pool.install(|| time_ms(n, || steady.update_bounces(&case.vpls, &case.tree, &shading)));
+        many.validate().expect("valid cache");
+        let (a1, am) = (case.lookup(&one), case.lookup(&many));
+        let gain = mean_sum(&am) / mean_sum(&a1).max(1e-30);
+        let mut entry = Entry::new(name, "radiance_cache", ms)
+            .setting("scene", case.case.name)
+            .setting("preset", "default")
+            .setting("bounces", "many")
+            .setting("bounce_rays", s.bounce_rays)
+            .setting("budget", s.budget)
+            .setting("allocated", alloc.allocated)
+            .setting("lit_per_update", stats.lit)
+            .setting("bounce_rays_per_update", stats.bounce_rays)
+            .setting("bounce_hits_per_update", stats.bounce_hits)
+            .setting("shadow_rays_per_update", stats.shadow_rays)
+            .setting("converge_frames", converge_frames)
+            .setting("gain_over_one_bounce", gain)
+            .threads(2);
+        let mut note = format!(
+            "update {ms:.2} ms ({} caches x {} bounce rays), receivers' light x{gain:.3} over one bounce",
+            stats.lit, s.bounce_rays
+        );
+        if scene == "two_rooms" {
+            let (ratio, _) = case.leak(&am);
+            let (ratio_one, _) = case.leak(&a1);
+            entry = entry
+                .setting("dark_over_lit", ratio)
+                .setting("dark_over_lit_one_bounce", ratio_one);
+            note += &format!(", closed room / lit room {ratio:.4} (one bounce {ratio_one:.4})");
+        }
+        sweep.entry(entry.note(note));
     }
 }
 
@@ -190,5 +284,7 @@ fn main() {
             sweep.entry(entry);
         }
     }
+    let cases = [(&cornell, "cornell_window"), (&rooms, "two_rooms"), (&city, "city")];
+    bounce_entries(&mut sweep, &pool, cases, converge_frames, reps);
     sweep.finish().expect("write the report part");
 }

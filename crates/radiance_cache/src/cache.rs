@@ -1,11 +1,12 @@
 //! The cascaded radiance cache: placement, allocation from the G-buffer, lighting with a
 //! per-frame budget (oldest first), statistics.
 
+use crate::bounce::{HitShading, bounce_gather};
 use crate::error::CacheError;
 use crate::lattice::{Lattice, corners, plan};
 use crate::light::{GatherParams, gather, moments};
 use crate::pool::{NONE, Pool};
-use crate::settings::Settings;
+use crate::settings::{Bounces, Settings};
 use crate::summary::CacheSummary;
 use crate::vpls::PreparedVpls;
 use glam::{IVec3, Vec3};
@@ -64,6 +65,12 @@ pub struct UpdateStats {
     pub vpls: usize,
     pub vpls_skipped_non_finite: usize,
     pub vpls_skipped_dark: usize,
+    /// Cache-to-cache bounce rays traced ([`Bounces::Many`] with
+    /// [`RadianceCache::update_bounces`]: `lit * bounce_rays`; otherwise 0), how many hit
+    /// something, and how many of those the renderer shaded.
+    pub bounce_rays: u64,
+    pub bounce_hits: u64,
+    pub bounce_shaded: u64,
 }
 
 /// Dynamic radiance volumes: cascaded, camera-centred lattices of SH irradiance caches,
@@ -214,11 +221,54 @@ impl RadianceCache {
         CacheSummary::new(&alloc, &lit, self)
     }
 
+    /// [`RadianceCache::refresh`] with [`RadianceCache::update_bounces`].
+    pub fn refresh_bounces(
+        &mut self,
+        camera: Vec3,
+        points: &[SurfacePoint],
+        vpls: &[Vpl],
+        tracer: &impl RayQuery,
+        shading: &impl HitShading,
+    ) -> CacheSummary {
+        let alloc = self.allocate(camera, points);
+        let lit = self.update_bounces(vpls, tracer, shading);
+        CacheSummary::new(&alloc, &lit, self)
+    }
+
     /// Lights at most `budget` allocated caches, never-lit and then the longest-unlit first
     /// (ties in slot order): gathers the VPLs with shadow rays through `tracer`, blends with
     /// the previous light by `hysteresis`, and traces a cache's depth moments when it is
-    /// lit for the first time. Deterministic whatever the thread count.
+    /// lit for the first time. Deterministic whatever the thread count. One bounce whatever
+    /// [`Settings::bounces`]; [`RadianceCache::update_bounces`] adds the others.
     pub fn update(&mut self, vpls: &[Vpl], tracer: &impl RayQuery) -> UpdateStats {
+        self.update_inner(vpls, tracer, None)
+    }
+
+    /// [`RadianceCache::update`], plus, with [`Bounces::Many`], the light of the other
+    /// bounces: each lit cache also traces `bounce_rays` rays (a spherical Fibonacci set
+    /// under a random rotation drawn per update and per cache) through `tracer`; at each hit,
+    /// `shading` gives the surface's normal, albedo and direct irradiance, and the radiance
+    /// leaving it, `albedo / pi * (E_direct + E_cache)` with `E_cache` this cache's own
+    /// lookup ([`RadianceCache::irradiance`], visibility-weighted) at the hit *before* this
+    /// update, is projected into the cache's SH and added to the VPL gather. Each update so
+    /// adds one bounce; with hysteresis the light converges to the many-bounce solution.
+    /// Cost: at most `budget * bounce_rays` rays, shadings and lookups more than `update`.
+    /// With [`Bounces::One`] it is `update` exactly (`shading` is not called).
+    pub fn update_bounces(
+        &mut self,
+        vpls: &[Vpl],
+        tracer: &impl RayQuery,
+        shading: &impl HitShading,
+    ) -> UpdateStats {
+        self.update_inner(vpls, tracer, Some(shading))
+    }
+
+    fn update_inner(
+        &mut self,
+        vpls: &[Vpl],
+        tracer: &impl RayQuery,
+        shading: Option<&dyn HitShading>,
+    ) -> UpdateStats {
         self.frame += 1;
         let s = self.settings;
         let prepared = PreparedVpls::new(vpls);
@@ -227,6 +277,13 @@ impl RadianceCache {
         order.truncate(s.budget as usize);
         let frame = self.frame;
         let res = s.moment_resolution;
+        let shading = shading.filter(|_| s.bounces == Bounces::Many);
+        let dirs: Vec<Vec3> = if shading.is_some() {
+            sh_math::fibonacci_sphere(s.bounce_rays as usize).dirs
+        } else {
+            Vec::new()
+        };
+        let this = &*self;
         let pool = &self.pool;
         let lattices = &self.lattices;
         let results: Vec<_> = order
@@ -241,10 +298,19 @@ impl RadianceCache {
                     min_distance: s.min_distance * h,
                     offset: stratum_offset(frame, c, key),
                 };
-                let (light, g) = gather(x, &prepared, &params, tracer, cdf);
+                let (mut light, g) = gather(x, &prepared, &params, tracer, cdf);
+                let b = shading.map(|sh| {
+                    let seed = bounce_seed(frame, c, key);
+                    let (more, b) =
+                        bounce_gather(x, &dirs, seed, s.coefficients(), this, tracer, sh);
+                    for (l, m) in light.iter_mut().zip(more) {
+                        *l += m;
+                    }
+                    b
+                });
                 let m = (pool.last_lit[slot as usize] == 0)
                     .then(|| moments(x, s.moment_rays, res, 2.0 * h, tracer));
-                (slot, light, g, m)
+                (slot, light, g, b, m)
             })
             .collect();
         let mut stats = UpdateStats {
@@ -257,8 +323,13 @@ impl RadianceCache {
             ..UpdateStats::default()
         };
         let t = self.pool.moment_texels;
-        for (slot, light, g, m) in results {
+        for (slot, light, g, b, m) in results {
             let slot = slot as usize;
+            if let Some(b) = b {
+                stats.bounce_rays += b.rays as u64;
+                stats.bounce_hits += b.hits as u64;
+                stats.bounce_shaded += b.shaded as u64;
+            }
             stats.shadow_rays += g.shadow_rays as u64;
             stats.blocked_rays += g.blocked as u64;
             let old = &mut self.pool.irradiance[slot];
@@ -328,6 +399,14 @@ impl RadianceCache {
         }
         Ok(())
     }
+}
+
+/// A per-frame, per-cache seed of the bounce rays' rotation.
+fn bounce_seed(frame: u64, cascade: u32, key: IVec3) -> u64 {
+    let k = (key.x as u32 as u64) | ((key.y as u32 as u64) << 32);
+    (frame.wrapping_mul(0xD1B5_4A32_D192_ED03))
+        ^ k.wrapping_mul(0x9E37_79B9_7F4A_7C15)
+        ^ ((key.z as u32 as u64) | ((cascade as u64) << 32)).wrapping_mul(0xC2B2_AE3D_27D4_EB4F)
 }
 
 /// A per-frame, per-cache stratum offset in `[0, 1)`: golden-ratio sequence over frames,

@@ -15,12 +15,21 @@
 //!    into clamped-cosine-convolved SH (`bands` 2..=4), blended with its previous light by
 //!    `hysteresis`. A cache lit for the first time also traces its depth moments into a
 //!    small octahedral map.
-//! 4. **Lookup** ([`RadianceCache::irradiance`]): trilinear x backface x Chebyshev over the
+//! 4. **Many bounces** ([`Settings::bounces`] = [`Bounces::Many`],
+//!    [`RadianceCache::update_bounces`]): each lit cache also traces `bounce_rays` rays
+//!    (a spherical Fibonacci set under a random rotation per update and cache) through the
+//!    same [`kdtree_tracer::RayQuery`]; the renderer's [`HitShading`] gives each hit's
+//!    normal, albedo and direct irradiance, and `albedo / pi * (E_direct + E_cache)`, with
+//!    `E_cache` the previous update's lookup at the hit, is projected into the cache's SH on
+//!    top of the VPL gather. One more bounce per update, converging with hysteresis
+//!    (DDGI's recursive probe lighting, Majercik et al. 2019). Cost: at most
+//!    `budget * bounce_rays` rays, shadings and lookups more per update.
+//! 5. **Lookup** ([`RadianceCache::irradiance`]): trilinear x backface x Chebyshev over the
 //!    8 caches around the point moved `normal_bias` spacings along its normal, normalised;
 //!    cascades blended finest first over `blend_cells` at each border.
 //!
-//! [`RadianceCache::refresh`] is steps 2-3 for one frame and returns its [`CacheSummary`];
-//! [`Settings::reach`] is the sphere around the camera whose light the caches need (what a
+//! [`RadianceCache::refresh`] is steps 2-3 for one frame ([`RadianceCache::refresh_bounces`]:
+//! 2-4) and returns its [`CacheSummary`]; [`Settings::reach`] is the sphere around the camera whose light the caches need (what a
 //! renderer's RSM should cover).
 //!
 //! The CPU path is rayon-parallel and deterministic whatever the thread count. Feature
@@ -38,6 +47,7 @@
 // `!(a > b)` is used on purpose: it is also true when either side is NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+mod bounce;
 mod cache;
 mod error;
 mod lattice;
@@ -54,12 +64,13 @@ pub mod wgsl;
 #[cfg(feature = "gpu")]
 pub mod gpu;
 
+pub use bounce::{BounceHit, HitShading, HitSurface};
 pub use cache::{AllocationStats, RadianceCache, SurfacePoint, UpdateStats};
 pub use error::CacheError;
 pub use lattice::{Lattice, PlanStep, corners, plan};
 pub use light::{GatherParams, GatherResult, IRRADIANCE_FLOATS, MAX_COEFFS, gather, moments};
 pub use lookup::{CRUSH_BELOW, VARIANCE_FLOOR, visibility_weight};
-pub use settings::Settings;
+pub use settings::{Bounces, Settings};
 pub use summary::CacheSummary;
 pub use view::{Pinhole, grid_directions, view_points};
 pub use vpls::PreparedVpls;

@@ -13,7 +13,7 @@ pub const MAX_COEFFS: usize = 16;
 pub const IRRADIANCE_FLOATS: usize = 3 * MAX_COEFFS;
 
 /// Clamped-cosine convolution factors per band (`pi, 2pi/3, pi/4, 0`).
-const A: [f32; 4] =
+pub(crate) const A: [f32; 4] =
     [std::f32::consts::PI, 2.0 * std::f32::consts::PI / 3.0, std::f32::consts::FRAC_PI_4, 0.0];
 
 /// What one lighting did.
@@ -97,7 +97,7 @@ pub fn gather(
 }
 
 #[inline]
-fn band(j: usize) -> usize {
+pub(crate) fn band(j: usize) -> usize {
     match j {
         0 => 0,
         1..=3 => 1,

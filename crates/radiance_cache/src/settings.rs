@@ -41,11 +41,41 @@ pub struct Settings {
     /// 1.0 at the default preset measured better than 0.5 on `cornell_window` and
     /// `two_rooms`: `docs/measured.md`).
     pub min_distance: f32,
+    /// How many bounces the caches carry: [`Bounces::One`] (the default: the VPL gather
+    /// only, what [`crate::RadianceCache::update`] always does) or [`Bounces::Many`]
+    /// (unbounded, converging: [`crate::RadianceCache::update_bounces`] also gathers the
+    /// previous update's cache light reflected by the surfaces its rays hit).
+    pub bounces: Bounces,
+    /// Rays per lit cache for [`Bounces::Many`] (stratified over the sphere, rotated per
+    /// update and per cache), 1..=[`Settings::MAX_BOUNCE_RAYS`]; unused with
+    /// [`Bounces::One`]. An update traces at most `budget * bounce_rays` of them.
+    pub bounce_rays: u32,
+}
+
+/// How many bounces of light the caches carry ([`Settings::bounces`]).
+///
+/// With [`Bounces::Many`] each lit cache also traces [`Settings::bounce_rays`] rays; the
+/// radiance leaving each hit is `albedo / pi * (E_direct + E_cache)`, where the renderer's
+/// [`crate::HitShading`] gives the albedo and the direct irradiance and `E_cache` is the
+/// cache's own lookup at the hit from the *previous* update. Each update so adds one bounce
+/// to what the caches held: the light is not cut off at a fixed count but converges (with
+/// hysteresis, geometrically in the albedo) to the many-bounce solution, `E0 / (1 - albedo)`
+/// in a closed uniform room. Idea: DDGI's recursive probe lighting (Majercik et al. 2019).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Bounces {
+    /// One bounce: the VPL gather only (today's behaviour, the default).
+    #[default]
+    One,
+    /// Unbounded, converging: VPL gather plus `bounce_rays` cache-to-cache rays per lit
+    /// cache, one more bounce per update.
+    Many,
 }
 
 impl Settings {
     /// The most cascades (the GPU lookup's uniform holds this many).
     pub const MAX_CASCADES: u32 = 4;
+    /// The most [`Settings::bounce_rays`].
+    pub const MAX_BOUNCE_RAYS: u32 = 4096;
 
     /// 2 cascades of 16³ caches 1 m apart, 2 bands, 16 shadow rays per lighting.
     pub const fn low() -> Self {
@@ -63,6 +93,8 @@ impl Settings {
             blend_cells: 1.0,
             normal_bias: 0.25,
             min_distance: 0.5,
+            bounces: Bounces::One,
+            bounce_rays: 32,
         }
     }
 
@@ -83,6 +115,8 @@ impl Settings {
             blend_cells: 1.0,
             normal_bias: 0.25,
             min_distance: 1.0,
+            bounces: Bounces::One,
+            bounce_rays: 64,
         }
     }
 
@@ -185,6 +219,9 @@ impl Settings {
             if !(v.is_finite() && v >= 0.0) {
                 return bad(name, "must be finite and >= 0");
             }
+        }
+        if !(1..=Self::MAX_BOUNCE_RAYS).contains(&self.bounce_rays) {
+            return bad("bounce_rays", "must be in 1..=4096");
         }
         if self.blend_cells > (self.resolution as f32 - 1.0) * 0.5 {
             return bad("blend_cells", "must be at most half the lattice");
