@@ -20,7 +20,10 @@
 // w_b ((1 - g) albedo / pi + g (n + 2) / (2 pi) cos^n), w_b = 1 - reflectivity - transparency;
 // the mirror and glass parts come from the ray tracer in the combine pass.
 
-@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(0) var<uniform> frame_uniform: Frame;
+// The frame's values, copied from `frame_uniform` at the start of each entry point
+// (`load_frame`).
+var<private> frame: Frame;
 @group(0) @binding(1) var albedo_t: texture_2d<f32>;
 @group(0) @binding(2) var normal_t: texture_2d<f32>;
 @group(0) @binding(3) var geometry_t: texture_2d<f32>;
@@ -43,6 +46,21 @@
 @group(0) @binding(16) var<uniform> sky_lookup: SkyVolumeLookup;
 // The sky map (the background's draw alone reads it).
 @group(0) @binding(17) var<storage, read> skymap: array<vec4<f32>>;
+
+// Copies the frame uniform into `frame`, through a test on the fragment's depth that never
+// passes (a depth-tested draw's fragments lie in the viewport's [0, 1] depth range) but that
+// no compiler can fold: so no branch of this shader depends on uniform values alone. Mesa
+// 22.3's lavapipe inlines uniform values that branches depend on when that removes most of
+// a shader, compiling the shader anew every time the pipeline is bound and keeping every
+// copy: about 5 MiB of resident memory per frame for this one (crates/app/src/soak.rs's
+// docs; crates/gpu_harness/examples/driver_growth.rs). The cost elsewhere is one select per
+// value read.
+fn load_frame(frag: vec4<f32>) {
+    frame = frame_uniform;
+    if frag.z < 0.0 {
+        frame = Frame();
+    }
+}
 
 fn csm_count() -> i32 {
     return i32(frame.csm.x);
@@ -151,6 +169,7 @@ fn mirrored_sun_visibility(q: vec3<f32>, nr: vec3<f32>) -> f32 {
 // in the full view, black in a component's.
 @fragment
 fn fs_sky(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
+    load_frame(frag);
     if frame.csm.w != COMPONENT_FULL {
         return vec4<f32>(0.0, 0.0, 0.0, 1.0);
     }
@@ -161,6 +180,7 @@ fn fs_sky(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
 // a positive view depth.
 @fragment
 fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
+    load_frame(frag);
     let px = vec2<i32>(frag.xy);
     let depth = textureLoad(depth_t, px, 0).x;
     let pxf = vec2<f32>(px);
