@@ -40,18 +40,18 @@
 //! after). Another shader with branches on uniforms may trigger the same on lavapipe: a
 //! per-frame growth of megabytes with flat object counts points there first.
 //!
-//! Measured after the fix (two cores, lavapipe, 160x90; `uptime` load 2.5-4): without preset
-//! switches, 284, 279, 279, 282 MiB at the ends of 6-second intervals after the warm-up;
-//! `--minutes 2` with them, 478.8 MiB at the end of the first interval after every technique
-//! was built and 488.5 MiB at the end (+2.0% over five intervals, about 2 MiB per interval
-//! of three renderer rebuilds, not yet explained). Compiling the whole lighting shader
-//! (rather than a copy reduced by the inlined values) took lavapipe about 12 s in the first
-//! lighting frame of that run (its first frame took 12.3 s; the lighting pass 13.0 s over
-//! the warm-up's 29 frames, against ~0.5 s a frame, every frame, before), which can eat
-//! most of a 15-second warm-up interval and
-//! leave techniques to be built after it: the check then compares against an incomplete
-//! warm-up (a longer run, or more warm-up intervals in [`SoakOptions::warm_up`], compares
-//! like with like).
+//! Measured after the fix (two cores, lavapipe, 160x90; `uptime` load 1.5-4): without
+//! preset switches, 284, 279, 279, 282 MiB at the ends of 6-second intervals after the
+//! warm-up; `--minutes 2 --interval 30` with them, 386.6 MiB after the warm-up, then 402.1,
+//! 403.8 and 405.8 MiB (+4.98% against the warm-up, so the check still fails; +0.9% over the
+//! last three intervals, about 2 MiB per interval of three renderer rebuilds, not yet
+//! explained). Compiling the whole lighting shader (rather than a copy reduced by the
+//! inlined values) makes a renderer's first lighting frame slower on lavapipe: 2.5 s at
+//! most in that run's warm-up, 12.3 s in a `--minutes 2` run under heavier load (against
+//! ~0.5 s every frame before), which can eat most of a 15-second warm-up interval and
+//! leave techniques to be built after it, so that the check compares against an incomplete
+//! warm-up (a longer interval, or more warm-up intervals in [`SoakOptions::warm_up`],
+//! compares like with like).
 
 use crate::view::controls::{Controls, path_camera};
 use engine::{Effect, EngineError, Indirect, Preset, Renderer, Settings};
