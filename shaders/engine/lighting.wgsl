@@ -20,7 +20,10 @@
 // w_b ((1 - g) albedo / pi + g (n + 2) / (2 pi) cos^n), w_b = 1 - reflectivity - transparency;
 // the mirror and glass parts come from the ray tracer in the combine pass.
 
-@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(0) var<uniform> frame_uniform: Frame;
+// The frame's values, copied from `frame_uniform` at the start of each entry point
+// (`load_frame`).
+var<private> frame: Frame;
 @group(0) @binding(1) var albedo_t: texture_2d<f32>;
 @group(0) @binding(2) var normal_t: texture_2d<f32>;
 @group(0) @binding(3) var geometry_t: texture_2d<f32>;
@@ -38,11 +41,40 @@
 // The LPV's glossy lookup: radiance arriving from the pixel's mirror direction.
 @group(0) @binding(14) var<storage, read> glossy: array<vec4<f32>>;
 // The scene's planar reflectors (engine::mirrored_sun).
-@group(0) @binding(15) var<uniform> reflectors: Reflectors;
+@group(0) @binding(15) var<uniform> reflectors_uniform: Reflectors;
 // The sky volume's lookup uniform (no points: no sky volume bound).
-@group(0) @binding(16) var<uniform> sky_lookup: SkyVolumeLookup;
+@group(0) @binding(16) var<uniform> sky_lookup_uniform: SkyVolumeLookup;
 // The sky map (the background's draw alone reads it).
 @group(0) @binding(17) var<storage, read> skymap: array<vec4<f32>>;
+// The two uniforms above as fs_lighting reads them (`load_lighting_uniforms`).
+var<private> reflectors: Reflectors;
+var<private> sky_lookup: SkyVolumeLookup;
+
+// Copies the frame uniform into `frame` (and `load_lighting_uniforms` the other two into
+// theirs), behind a test that never passes (`elements`, the length of a storage array the
+// entry point binds, is at least 1) but that no compiler can fold: so no branch of this
+// shader depends on uniform values alone. Mesa 22.3's lavapipe inlines uniform values that
+// branches depend on when that removes most of a shader, compiling the shader anew every
+// time the pipeline is bound and keeping every copy: about 5 MiB of resident memory per
+// frame for this one (issue 57 §1; crates/app/src/soak.rs; engine's tests/moving_memory.rs).
+// A test on the fragment's depth (never below 0) did not hide them: lavapipe still
+// recompiled fs_sky. The cost elsewhere is one select per value read.
+fn load_frame(elements: u32) {
+    frame = frame_uniform;
+    if elements == 0u {
+        frame = Frame();
+    }
+}
+
+fn load_lighting_uniforms(elements: u32) {
+    load_frame(elements);
+    reflectors = reflectors_uniform;
+    sky_lookup = sky_lookup_uniform;
+    if elements == 0u {
+        reflectors = Reflectors();
+        sky_lookup = SkyVolumeLookup();
+    }
+}
 
 fn csm_count() -> i32 {
     return i32(frame.csm.x);
@@ -151,6 +183,7 @@ fn mirrored_sun_visibility(q: vec3<f32>, nr: vec3<f32>) -> f32 {
 // in the full view, black in a component's.
 @fragment
 fn fs_sky(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
+    load_frame(arrayLength(&skymap));
     if frame.csm.w != COMPONENT_FULL {
         return vec4<f32>(0.0, 0.0, 0.0, 1.0);
     }
@@ -161,6 +194,7 @@ fn fs_sky(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
 // a positive view depth.
 @fragment
 fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
+    load_lighting_uniforms(arrayLength(&materials));
     let px = vec2<i32>(frag.xy);
     let depth = textureLoad(depth_t, px, 0).x;
     let pxf = vec2<f32>(px);

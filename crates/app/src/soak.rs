@@ -20,6 +20,38 @@
 //! the bytes the engine uploaded and read back within its frames
 //! ([`engine::TransferCounts`]; what moves between frames, such as a rebuild's uploads, and
 //! the interval's last image read back for its check are not counted there).
+//!
+//! ## Resident memory on Mesa's lavapipe (issue 57 §1)
+//!
+//! On Mesa 22.3's lavapipe (Debian 12's `mesa-vulkan-drivers` 22.3.6) the soak once grew by
+//! about 5 MiB per rendered frame at any size (437 to 883 MiB over two minutes at 160x90)
+//! while every wgpu object count stayed flat. The driver inlines the values of uniforms that
+//! a shader's branches depend on when that removes most of the shader, and in that version
+//! compiles the shader again every time its pipeline is bound, keeping every copy (a new
+//! llvmpipe fragment-shader variant JIT per frame, `fs_variant_partial`, counted with gdb on
+//! `llvm::EngineBuilder::create`). The lighting pass binds its pipelines every frame and its
+//! branches test the frame, reflector and sky-volume uniforms: `shaders/engine/lighting.wgsl`
+//! now copies those into private values behind a test no compiler can fold (`load_frame`),
+//! so no per-frame compile is left after the warm-up and each frame is ~0.5 s cheaper there.
+//! Nothing of ours created objects per frame: `crates/gpu_harness/examples/driver_growth.rs`
+//! repeats dispatches, draws, write_buffer, object creation, timestamps and read-backs
+//! hundreds of times on lavapipe with resident memory flat. The guard is
+//! `crates/engine/tests/moving_memory.rs` (16 moving frames: +63.5 MiB before, +1.5 MiB
+//! after). Another shader with branches on uniforms may trigger the same on lavapipe: a
+//! per-frame growth of megabytes with flat object counts points there first.
+//!
+//! Measured after the fix (two cores, lavapipe, 160x90; `uptime` load 1.5-4): without
+//! preset switches, 284, 279, 279, 282 MiB at the ends of 6-second intervals after the
+//! warm-up; `--minutes 2 --interval 30` with them, 386.6 MiB after the warm-up, then 402.1,
+//! 403.8 and 405.8 MiB (+4.98% against the warm-up, so the check still fails; +0.9% over the
+//! last three intervals, about 2 MiB per interval of three renderer rebuilds, not yet
+//! explained). Compiling the whole lighting shader (rather than a copy reduced by the
+//! inlined values) makes a renderer's first lighting frame slower on lavapipe: 2.5 s at
+//! most in that run's warm-up, 12.3 s in a `--minutes 2` run under heavier load (against
+//! ~0.5 s every frame before), which can eat most of a 15-second warm-up interval and
+//! leave techniques to be built after it, so that the check compares against an incomplete
+//! warm-up (a longer interval, or more warm-up intervals in [`SoakOptions::warm_up`],
+//! compares like with like).
 
 use crate::view::controls::{Controls, path_camera};
 use engine::{Effect, EngineError, Indirect, Preset, Renderer, Settings};
