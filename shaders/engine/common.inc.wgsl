@@ -13,7 +13,7 @@ struct Frame {
     sun_dir: vec4<f32>,
     // rgb sun irradiance at the ground, w sun angular radius (radians)
     sun_irradiance: vec4<f32>,
-    // width, height, point-light count, flags (bit 0 sky, bit 1 Blinn-Phong, bit 2 one-bounce (LPV or RSM gather), bit 3 sky volume, bit 4 shadows, bits 5-6 unused, bit 7 sun glints, bit 8 the LPV's glossy lookup, bit 9 the mirrored sun)
+    // width, height, point-light count, flags (bit 0 sky, bit 1 unused, bit 2 one-bounce (LPV or RSM gather), bit 3 sky volume, bit 4 shadows, bits 5-6 unused, bit 7 sun glints, bit 8 the LPV's glossy lookup, bit 9 the mirrored sun)
     size: vec4<u32>,
     // SSAO radius (m), SSAO samples, sky-map size, the share of a pixel's normal variance the
     // G-buffer's specular lobes are widened by (1; less for the jittered samples of a still
@@ -36,7 +36,6 @@ struct SkyQuery {
 }
 
 const FLAG_SKY: u32 = 1u;
-const FLAG_BLINN: u32 = 2u;
 const FLAG_INDIRECT: u32 = 4u;
 const FLAG_SKY_VOLUME: u32 = 8u;
 const FLAG_SHADOWS: u32 = 16u;
@@ -56,7 +55,8 @@ const COMPONENT_POINT_LIGHTS: u32 = 5u;
 const COMPONENT_EMISSION: u32 = 6u;
 const COMPONENT_SKY_DIFFUSE: u32 = 7u;
 // G-buffer channel views (engine::views::Channel): CHANNEL_BASE + the channel's index in
-// Channel::ALL (albedo, glossiness, shading normal, geometry normal, depth, AO).
+// Channel::ALL (base colour, metallic, shading normal, geometry normal, depth, AO,
+// roughness).
 const CHANNEL_BASE: u32 = 16u;
 
 // Corner `i` of the full-screen triangle in clip space.
@@ -87,8 +87,32 @@ fn world_position(f: Frame, px: vec2<f32>, depth: f32) -> vec3<f32> {
     return pixel_world_position(f.inv_view_proj, eye, f.camera_fwd.xyz, frame_size(f), px, depth);
 }
 
-// Diffuse reflectance of material `m` under G-buffer albedo `a` (rgb albedo, w glossiness):
-// the part of the light neither mirrored, transmitted nor reflected glossily.
-fn diffuse_reflectance(m: Material, a: vec4<f32>) -> vec3<f32> {
-    return max(1.0 - m.params.y - m.params.z, 0.0) * (1.0 - a.w) * a.rgb;
+// A surface as the lighting reads it from the G-buffer and the material table
+// (scene::Material's split: the share 1 - transparency reflected by the BRDF).
+struct Surface {
+    // base colour with its texture
+    base: vec3<f32>,
+    metallic: f32,
+    // roughness, widened for specular anti-aliasing
+    roughness: f32,
+    // the material's specular lobe is the ray tracer's (material_is_smooth)
+    smooth: bool,
+}
+
+fn gbuffer_surface(m: Material, base_metallic: vec4<f32>, roughness: f32) -> Surface {
+    return Surface(base_metallic.rgb, base_metallic.w, roughness, material_is_smooth(m));
+}
+
+// The BRDF times the cosine for light from `l` seen from `v` (scene::brdf): its diffuse lobe
+// alone on a smooth surface, whose specular lobe is traced.
+fn surface_brdf_cos(s: Surface, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
+    let c = dot(n, l);
+    if c <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    var f = brdf_eval_diffuse(s.base, s.metallic, n, v, l);
+    if !s.smooth {
+        f += brdf_eval_specular(s.base, s.metallic, s.roughness, n, v, l);
+    }
+    return f * c;
 }

@@ -11,20 +11,21 @@
 // include: sky_volume/lookup.inc.wgsl
 // include: engine/shading.inc.wgsl
 // include: engine/mirrored_sun.inc.wgsl
-// Deferred lighting of the main view (thesis 3.3, 4.2, 5.3.6-5.3.8): the sun with Phong (or
-// Blinn-Phong) and stabilised-CSM PCSS shadows, point lights, sky light from the sky volume
+// Deferred lighting of the main view (thesis 3.3, 4.2, 5.3.6-5.3.8): the sun with
+// stabilised-CSM PCSS shadows, point lights, sky light from the sky volume
 // and one diffuse bounce of sunlight (the LPV's lookup or the RSM gather, per pixel by the
 // crates' own kernels into `bounce`, irradiance; the sky volume's lookup here, by its crate's
 // snippet), SSAO on the indirect light only, emission, and the sky map where no geometry was
-// drawn. The base BRDF is the reference's:
-// w_b ((1 - g) albedo / pi + g (n + 2) / (2 pi) cos^n), w_b = 1 - reflectivity - transparency;
-// the mirror and glass parts come from the ray tracer in the combine pass.
+// drawn. The surface model is the reference's (scene::Material): the share 1 - t (t the
+// transparency) reflected by glTF's metallic-roughness BRDF (scene/brdf.inc.wgsl), its
+// diffuse lobe alone on a smooth surface; the smooth surfaces' mirror rays and the glass part
+// come from the ray tracer in the combine pass.
 
 @group(0) @binding(0) var<uniform> frame_uniform: Frame;
 // The frame's values, copied from `frame_uniform` at the start of each entry point
 // (`load_frame`).
 var<private> frame: Frame;
-@group(0) @binding(1) var albedo_t: texture_2d<f32>;
+@group(0) @binding(1) var base_t: texture_2d<f32>;
 @group(0) @binding(2) var normal_t: texture_2d<f32>;
 @group(0) @binding(3) var geometry_t: texture_2d<f32>;
 @group(0) @binding(4) var depth_t: texture_2d<f32>;
@@ -139,10 +140,11 @@ fn ambient_occlusion(px: vec2<u32>, p: vec3<f32>, gn: vec3<f32>) -> f32 {
 }
 
 // A G-buffer channel view in [0, 1] (`ch`: the index in engine::views::Channel::ALL).
-fn channel_view(ch: u32, px: vec2<i32>, a: vec4<f32>, n: vec3<f32>, gn: vec3<f32>, p: vec3<f32>, depth: f32) -> vec3<f32> {
+fn channel_view(ch: u32, px: vec2<i32>, a: vec4<f32>, roughness: f32, n: vec3<f32>, gn: vec3<f32>, p: vec3<f32>, depth: f32) -> vec3<f32> {
     switch ch {
         case 0u: { return a.rgb; }
         case 1u: { return vec3<f32>(a.w); }
+        case 6u: { return vec3<f32>(roughness); }
         case 2u: { return 0.5 + 0.5 * n; }
         case 3u: { return 0.5 + 0.5 * gn; }
         case 4u: { return vec3<f32>(1.0 - exp(-depth / 20.0)); }
@@ -157,14 +159,11 @@ fn channel_view(ch: u32, px: vec2<i32>, a: vec4<f32>, n: vec3<f32>, gn: vec3<f32
 // total angular variance `alpha^2 / 2` (the sun's disk of radius alpha) + `delta^2 / 3` (the
 // view directions under a tent filter two pixels wide, delta a pixel's angular size: the
 // pixels' tents add up to one everywhere, so the pixels together hold the whole glint
-// wherever it falls) + `4 s2` (the normal's variance over the pixel, which the G-buffer
-// folded into the widened Phong power: `4 s2 = 1 / p_w - 1 / p`, zero without a lobe to
-// tell it).
-fn sun_glint(r: vec3<f32>, l: vec3<f32>, alpha: f32, pixel: f32, power: f32, widened: f32) -> f32 {
-    var normal_var = 0.0;
-    if power > 1.0 && widened > 0.0 {
-        normal_var = max(1.0 / widened - 1.0 / power, 0.0);
-    }
+// wherever it falls) + `4 s2` (the reflected directions' share of the normal's variance s2
+// over the pixel, which the G-buffer folded into the widened roughness:
+// alpha_w^2 = alpha^2 + 2 s2, brdf_filtered_roughness, so 4 s2 = 2 (r_w^4 - r^4)).
+fn sun_glint(r: vec3<f32>, l: vec3<f32>, alpha: f32, pixel: f32, roughness: f32, widened: f32) -> f32 {
+    let normal_var = 2.0 * max(pow(widened, 4.0) - pow(roughness, 4.0), 0.0);
     let q = 2.0 / max(0.5 * alpha * alpha + pixel * pixel / 3.0 + normal_var, 1e-12);
     let one_minus_cos = max(1.0 - dot(r, l), 0.0);
     return q / (2.0 * PI) * exp(-q * one_minus_cos);
@@ -199,7 +198,7 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     let depth = textureLoad(depth_t, px, 0).x;
     let pxf = vec2<f32>(px);
     let component = frame.csm.w;
-    let a = textureLoad(albedo_t, px, 0);
+    let a = textureLoad(base_t, px, 0);
     let ns = textureLoad(normal_t, px, 0);
     let gm = textureLoad(geometry_t, px, 0);
     let m = materials[u32(gm.w + 0.5)];
@@ -207,21 +206,21 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     let gn = normalize(gm.xyz);
     let p = world_position(frame, pxf, depth);
     if component >= CHANNEL_BASE {
-        return vec4<f32>(channel_view(component - CHANNEL_BASE, px, a, n, gn, p, depth), 1.0);
+        return vec4<f32>(channel_view(component - CHANNEL_BASE, px, a, ns.w, n, gn, p, depth), 1.0);
     }
     let v = normalize(frame.camera_pos.xyz - p);
-    let g = a.w;
-    let power = max(ns.w, 1.0);
-    let base = max(1.0 - m.params.y - m.params.z, 0.0);
+    let surface = gbuffer_surface(m, a, ns.w);
+    // The BRDF's share (1 - transparency).
+    let base = max(1.0 - m.params.y, 0.0);
     var sun = vec3<f32>(0.0);
     var glint = vec3<f32>(0.0);
     if frame.sun_dir.w > 0.0 {
         let l = frame.sun_dir.xyz;
-        let f = base_brdf_cos(a.rgb, g, power, n, l, v);
+        let f = surface_brdf_cos(surface, n, l, v);
         // The mirror and glass parts' weights, as the combine pass weighs their traced rays.
-        let w_delta = m.params.y + m.params.z * fresnel_schlick(dot(n, v), m.params.w);
+        let w_delta = material_mirror_weight(m, dot(n, v)) + m.params.y * fresnel_schlick(dot(n, v), m.params.z);
         var lobe = 0.0;
-        if w_delta > 0.0 && (frame.size.w & FLAG_SUN_GLINTS) != 0u {
+        if any(w_delta > vec3<f32>(0.0)) && (frame.size.w & FLAG_SUN_GLINTS) != 0u {
             let pixel = length(view_ray(frame, pxf + vec2<f32>(1.0, 0.0)) - view_ray(frame, pxf));
             lobe = sun_glint(reflect(-v, n), l, frame.sun_irradiance.w, pixel, m.params.x, ns.w);
         }
@@ -231,10 +230,10 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
             glint = w_delta * lobe * e;
         }
     }
-    let points = point_lights(a.rgb, g, power, n, v, p, gn);
+    let points = point_lights(surface, n, v, p, gn);
     var mirrored = vec3<f32>(0.0);
     if (frame.size.w & FLAG_MIRRORED_SUN) != 0u && frame.sun_dir.w > 0.0 && component == COMPONENT_FULL {
-        mirrored = mirrored_sunlight(a.rgb, g, power, n, v, p);
+        mirrored = mirrored_sunlight(surface, n, v, p);
     }
     let i = u32(px.y) * frame.size.x + u32(px.x);
     var sky_e = vec3<f32>(0.0);
@@ -246,13 +245,15 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
         bounce_e = bounce[i].xyz;
     }
     // Glossy surfaces reflect the LPV's light around their mirror direction (thesis 5.2.7):
-    // the glossy part's normalised lobe times the radiance arriving from there.
+    // the specular lobe's reflectance F(n.v) times the radiance arriving from there (a
+    // smooth surface's lobe is traced instead).
     var glossy_l = vec3<f32>(0.0);
-    if (frame.size.w & FLAG_LPV_GLOSSY) != 0u {
-        glossy_l = base * g * glossy[i].xyz;
+    if (frame.size.w & FLAG_LPV_GLOSSY) != 0u && !surface.smooth {
+        let spec = brdf_specular_reflectance(brdf_f0(a.rgb, a.w), dot(n, v));
+        glossy_l = base * spec * glossy[i].xyz;
     }
     let ao = ambient_occlusion(vec2<u32>(px), p, gn);
-    let diffuse = diffuse_reflectance(m, a);
+    let diffuse = material_diffuse_albedo(m, a.rgb);
     var c: vec3<f32>;
     switch component {
         case COMPONENT_SUN_DIRECT: { c = base * sun; }

@@ -7,7 +7,7 @@ struct Reflector {
     normal: vec4<f32>,
     // unit axis in the plane; w: 1 when both sides reflect
     axis_u: vec4<f32>,
-    // mirror part, glass part, index of refraction, glossy part
+    // the specular lobe's F0 (0: too rough), glass part, index of refraction, the lobe's share
     params: vec4<f32>,
 }
 
@@ -47,16 +47,17 @@ fn mirrored_sun(r: Reflector, p: vec3<f32>, l: vec3<f32>, q: ptr<function, vec3<
         return vec4<f32>(0.0);
     }
     *q = hit;
-    return vec4<f32>(lm, r.params.x + r.params.y * fresnel_schlick(cos_l, r.params.z) + r.params.w);
+    let lobe = r.params.w * brdf_fresnel_schlick(vec3<f32>(r.params.x), cos_l).x;
+    return vec4<f32>(lm, lobe + r.params.y * fresnel_schlick(cos_l, r.params.z));
 }
 
-// The sun mirrored by the scene's planar reflectors onto the base part (albedo `a`,
-// glossiness `g`, Phong power `power`, shading normal `n`, towards the eye `v`) at `p`: the
-// base BRDF times the mirrored irradiance, each reflector's light scaled by its reflectance
-// and the sun's visibility where the light leaves it. The includer provides the frame, the
-// uniform `reflectors: Reflectors`, shading.inc.wgsl's base_brdf_cos, and
+// The sun mirrored by the scene's planar reflectors onto surface `s` (shading normal `n`,
+// towards the eye `v`) at `p`: the BRDF times the mirrored irradiance, each reflector's light
+// scaled by its reflectance and the sun's visibility where the light leaves it. The includer
+// provides the frame, the uniform `reflectors: Reflectors`, common.inc.wgsl's
+// surface_brdf_cos, and
 //   fn mirrored_sun_visibility(q: vec3<f32>, nr: vec3<f32>) -> f32  // the sun at reflector point q
-fn mirrored_sunlight(a: vec3<f32>, g: f32, power: f32, n: vec3<f32>, v: vec3<f32>, p: vec3<f32>) -> vec3<f32> {
+fn mirrored_sunlight(s: Surface, n: vec3<f32>, v: vec3<f32>, p: vec3<f32>) -> vec3<f32> {
     let l = frame.sun_dir.xyz;
     // The reflectors that send the sun to p first (a few products each), then the BRDF and
     // the shadow lookup for those alone (as shading.inc.wgsl's point_lights, for llvmpipe).
@@ -74,7 +75,7 @@ fn mirrored_sunlight(a: vec3<f32>, g: f32, power: f32, n: vec3<f32>, v: vec3<f32
         let r = reflectors.items[k];
         var q = vec3<f32>(0.0);
         let ms = mirrored_sun(r, p, l, &q);
-        let f = base_brdf_cos(a, g, power, n, ms.xyz, v);
+        let f = surface_brdf_cos(s, n, ms.xyz, v);
         if any(f > vec3<f32>(0.0)) {
             let nr = r.normal.xyz * sign(dot(l, r.normal.xyz));
             sum += f * ms.w * mirrored_sun_visibility(q, nr);

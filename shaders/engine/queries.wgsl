@@ -21,7 +21,6 @@ struct LookupQuery {
 @group(0) @binding(3) var<storage, read_write> lookup_q: array<LookupQuery>;
 @group(0) @binding(4) var positions: texture_storage_2d<rgba32float, write>;
 @group(0) @binding(5) var<storage, read_write> glossy_q: array<LookupQuery>;
-@group(0) @binding(6) var albedo_t: texture_2d<f32>;
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -36,9 +35,12 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     var r = vec3<f32>(0.0);
     if depth > 0.0 {
         p = world_position(frame, vec2<f32>(id.xy), depth);
-        n = normalize(textureLoad(normal_t, vec2<i32>(id.xy), 0).xyz);
+        let ns = textureLoad(normal_t, vec2<i32>(id.xy), 0);
+        n = normalize(ns.xyz);
         albedo = 1.0;
-        if textureLoad(albedo_t, vec2<i32>(id.xy), 0).w > 0.0 {
+        // The glossy lookup serves the surfaces whose specular lobe the lighting shades
+        // (rougher than the ray tracer's threshold; the G-buffer's roughness).
+        if ns.w >= BRDF_TRACED_ROUGHNESS {
             r = reflect(view_ray(frame, vec2<f32>(id.xy)), n);
         }
     }

@@ -1,5 +1,6 @@
-// The base BRDF and the point lights, shared by the deferred lighting of the view and the
-// lighting of the traced G-buffer (thesis 3.3, 6.3). The including shader declares `frame`,
+// The point lights, shared by the deferred lighting of the view and the lighting of the
+// traced G-buffer (thesis 3.3, 6.3), reflected by common.inc.wgsl's surface_brdf_cos. The
+// including shader declares `frame`,
 // `lights: array<PointLight>`, `cubes: texture_depth_cube_array` and `cube_cmp`, and
 // includes shadows/cube.inc.wgsl.
 
@@ -22,23 +23,6 @@ fn cone_falloff(i: u32, dir: vec3<f32>) -> f32 {
     return t * t;
 }
 
-// The base BRDF times the cosine for light from `l` seen from `v`: the reference's
-// (1 - g) albedo / pi + g (n + 2) / (2 pi) cos^n (energy-normalised Phong,
-// scene::phong_lobe), or Blinn-Phong with the frame's flag.
-fn base_brdf_cos(albedo: vec3<f32>, g: f32, power: f32, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
-    let c = dot(n, l);
-    if c <= 0.0 {
-        return vec3<f32>(0.0);
-    }
-    // One lobe's cosine and normalisation picked, then one power: llvmpipe runs both sides of
-    // a branch, so a branch per model paid for two powers.
-    let blinn = (frame.size.w & FLAG_BLINN) != 0u;
-    let lobe_cos = select(dot(reflect(-v, n), l), dot(n, normalize(l + v)), blinn);
-    let norm = select((power + 2.0) / (2.0 * PI), (power + 8.0) / (8.0 * PI), blinn);
-    let spec = norm * pow(max(lobe_cos, 0.0), power);
-    return ((1.0 - g) * albedo / PI + vec3<f32>(g * spec)) * c;
-}
-
 // Visibility of point light i from p (shadows/cube.inc.wgsl); frame.csm.z is 0 until the
 // cubes have been rendered.
 fn point_visibility(i: u32, p: vec3<f32>, gn: vec3<f32>) -> f32 {
@@ -50,13 +34,13 @@ fn point_visibility(i: u32, p: vec3<f32>, gn: vec3<f32>) -> f32 {
     return cube_visibility(cubes, cube_cmp, i32(c), lights[i].position.xyz, s.x, s.y, s.z, p, gn);
 }
 
-// The light of every point and spot light in reach reflected by the base BRDF at p (shading
+// The light of every point and spot light in reach reflected by surface `s` at p (shading
 // normal n, geometric normal gn, towards v). The lights in reach (in range and, for a spot, in
 // its cone) are found first, one distance each,
 // and only they are shaded: llvmpipe runs both sides of a branch under a lane mask, so a
 // light out of reach skipped inside one loop still cost its BRDF and shadow lookup, where a
 // loop over the lights in reach runs as many rounds as a SIMD group's lanes have lights.
-fn point_lights(albedo: vec3<f32>, g: f32, power: f32, n: vec3<f32>, v: vec3<f32>, p: vec3<f32>, gn: vec3<f32>) -> vec3<f32> {
+fn point_lights(s: Surface, n: vec3<f32>, v: vec3<f32>, p: vec3<f32>, gn: vec3<f32>) -> vec3<f32> {
     var sum = vec3<f32>(0.0);
     // 32 lights at a time, a bit each.
     for (var first = 0u; first < frame.size.z; first = first + 32u) {
@@ -75,7 +59,7 @@ fn point_lights(albedo: vec3<f32>, g: f32, power: f32, n: vec3<f32>, v: vec3<f32
             reach &= reach - 1u;
             let d = lights[i].position.xyz - p;
             let dist2 = max(dot(d, d), 1e-4);
-            let f = base_brdf_cos(albedo, g, power, n, d * inverseSqrt(dist2), v);
+            let f = surface_brdf_cos(s, n, d * inverseSqrt(dist2), v);
             if any(f > vec3<f32>(0.0)) {
                 let cone = cone_falloff(i, -d * inverseSqrt(dist2));
                 sum += f * lights[i].color.rgb * (cone / dist2) * point_visibility(i, p, gn);

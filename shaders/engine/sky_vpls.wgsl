@@ -28,7 +28,7 @@ struct SkyVplGrid {
 @group(0) @binding(4) var<storage, read_write> queries: array<SkyQuery>;
 @group(0) @binding(5) var normal_out: texture_storage_2d<rgba32float, write>;
 @group(0) @binding(6) var position_out: texture_storage_2d<rgba32float, write>;
-@group(0) @binding(7) var albedo_t: texture_2d<f32>;
+@group(0) @binding(7) var base_t: texture_2d<f32>;
 @group(0) @binding(8) var geometry_t: texture_2d<f32>;
 @group(0) @binding(9) var<storage, read> materials: array<Material>;
 @group(0) @binding(10) var<storage, read> sky_e: array<vec4<f32>>;
@@ -74,7 +74,7 @@ fn sky_vpl_flux(@builtin(global_invocation_id) id: vec3<u32>) {
         let px = cell_pixel(id.xy);
         let pxf = vec2<f32>(px);
         let m = materials[u32(textureLoad(geometry_t, px, 0).w + 0.5)];
-        let rho = diffuse_reflectance(m, textureLoad(albedo_t, px, 0));
+        let rho = material_diffuse_albedo(m, textureLoad(base_t, px, 0).rgb);
         let ray = view_ray(frame, pxf);
         let dx = length(view_ray(frame, pxf + vec2<f32>(1.0, 0.0)) - ray);
         let dy = length(view_ray(frame, pxf + vec2<f32>(0.0, 1.0)) - ray);

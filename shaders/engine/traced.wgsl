@@ -21,12 +21,13 @@
 struct TracedHit {
     // xyz surface point, w the ray's slot in `out`
     position: vec4<f32>,
-    // xyz unit shading normal (ray side), w base weight (0: nothing to light)
+    // xyz unit shading normal (ray side), w the BRDF's share 1 - transparency (0: nothing to
+    // light)
     normal: vec4<f32>,
-    // xyz unit geometric normal (ray side), w glossiness
+    // xyz unit geometric normal (ray side), w metallic
     geometric: vec4<f32>,
-    // rgb albedo, w specular power
-    albedo: vec4<f32>,
+    // rgb base colour with its texture, w roughness
+    base_color: vec4<f32>,
     // rgb light the CPU computed (emission, sky, mirror and glass parts)
     other: vec4<f32>,
     // xyz unit ray direction
@@ -120,21 +121,21 @@ fn traced_lighting(@builtin(global_invocation_id) id: vec3<u32>) {
         let p = h.position.xyz;
         let n = h.normal.xyz;
         let gn = h.geometric.xyz;
-        let g = h.geometric.w;
-        let power = h.albedo.w;
+        let roughness = h.base_color.w;
+        let s = Surface(h.base_color.rgb, h.geometric.w, roughness, roughness < BRDF_TRACED_ROUGHNESS);
         let v = -h.dir.xyz;
-        var light = point_lights(h.albedo.rgb, g, power, n, v, p, gn);
+        var light = point_lights(s, n, v, p, gn);
         if frame.sun_dir.w > 0.0 {
-            let f = base_brdf_cos(h.albedo.rgb, g, power, n, frame.sun_dir.xyz, v);
+            let f = surface_brdf_cos(s, n, frame.sun_dir.xyz, v);
             if any(f > vec3<f32>(0.0)) {
                 light += f * frame.sun_irradiance.rgb * osm_visibility(p, gn);
             }
             if (frame.size.w & FLAG_MIRRORED_SUN) != 0u {
-                light += mirrored_sunlight(h.albedo.rgb, g, power, n, v, p);
+                light += mirrored_sunlight(s, n, v, p);
             }
         }
-        // Sky light and the bounce reach the base part's diffuse lobe.
-        let diffuse = (1.0 - g) * h.albedo.rgb / PI;
+        // Sky light and the bounce reach the BRDF's diffuse lobe.
+        let diffuse = h.base_color.rgb * (1.0 - h.geometric.w) / PI;
         if (frame.size.w & FLAG_SKY_VOLUME) != 0u {
             light += diffuse * sky_volume_irradiance(p, n);
         }

@@ -1,7 +1,9 @@
 // include: scene/material.inc.wgsl
-// G-buffer (thesis Table 3.1, formats for wgpu; `scene::gpu::gbuffer`): albedo + glossiness
-// (RGBA8), shading normal + specular power (RGBA16F), geometry normal + material id (RGBA16F),
-// linear view-axis depth (R32F, 0 where nothing is drawn).
+// include: scene/brdf.inc.wgsl
+// G-buffer (thesis Table 3.1's targets, formats for wgpu; `scene::gpu::gbuffer` documents the
+// layout): base colour + metallic (RGBA8), shading normal + roughness widened for specular
+// anti-aliasing (RGBA16F), geometry normal + material id (RGBA16F), linear view-axis depth
+// (R32F, 0 where nothing is drawn).
 // Alpha-tested materials (their own pipeline, `fs_alpha_tested`) discard below their cutoff;
 // the others (`fs_opaque`) cannot discard, which keeps the early depth test for them.
 // Surfaces are two-sided, both normals face the viewer.
@@ -34,11 +36,11 @@ struct VOut {
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
     @location(3) @interpolate(flat) material: u32,
-    // The material's albedo, (specular power, alpha cutoff) and (albedo texture, alpha mask)
-    // flags, read once a vertex rather than once a pixel (a storage read is a gather lane by
-    // lane on llvmpipe).
-    @location(4) @interpolate(flat) albedo: vec4<f32>,
-    @location(5) @interpolate(flat) power_cutoff: vec2<f32>,
+    // The material's base colour + metallic, (roughness, alpha cutoff) and (albedo texture,
+    // alpha mask) flags, read once a vertex rather than once a pixel (a storage read is a
+    // gather lane by lane on llvmpipe).
+    @location(4) @interpolate(flat) base: vec4<f32>,
+    @location(5) @interpolate(flat) roughness_cutoff: vec2<f32>,
     @location(6) @interpolate(flat) flags: vec2<u32>,
 }
 
@@ -56,14 +58,14 @@ fn vs_main(
     o.uv = uv;
     o.material = material;
     let m = materials[material];
-    o.albedo = m.albedo;
-    o.power_cutoff = vec2<f32>(m.params.x, m.emission.w);
+    o.base = m.base;
+    o.roughness_cutoff = vec2<f32>(m.params.x, m.emission.w);
     o.flags = m.flags.xy;
     return o;
 }
 
 struct GBuffer {
-    @location(0) albedo: vec4<f32>,
+    @location(0) base: vec4<f32>,
     @location(1) normal: vec4<f32>,
     @location(2) geometry: vec4<f32>,
     @location(3) depth: f32,
@@ -78,7 +80,7 @@ fn fs_opaque(v: VOut) -> GBuffer {
 fn fs_alpha_tested(v: VOut) -> GBuffer {
     let o = gbuffer(v);
     let alpha = textureSample(alpha_tex, material_sampler, v.uv).a;
-    if v.flags.y != 0u && alpha < v.power_cutoff.y {
+    if v.flags.y != 0u && alpha < v.roughness_cutoff.y {
         discard;
     }
     return o;
@@ -89,11 +91,10 @@ fn gbuffer(v: VOut) -> GBuffer {
     let dx = dpdx(v.world);
     let dy = dpdy(v.world);
     // Specular anti-aliasing: across the pixel the normal turns by its screen derivatives, so
-    // the pixel sees the highlights of a range of normals. A Phong lobe of power p has an
-    // angular variance of about 1/p; the reflected direction's variance over a box pixel is
-    // 4 s2 (s2 = the normal's, |dn/dx|^2 / 12 + |dn/dy|^2 / 12). The widened lobe of power
-    // p / (1 + 4 p s2), still normalised, spreads a highlight's energy over the pixels it
-    // covers instead of point-sampling it. A still view's jittered samples average to the
+    // the pixel sees the highlights of a range of normals, of variance s2 = |dn/dx|^2 / 12 +
+    // |dn/dy|^2 / 12 over a box pixel; the roughness is widened by it
+    // (brdf_filtered_roughness), which spreads a highlight's energy over the pixels it covers
+    // instead of point-sampling it. A still view's jittered samples average to the
     // pixel's area themselves, so they widen by a small share of the variance (the camera's
     // footprint scale, camera.footprint.x; the engine's jittered_footprint in
     // crates/engine/src/state.rs has the figures): widening every sample by the whole pixel's
@@ -115,11 +116,10 @@ fn gbuffer(v: VOut) -> GBuffer {
     if dot(n, g) < 0.0 {
         n = -n;
     }
-    let albedo = v.albedo.rgb * select(vec3<f32>(1.0), tex.rgb, v.flags.x != 0u);
-    let power = v.power_cutoff.x;
+    let base = v.base.rgb * select(vec3<f32>(1.0), tex.rgb, v.flags.x != 0u);
     var o: GBuffer;
-    o.albedo = vec4<f32>(albedo, v.albedo.w);
-    o.normal = vec4<f32>(n, power / (1.0 + 4.0 * power * s2));
+    o.base = vec4<f32>(base, v.base.w);
+    o.normal = vec4<f32>(n, brdf_filtered_roughness(v.roughness_cutoff.x, s2));
     o.geometry = vec4<f32>(g, f32(v.material));
     o.depth = dot(v.world - camera.position.xyz, camera.forward.xyz);
     return o;

@@ -6,7 +6,8 @@
 // 6.3.4-6.3.5). Traced radiance lives at quarter resolution; each full-resolution mirror or
 // glass pixel gathers the traced texels of the 3x3 quarter-resolution neighbourhood that
 // had a ray and lie at a similar depth (the thesis's "smart" blur that masks aliasing along
-// silhouettes), with tent weights, and adds them with its own Fresnel weights.
+// silhouettes), with tent weights, and adds them with its own weights: the smooth surface's
+// mirror weight (material_mirror_weight, RGB) plus the glass's Fresnel share.
 // The lit view is copied first; this shader then runs only where a mirror or glass draw is
 // the visible surface (`vs_reflective`, depth test `Equal` against the G-buffer's z-buffer),
 // not over the whole screen. Twin: traced_effects::combine::traced_radiance.
@@ -45,15 +46,15 @@ fn fs_combine(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
         return lit;
     }
     let m = materials[u32(textureLoad(geometry_t, px, 0).w + 0.5)];
-    let refl = m.params.y;
-    let trans = m.params.z;
-    if refl + trans <= 0.0 {
+    let trans = m.params.y;
+    if !material_is_smooth(m) && trans <= 0.0 {
         return lit;
     }
     let p = traced_world_position(view, vec2<f32>(px), depth);
     let n = normalize(textureLoad(normal_t, px, 0).xyz);
     let v = normalize(view.eye.xyz - p);
-    let f = fresnel_schlick(dot(n, v), m.params.w);
+    let f = fresnel_schlick(dot(n, v), m.params.z);
+    let refl = material_mirror_weight(m, dot(n, v));
     let qw = i32((view.size.x + 1u) / 2u);
     let qh = i32((view.size.y + 1u) / 2u);
     let qc = vec2<f32>((f32(px.x) + 0.5) * 0.5 - 0.5, (f32(px.y) + 0.5) * 0.5 - 0.5);

@@ -54,7 +54,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             continue;
         }
         let mk = materials[u32(textureLoad(geometry_t, px, 0).w + 0.5)];
-        if mk.params.y + mk.params.z > 0.0 {
+        if material_is_smooth(mk) || mk.params.y > 0.0 {
             found = px;
             m = mk;
             depth = d;
@@ -63,14 +63,15 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     var out = RayCast(vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0));
     if found.x >= 0 {
-        let refl = m.params.y;
-        let trans = m.params.z;
+        let trans = m.params.y;
         let p = traced_world_position(view, vec2<f32>(found), depth);
         let n = normalize(textureLoad(normal_t, found, 0).xyz);
         let v = normalize(view.eye.xyz - p);
-        let f = fresnel_schlick(dot(n, v), m.params.w);
+        let f = fresnel_schlick(dot(n, v), m.params.z);
+        let mirror = material_mirror_weight(m, dot(n, v));
+        let refl = max(mirror.r, max(mirror.g, mirror.b));
         let r = reflect(-v, n);
-        var t = refract(-v, n, 1.0 / max(m.params.w, 1e-3));
+        var t = refract(-v, n, 1.0 / max(m.params.z, 1e-3));
         var wt = trans * (1.0 - f);
         if dot(t, t) < 1e-12 {
             t = vec3<f32>(0.0);

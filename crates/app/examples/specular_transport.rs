@@ -44,15 +44,19 @@ fn main() -> Result<()> {
         bail!("no region {:?} in the view; the regions are {:?}", args.region, regions.names)
     };
     let pixels: Vec<usize> = regions.pixels(id).collect();
-    let no_gloss = |m: &mut scene::Material| m.glossiness = 0.0;
+    // Glossy lobes made as rough as the model goes (the smooth, traced ones kept).
+    let no_gloss = |m: &mut scene::Material| {
+        if !m.brdf().is_smooth() {
+            m.roughness = 1.0;
+        }
+    };
     let variants = [
         ("as built", city.clone()),
         ("no glossy lobes", variant(&city, no_gloss)),
         (
             "no glossy lobes, no mirror or glass parts",
             variant(&city, |m| {
-                no_gloss(m);
-                (m.reflectivity, m.transparency) = (0.0, 0.0);
+                (m.roughness, m.transparency) = (1.0, 0.0);
             }),
         ),
     ];

@@ -4,7 +4,6 @@ use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec3};
 
 pub(crate) const FLAG_SKY: u32 = 1;
-pub(crate) const FLAG_BLINN: u32 = 2;
 /// One-bounce irradiance (the LPV's lookup or the RSM gather) is in the lighting's input.
 pub(crate) const FLAG_INDIRECT: u32 = 4;
 pub(crate) const FLAG_SKY_VOLUME: u32 = 8;
@@ -61,7 +60,6 @@ mod tests {
         let src = crate::shaders::lighting();
         for (name, value) in [
             ("FLAG_SKY", FLAG_SKY),
-            ("FLAG_BLINN", FLAG_BLINN),
             ("FLAG_INDIRECT", FLAG_INDIRECT),
             ("FLAG_SKY_VOLUME", FLAG_SKY_VOLUME),
             ("FLAG_SHADOWS", FLAG_SHADOWS),

@@ -62,7 +62,7 @@ pub use gpu::{TransferCounts, check_capabilities};
 pub use graph::pass;
 pub use radiance_cache::CacheSummary;
 pub use renderer::{Frame, FrameStats, HdrFrame, Renderer};
-pub use settings::{Indirect, Preset, Settings, Specular, TracedShading};
+pub use settings::{Indirect, Preset, Settings, TracedShading};
 /// The ray casting buffer's rays, their CPU tracing and the mirrored sun live in
 /// `traced_effects`.
 pub use traced_effects::{mirrored_sun, ray_casting, trace};

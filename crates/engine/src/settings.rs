@@ -104,15 +104,6 @@ impl FromStr for Indirect {
     }
 }
 
-/// Specular model of the deferred pass (thesis 3.3: Phong; Blinn-Phong as an option).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Specular {
-    #[default]
-    Phong,
-    BlinnPhong,
-}
-
 /// Where the surfaces the traced rays find are lit (thesis 6.3).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -230,7 +221,6 @@ pub struct Settings {
     /// ([`TracedShading::Gpu`]; thesis 6.3.1).
     #[serde(skip)]
     pub osm: shadows::OsmSettings,
-    pub specular: Specular,
     /// The sun's glint in mirror and glass parts (off in the presets): the lighting pass adds
     /// `w_delta E_sun V_sun` times the density of the pixel's reflected directions at the
     /// sun (a Gaussian of the sun disk's, the pixel's and the normal's angular variance), so
@@ -310,7 +300,6 @@ impl Settings {
             ssao_samples: 8,
             ssao_radius: 0.5,
             trace_depth: 1,
-            specular: Specular::Phong,
             traced_shading: TracedShading::Cpu,
             osm: shadows::OsmSettings::DEFAULT,
             sun_glints: false,

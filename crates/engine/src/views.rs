@@ -10,10 +10,10 @@ use crate::components::{self, Component};
 /// A G-buffer channel (thesis Table 3.1) or a quantity the lighting pass computes per pixel.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Channel {
-    /// Diffuse albedo, linear RGB.
-    Albedo,
-    /// Glossiness (the albedo target's alpha), grey.
-    Glossiness,
+    /// Base colour (with its texture), linear RGB.
+    BaseColor,
+    /// Metallic (the base colour target's alpha), grey.
+    Metallic,
     /// Shading normal, `0.5 + 0.5 n` in world space.
     ShadingNormal,
     /// Geometric normal, `0.5 + 0.5 n` in world space.
@@ -22,26 +22,30 @@ pub enum Channel {
     Depth,
     /// Screen-space ambient occlusion (1: open), with the frame's SSAO settings.
     AmbientOcclusion,
+    /// Roughness as the lighting reads it (widened for specular anti-aliasing), grey.
+    Roughness,
 }
 
 impl Channel {
-    pub const ALL: [Channel; 6] = [
-        Channel::Albedo,
-        Channel::Glossiness,
+    pub const ALL: [Channel; 7] = [
+        Channel::BaseColor,
+        Channel::Metallic,
         Channel::ShadingNormal,
         Channel::GeometryNormal,
         Channel::Depth,
         Channel::AmbientOcclusion,
+        Channel::Roughness,
     ];
 
     pub fn name(self) -> &'static str {
         match self {
-            Self::Albedo => "albedo",
-            Self::Glossiness => "glossiness",
+            Self::BaseColor => "base colour",
+            Self::Metallic => "metallic",
             Self::ShadingNormal => "shading normal",
             Self::GeometryNormal => "geometry normal",
             Self::Depth => "depth",
             Self::AmbientOcclusion => "ambient occlusion",
+            Self::Roughness => "roughness",
         }
     }
 }

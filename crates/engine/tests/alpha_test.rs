@@ -52,7 +52,7 @@ fn scene() -> Scene {
 fn cut_outs_show_what_is_behind_their_clear_texels() {
     let settings = Settings::preset(Preset::Low, W, H);
     let Some(mut r) = common::renderer(scene(), settings) else { return };
-    r.set_view(View::Channel(Channel::Albedo));
+    r.set_view(View::Channel(Channel::BaseColor));
     let f = r.render_frame().expect("albedo view");
     let at = |x: u32, y: u32| Vec3::from_slice(&f.hdr.pixels[(y * W + x) as usize][..3]);
     // The quad spans x -2..2 at 5 m from the eye: about a third of the view's width.

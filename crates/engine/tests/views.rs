@@ -32,9 +32,9 @@ fn channel_views_show_the_gbuffer_as_it_is() {
     assert!(covered > 100 && up > 50, "{covered} covered pixels, {up} facing up (the floor)");
 
     // Raw display: the LDR image is the sRGB encoding of the clamped values.
-    r.set_view(View::Channel(Channel::Albedo));
+    r.set_view(View::Channel(Channel::BaseColor));
     let albedo = r.render_frame().expect("albedo view");
-    assert_eq!(r.view(), View::Channel(Channel::Albedo));
+    assert_eq!(r.view(), View::Channel(Channel::BaseColor));
     for (px, ldr) in albedo.hdr.pixels.iter().zip(albedo.ldr.chunks(4)) {
         assert!(px[..3].iter().all(|c| (0.0..=1.0).contains(c)), "albedo {px:?}");
         for k in 0..3 {

@@ -47,11 +47,7 @@ impl Scene {
         let mut h = std::collections::hash_map::DefaultHasher::new();
         for m in &self.materials {
             m.name.hash(&mut h);
-            hash_f32s(&mut h, m.albedo.to_array());
-            hash_f32s(
-                &mut h,
-                [m.glossiness, m.specular_power, m.reflectivity, m.transparency, m.ior],
-            );
+            hash_f32s(&mut h, [m.transparency, m.ior]);
             hash_f32s(&mut h, m.emission.to_array());
             hash_f32s(&mut h, m.base_color.extend(m.metallic).to_array());
             hash_f32s(&mut h, [m.roughness]);

@@ -3,11 +3,12 @@
 //! ## Contents
 //!
 //! The scene description every renderer of the workspace reads: triangle meshes with
-//! tangent frames, mip-mapped linear textures, the material model of the Serenity engine's
-//! G-buffer (the Serenity master's thesis, a hybrid GPU rasterization + CPU ray tracing
-//! real-time GI engine, 3.3.2 and Table 3.1: albedo, glossiness, Phong specular power, normal
-//! maps) extended with what its ray tracer needs (mirror reflectivity, transparency with an index of
-//! refraction, alpha testing), the sun (a direction, or a date, time and place through
+//! tangent frames, mip-mapped linear textures, one surface model for every renderer (glTF 2.0's
+//! metallic-roughness, [`brdf`], in place of the Phong model of the Serenity engine's G-buffer:
+//! the Serenity master's thesis, a hybrid GPU rasterization + CPU ray tracing real-time GI
+//! engine, 3.3.2 and Table 3.1, whose parameters the constructors convert; smooth surfaces'
+//! reflections traced as the thesis's were; see [`Material`]) with transmission, normal maps
+//! and alpha testing, the sun (a direction, or a date, time and place through
 //! [`atmosphere::solar_position`]), point and spot lights, occlusion quads (thesis 5.3.3, with the
 //! opacity and tint its future work proposes; derived from the geometry for scenes that
 //! author none, [`Scene::sky_occluders`]), and where the sky volume and LPV cascades go.
@@ -25,7 +26,7 @@
 //! With the cargo feature `gpu`, `scene::gpu` uploads a scene for a wgpu rasterizer (vertex
 //! and index buffers, a draw per material, the material table and its WGSL struct, textures
 //! with a bind group per material) and draws it into that G-buffer (`scene::gpu::GBufferPass`,
-//! a resident pass: albedo + glossiness, shading normal + specular power widened for specular
+//! a resident pass: base colour + metallic, shading normal + roughness widened for specular
 //! anti-aliasing, geometry normal + material id, linear depth; a depth pre-pass shades each
 //! pixel once).
 //!
@@ -89,7 +90,7 @@ pub use load::obj::{load_obj, load_obj_slice};
 pub use load::scene_file::{load_scene_file, load_scene_str};
 #[cfg(feature = "load")]
 pub use load::{LoadOptions, load, load_with};
-pub use material::{AlphaMask, Material, MaterialId, RAY_TRACE_THRESHOLD, phong_lobe, rough_share};
+pub use material::{AlphaMask, Material, MaterialId, RAY_TRACE_THRESHOLD};
 pub use mesh::{Cleanup, Mesh, MeshData};
 pub use needs::{Need, SKY_DARK_ELEVATION_DEG, SceneNeeds};
 pub use occluders::{DeriveSettings, derive_occlusion_quads};

@@ -72,7 +72,7 @@ fn survey(scene: &Scene, camera: &Camera) -> Survey {
         if visible {
             s.visible_triangles += n;
         }
-        if scene.material(m.material).is_some_and(|mat| mat.albedo.max_element() > 0.01) {
+        if scene.material(m.material).is_some_and(|mat| mat.diffuse_albedo().max_element() > 0.01) {
             s.diffuse_triangles += n;
         }
     }

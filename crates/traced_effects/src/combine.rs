@@ -4,8 +4,10 @@
 //! bleeding): the texels of the 3x3 neighbourhood around the pixel's position on the quarter
 //! grid that have a ray and lie at a similar view depth (within `5% + 5 cm`), weighted by a
 //! tent of radius 1.5 texels in each axis. The pixel adds the gathered reflected radiance with
-//! the weight `reflectivity + transparency * F` and the refracted with `transparency *
-//! (1 - F)`, `F` Schlick's Fresnel term at the pixel.
+//! the RGB weight `mirror + transparency * F` and the refracted with `transparency * (1 - F)`,
+//! `F` Schlick's Fresnel term of the glass at the pixel and `mirror` the smooth surface's
+//! traced specular weight ([`scene::Material::mirror_weight`], at the material's base colour:
+//! a base-colour texture does not tint the mirror).
 //!
 //! [`traced_radiance`] is the CPU twin of what `crate::gpu::Combine` adds on the GPU.
 
@@ -38,7 +40,7 @@ pub fn traced_radiance(
     let i = (px.y * view.width + px.x) as usize;
     let depth = gbuffer.depth[i];
     let Some(m) = materials.get(gbuffer.material[i] as usize) else { return Some(Vec3::ZERO) };
-    if depth <= 0.0 || m.reflectivity + m.transparency <= 0.0 {
+    if depth <= 0.0 || !is_traced(m) {
         return Some(Vec3::ZERO);
     }
     let p = view.world_position(px.as_vec2(), depth);
@@ -70,6 +72,12 @@ pub fn traced_radiance(
     if wsum <= 0.0 {
         return Some(Vec3::ZERO);
     }
-    let (wr, wt) = (m.reflectivity + m.transparency * f, m.transparency * (1.0 - f));
+    let (wr, wt) = (m.mirror_weight(n.dot(v)) + m.transparency * f, m.transparency * (1.0 - f));
     Some(wr * sum_r / wsum + wt * sum_t / wsum)
+}
+
+/// True when a pixel of material `m` has traced light: a smooth surface (its specular lobe
+/// is a mirror ray) or a transparent one.
+pub(crate) fn is_traced(m: &scene::Material) -> bool {
+    m.brdf().is_smooth() || m.transparency > 0.0
 }

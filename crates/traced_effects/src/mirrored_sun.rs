@@ -4,9 +4,9 @@
 //! light across the street from the glass tower (`app/examples/specular_transport.rs`).
 //!
 //! Each reflector is a rectangle in a plane with the reflectance of its material's sharp
-//! specular parts: `reflectivity + transparency F(cos) + w_b g` (the mirror part, the glass
-//! part's Fresnel reflection and, for a lobe of power at least [`MIN_POWER`], the glossy
-//! part's whole albedo; `w_b = 1 - reflectivity - transparency`). The lighting pass
+//! specular parts: `(1 - t) F(cos) + t F_glass(cos)` (the specular lobe, counted when the
+//! material's roughness is below [`MAX_ROUGHNESS`], with `F` the BRDF's Schlick Fresnel at
+//! the lobe's brightest channel; the glass part's Fresnel reflection; `t` the transparency). The lighting pass
 //! (`shaders/engine/mirrored_sun.inc.wgsl`) lights a pixel in front of a reflector as by a
 //! second sun from the mirrored direction, when the ray towards it meets the rectangle, scaled
 //! by that reflectance and the real sun's visibility where the ray meets the reflector (the
@@ -31,8 +31,9 @@ use std::collections::HashMap;
 pub const MAX_REFLECTORS: usize = 16;
 /// Smallest reflector, m² (a pane or a window is not one; a wall of them is).
 pub const MIN_AREA: f32 = 4.0;
-/// Smallest Phong power whose glossy part counts as mirroring the sun (about 4 degrees wide).
-pub const MIN_POWER: f32 = 256.0;
+/// Largest roughness whose specular lobe counts as mirroring the sun (about 4 degrees wide:
+/// the thesis's Phong power 256 converted, `scene::PhongParams::to_metallic_roughness`).
+pub const MAX_ROUGHNESS: f32 = 0.3;
 /// Smallest normal-incidence reflectance that makes a surface a reflector.
 pub const MIN_REFLECTANCE: f32 = 0.1;
 
@@ -47,7 +48,9 @@ pub struct Reflector {
     pub normal: [f32; 4],
     /// Unit axis in the plane; w: 1 when both sides reflect (glass), else 0.
     pub axis_u: [f32; 4],
-    /// Mirror part, glass part (transparency), index of refraction, glossy part (`w_b g`).
+    /// The specular lobe's normal-incidence reflectance `F0` (brightest channel; 0 for a
+    /// lobe rougher than [`MAX_ROUGHNESS`]), the glass part (transparency `t`), its index of
+    /// refraction, the lobe's share `1 - t`.
     pub params: [f32; 4],
 }
 const _: () = assert!(std::mem::size_of::<Reflector>() == 64);
@@ -151,8 +154,9 @@ impl Reflector {
     /// Reflectance of the reflector's specular parts for the sun at incidence cosine `cos`
     /// (Fresnel-Schlick for the glass part, as the engine's shaders).
     pub fn reflectance(&self, cos: f32) -> f32 {
-        let [mirror, glass, ior, glossy] = self.params;
-        mirror + glass * crate::trace::fresnel_schlick(ior, cos) + glossy
+        let [f0, glass, ior, lobe] = self.params;
+        let f = scene::brdf::fresnel_schlick(Vec3::splat(f0), cos).x;
+        lobe * f + glass * crate::trace::fresnel_schlick(ior, cos)
     }
 }
 
@@ -160,14 +164,14 @@ fn xyz(v: [f32; 4]) -> Vec3 {
     Vec3::new(v[0], v[1], v[2])
 }
 
-/// The specular parts of a material that mirror the sun: (mirror, glass, ior, glossy), or
-/// `None` when together they reflect less than [`MIN_REFLECTANCE`] at normal incidence.
+/// The specular parts of a material that mirror the sun ([`Reflector::params`]), or `None`
+/// when together they reflect less than [`MIN_REFLECTANCE`] at normal incidence.
 fn sharp_parts(m: &scene::Material) -> Option<[f32; 4]> {
-    let base = (1.0 - m.reflectivity - m.transparency).max(0.0);
-    let glossy = if m.specular_power >= MIN_POWER { base * m.glossiness } else { 0.0 };
+    let lobe = (1.0 - m.transparency).max(0.0);
+    let f0 = if m.roughness <= MAX_ROUGHNESS { m.brdf().f0().max_element() } else { 0.0 };
     let r0 = ((m.ior - 1.0) / (m.ior + 1.0)).powi(2);
-    let total = m.reflectivity + m.transparency * r0 + glossy;
-    let parts = [m.reflectivity, m.transparency, m.ior, glossy];
+    let total = lobe * f0 + m.transparency * r0;
+    let parts = [f0, m.transparency, m.ior, lobe];
     (total >= MIN_REFLECTANCE && parts.iter().all(|v| v.is_finite())).then_some(parts)
 }
 

@@ -1,8 +1,9 @@
 //! The ray casting buffer (thesis 6.2.6, Table 6.1): at quarter resolution (one texel per 2x2
-//! block of pixels), the first pixel of the block with a mirror or glass material writes its
-//! world position and view depth, and its reflection and refraction directions with their
-//! weights (reflection: `reflectivity + transparency * F`; refraction: `transparency *
-//! (1 - F)`, `F` Schlick's Fresnel term; 0 under total internal reflection or where that kind
+//! block of pixels), the first pixel of the block with a smooth or transparent material (its
+//! specular lobe traced, [`scene::Material`]) writes its world position and view depth, and
+//! its reflection and refraction directions with their weights (reflection: the largest
+//! channel of [`scene::Material::mirror_weight`] `+ transparency * F`; refraction:
+//! `transparency * (1 - F)`, `F` Schlick's Fresnel term of the glass; 0 under total internal reflection or where that kind
 //! of ray is switched off). Texels without such a pixel have no ray.
 //!
 //! [`cast_rays`] computes the buffer on the CPU; `crate::gpu::RayCasting` writes it on the
@@ -131,7 +132,7 @@ pub fn cast_rays(
             let i = (px.y * view.width + px.x) as usize;
             let m = materials.get(gbuffer.material[i] as usize)?;
             let depth = gbuffer.depth[i];
-            (depth > 0.0 && m.reflectivity + m.transparency > 0.0).then_some((px, i, m, depth))
+            (depth > 0.0 && crate::combine::is_traced(m)).then_some((px, i, m, depth))
         });
         let Some((px, i, m, depth)) = found else { return RayCast::default() };
         let p = view.world_position(px.as_vec2(), depth);
@@ -144,7 +145,8 @@ pub fn cast_rays(
         if t.dot(t) < 1e-12 {
             (t, wt) = (Vec3::ZERO, 0.0);
         }
-        let wr = if kinds.reflections { m.reflectivity + m.transparency * f } else { 0.0 };
+        let mirror = m.mirror_weight(n.dot(v)).max_element();
+        let wr = if kinds.reflections { mirror + m.transparency * f } else { 0.0 };
         let wt = if kinds.refractions { wt } else { 0.0 };
         RayCast {
             origin: p.extend(depth).to_array(),

@@ -5,14 +5,15 @@
 //! world space (6.2.2, [`kdtree_tracer::KdTree`]) and shades each hit (6.2.8, 6.3):
 //!
 //! - **Surface**: barycentric interpolation of the per-vertex world normals and UVs at the hit
-//!   (6.2.8); the albedo texture is sampled trilinearly with a level of detail from the hit
+//!   (6.2.8); the base-colour texture is sampled trilinearly with a level of detail from the hit
 //!   distance and the triangle's texel density (a stand-in for the ray differentials of
 //!   6.2.9, whose per-pixel neighbours this flat ray list does not have). The normal is
 //!   flipped towards the ray.
-//! - **Light** (the deferred pass's Phong model, 6.3): `emission + w_b * ((1 - g) albedo / pi *
-//!   (E_sun V_sun cos + sum_i I_i V_i cos / d_i^2 + E_ambient) + g (n + 2) / (2 pi)
-//!   max(0, r . l)^n E_sun V_sun cos)` with `w_b = 1 - reflectivity - transparency`, `g` the
-//!   glossiness, `n` the specular power and `r` the mirror direction of the ray. Visibility
+//! - **Light** (the deferred pass's model, 6.3, on [`scene::Material`]'s split): `emission +
+//!   (1 - t) (sum_lights f(v, l) E_l V_l cos + c_d / pi E_ambient)`, with `t` the
+//!   transparency, `f` the material's BRDF ([`scene::Brdf::eval`]; its diffuse lobe alone
+//!   for a smooth surface, whose specular lobe is a traced mirror ray), `E_l` the sun's and
+//!   each point or spot light's irradiance and `c_d` the BRDF's diffuse colour. Visibility
 //!   `V` comes from shadow rays through the same tree, which replace the thesis's overlapped
 //!   shadow maps (6.3.1); glass panes on the way pass `transparency * (1 - F)` of the light
 //!   (the sun lights a glass tower's floors, as it does in the reference, where it is a
@@ -23,9 +24,9 @@
 //!   the reflector and one from the reflector to the sun.
 //! - **Sky correction** (6.3.2): a ray that leaves the scene returns the sky radiance in its
 //!   direction.
-//! - **Mirrors and glass**: with [`TraceSettings::max_depth`] above 1 a mirror hit adds
-//!   `reflectivity * L(reflected)` and a glass hit splits its `transparency` between the
-//!   reflected and refracted rays with the Fresnel-Schlick factor (total internal reflection
+//! - **Mirrors and glass**: with [`TraceSettings::max_depth`] above 1 a smooth hit adds
+//!   [`scene::Material::mirror_weight`] `* L(reflected)` and a glass hit splits its
+//!   `transparency` between the reflected and refracted rays with the Fresnel-Schlick factor (total internal reflection
 //!   reflects everything). With `max_depth == 1` (the thesis, which shades traced hits with
 //!   the deferred pass only) those parts are left out.
 //! - **Alpha testing**: with [`TraceSettings::alpha_test`] a hit whose mask alpha (level 0,
@@ -289,13 +290,13 @@ pub fn trace_rays(
 pub struct TracedHit {
     /// The surface point; w: where the lit radiance goes (set by the caller).
     pub position: [f32; 4],
-    /// Unit shading normal on the ray's side; w: the base part's weight (0: nothing to
-    /// light, as for a ray that left the scene).
+    /// Unit shading normal on the ray's side; w: the BRDF's share `1 - transparency` (0:
+    /// nothing to light, as for a ray that left the scene).
     pub normal: [f32; 4],
-    /// Unit geometric normal on the ray's side; w: glossiness.
+    /// Unit geometric normal on the ray's side; w: metallic.
     pub geometric: [f32; 4],
-    /// Albedo with its texture; w: specular power.
-    pub albedo: [f32; 4],
+    /// Base colour with its texture; w: roughness.
+    pub base_color: [f32; 4],
     /// The ray's light the GPU does not compute: emission, the sky for a miss, the mirror and
     /// glass parts followed on the CPU up to the settings' depth.
     pub other: [f32; 4],
@@ -324,8 +325,8 @@ pub fn trace_surfaces(
             let m = b.material;
             hit.position = b.p.extend(0.0).to_array();
             hit.normal = b.n.extend(b.weight).to_array();
-            hit.geometric = b.ng.extend(m.glossiness).to_array();
-            hit.albedo = b.albedo.extend(m.specular_power.max(1.0)).to_array();
+            hit.geometric = b.ng.extend(m.metallic).to_array();
+            hit.base_color = b.base_color.extend(m.roughness).to_array();
         }
         hit
     })
@@ -372,12 +373,13 @@ struct Tracer<'a> {
     alpha: bool,
 }
 
-/// The base (diffuse + Phong) part of a surface a ray found, as it is lit.
+/// The BRDF part of a surface a ray found, as it is lit.
 struct Base<'a> {
-    /// `1 - reflectivity - transparency`.
+    /// `1 - transparency`.
     weight: f32,
     material: &'a Material,
-    albedo: Vec3,
+    /// The base colour times its texture at the hit.
+    base_color: Vec3,
     p: Vec3,
     /// Unit geometric and shading normals, on the side the ray came from.
     ng: Vec3,
@@ -412,16 +414,16 @@ impl Tracer<'_> {
         let front = h.normal.dot(dir) < 0.0;
         let ng = if front { h.normal } else { -h.normal };
         let n = if h.shading_normal.dot(dir) > 0.0 { -h.shading_normal } else { h.shading_normal };
-        let weight = (1.0 - m.reflectivity - m.transparency).max(0.0);
+        let weight = (1.0 - m.transparency).max(0.0);
         let base = (weight > 0.0).then(|| {
-            let albedo = self.albedo(m, &h, dist + h.t);
-            Base { weight, material: m, albedo, p, ng, n, dir }
+            let base_color = self.base_color(m, &h, dist + h.t);
+            Base { weight, material: m, base_color, p, ng, n, dir }
         });
         let mut l = finite(m.emission);
         if depth <= 1 {
             return Found { other: l, base };
         }
-        let mut w_reflect = if m.is_mirror() { m.reflectivity } else { 0.0 };
+        let mut w_reflect = m.mirror_weight(-dir.dot(n));
         let mut refracted = None;
         if m.is_transparent() {
             let eta = if front { 1.0 / m.ior } else { m.ior };
@@ -430,20 +432,20 @@ impl Tracer<'_> {
             let t = eta * dir + (eta * cos_i - k.max(0.0).sqrt()) * n;
             if k > 0.0 && t.dot(ng) < 0.0 {
                 let f = fresnel_schlick(m.ior, if front { cos_i } else { k.sqrt() });
-                w_reflect += m.transparency * f;
+                w_reflect += Vec3::splat(m.transparency * f);
                 refracted = Some((m.transparency * (1.0 - f), t.normalize()));
             } else {
-                w_reflect += m.transparency; // total internal reflection
+                w_reflect += Vec3::splat(m.transparency); // total internal reflection
             }
         }
-        let mut follow = |w: f32, d: Vec3| {
-            if w > 0.0 {
+        let mut follow = |w: Vec3, d: Vec3| {
+            if w.max_element() > 0.0 {
                 l += w * self.radiance(s.surfaces.offset(p, ng, d), d, depth - 1, dist + h.t);
             }
         };
         follow(w_reflect, reflect(dir, n));
         if let Some((w, t)) = refracted {
-            follow(w, t);
+            follow(Vec3::splat(w), t);
         }
         Found { other: l, base }
     }
@@ -452,24 +454,25 @@ impl Tracer<'_> {
     /// the ambient light, with shadow rays.
     fn light_base(&self, b: &Base) -> Vec3 {
         let po = self.scene.surfaces.offset(b.p, b.ng, -b.dir);
-        self.direct(b.material, b.albedo, b.p, po, b.n, b.dir)
+        self.direct(b.material, b.base_color, b.p, po, b.n, b.dir)
     }
 
-    /// The diffuse + Phong part lit by the sun, the point lights and the ambient light.
-    /// `po` is the surface point moved off the surface on the lit side.
-    fn direct(&self, m: &Material, albedo: Vec3, p: Vec3, po: Vec3, n: Vec3, dir: Vec3) -> Vec3 {
+    /// The BRDF part lit by the sun, the point lights and the ambient light. `po` is the
+    /// surface point moved off the surface on the lit side.
+    fn direct(&self, m: &Material, base: Vec3, p: Vec3, po: Vec3, n: Vec3, dir: Vec3) -> Vec3 {
         let s = self.scene;
-        let mut irradiance = finite((self.lighting.ambient)(p, n));
-        let mut specular = Vec3::ZERO;
-        // Irradiance `e` from unit direction `l` (visibility applied) on the diffuse and
-        // glossy parts.
+        let brdf = scene::Brdf::new(base, m.metallic, m.roughness);
+        let ambient = finite((self.lighting.ambient)(p, n));
+        let mut reflected = brdf.diffuse_color() / PI * ambient;
+        // Irradiance `e` from unit direction `l` (visibility applied), reflected by the BRDF
+        // (its diffuse lobe alone on a smooth surface: the specular lobe is traced).
         let mut add = |l: Vec3, e: Vec3| {
-            let cos = n.dot(l);
-            irradiance += e * cos;
-            if m.glossiness > 0.0 {
-                let lobe = scene::phong_lobe(m.specular_power.max(1.0), reflect(dir, n).dot(l));
-                specular += e * cos * m.glossiness * lobe;
-            }
+            let f = if brdf.is_smooth() {
+                brdf.eval_diffuse(n, -dir, l)
+            } else {
+                brdf.eval(n, -dir, l)
+            };
+            reflected += f * e * n.dot(l);
         };
         if let Some((l, e)) = self.sun {
             if n.dot(l) > 0.0 {
@@ -502,23 +505,23 @@ impl Tracer<'_> {
             }
             let d = d2.sqrt();
             let l = to / d;
-            let cos = n.dot(l) * light.falloff(-l);
-            if cos > 0.0 {
+            let falloff = light.falloff(-l);
+            if n.dot(l) > 0.0 && falloff > 0.0 {
                 let through = if light.casts_shadows {
                     s.transmittance(po, l, d - s.epsilon(), self.alpha)
                 } else {
                     1.0
                 };
-                irradiance += finite(light.color) * (through * cos / d2);
+                add(l, finite(light.color) * (through * falloff / d2));
             }
         }
-        (1.0 - m.glossiness) * albedo / PI * irradiance + specular
+        reflected
     }
 
-    /// The material's albedo times its texture at the hit (`dist`: distance travelled).
-    fn albedo(&self, m: &Material, h: &SurfaceHit, dist: f32) -> Vec3 {
+    /// The material's base colour times its texture at the hit (`dist`: distance travelled).
+    fn base_color(&self, m: &Material, h: &SurfaceHit, dist: f32) -> Vec3 {
         let s = self.scene;
-        let mut albedo = m.albedo;
+        let mut albedo = m.base_color;
         if let Some(tex) = m.albedo_texture.and_then(|id| s.texture(id)) {
             let texels = (tex.width() as f32 * tex.height() as f32).sqrt();
             let footprint = dist * PIXEL_SPREAD * s.uv_density[h.triangle as usize] * texels;

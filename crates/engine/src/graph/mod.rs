@@ -6,7 +6,7 @@
 use crate::EngineError;
 use crate::effects::Effect;
 use crate::frame::{
-    FLAG_BLINN, FLAG_INDIRECT, FLAG_LPV_GLOSSY, FLAG_MIRRORED_SUN, FLAG_SHADOWS, FLAG_SKY,
+    FLAG_INDIRECT, FLAG_LPV_GLOSSY, FLAG_MIRRORED_SUN, FLAG_SHADOWS, FLAG_SKY,
     FLAG_SKY_VOLUME, FLAG_SUN_GLINTS, FLAG_VOLUME_QUERIES, FrameUniform,
 };
 use crate::mirrored_sun::ReflectorSet;
@@ -19,7 +19,7 @@ use crate::passes::shadow::{ShadowMaps, SunMapsPlan};
 use crate::passes::sky::{SkyLight, SkyMapState, SkyVolumeState};
 use crate::passes::traced_lighting::{OsmPass, TracedInputs, TracedLightingPass};
 use crate::settings::TracedShading;
-use crate::settings::{Indirect, Specular};
+use crate::settings::Indirect;
 use crate::state::FrameCtx;
 use crate::trace::{TraceLighting, TraceSettings, TracedHit, trace_rays, trace_surfaces};
 use frame_scheduler::{
@@ -125,9 +125,6 @@ fn write_frame_uniform(c: &FrameCtx, bound: Bound) {
         if matches!(c.indirect, Indirect::Lpv | Indirect::Cache) {
             flags |= FLAG_VOLUME_QUERIES;
         }
-    }
-    if set.specular == Specular::BlinnPhong {
-        flags |= FLAG_BLINN;
     }
     if set.sun_glints {
         flags |= FLAG_SUN_GLINTS;

@@ -171,7 +171,6 @@ impl LightingPass {
                         self.lookup_q.as_entire_binding(),
                         tv(&targets.positions),
                         self.glossy_q.as_entire_binding(),
-                        tv(&targets.albedo),
                     ],
                 );
                 dispatch(enc, &self.queries, &bg, size);
@@ -213,7 +212,7 @@ impl LightingPass {
             &self.pipeline.get_bind_group_layout(0),
             &[
                 inputs.frame.as_entire_binding(),
-                tv(&targets.albedo),
+                tv(&targets.base_color),
                 tv(&targets.normal),
                 tv(&targets.geometry),
                 tv(&targets.depth),

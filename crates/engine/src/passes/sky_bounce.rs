@@ -104,7 +104,7 @@ impl SkyBounce {
                 (0, inputs.frame.as_entire_binding()),
                 (1, grid.as_entire_binding()),
                 (4, queries.as_entire_binding()),
-                (7, tv(&t.albedo)),
+                (7, tv(&t.base_color)),
                 (8, tv(&t.geometry)),
                 (9, inputs.materials.as_entire_binding()),
                 (10, sky_e.as_entire_binding()),

@@ -13,7 +13,8 @@
 use super::builder::{Geo, Parts};
 use super::textures;
 use crate::{
-    AlphaMask, Camera, CivilDate, Material, OcclusionQuad, PointLight, Scene, SceneError, Sun,
+    AlphaMask, Camera, CivilDate, Material, OcclusionQuad, PhongParams, PointLight, Scene,
+    SceneError, Sun,
 };
 use glam::Vec3;
 use rand::{Rng, SeedableRng};
@@ -155,11 +156,16 @@ fn build(seed: u64) -> Result<Scene, SceneError> {
         scene.add_material(Material::glossy("metal", Vec3::new(0.25, 0.26, 0.28), 0.5, 64.0));
     let m_mirror = scene.add_material(Material::mirror("mirror", 0.95));
     let m_statue = scene.add_material(
-        Material {
-            reflectivity: 0.6,
-            ..Material::glossy("statue_chrome", Vec3::new(0.3, 0.28, 0.25), 0.9, 256.0)
-        }
-        .with_phong_converted(),
+        Material::phong(
+            "statue_chrome",
+            PhongParams {
+                albedo: Vec3::new(0.3, 0.28, 0.25),
+                glossiness: 0.9,
+                specular_power: 256.0,
+                reflectivity: 0.6,
+                transparency: 0.0,
+            },
+        ),
     );
     let m_bark = scene.add_material(textured("bark", Vec3::ONE, t_bark));
     let m_leaves = scene.add_material(Material {

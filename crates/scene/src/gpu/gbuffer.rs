@@ -2,9 +2,10 @@
 //! rasterizes a [`GpuScene`] into it.
 //!
 //! What each pixel holds ([`GBUFFER_FORMATS`], in attachment order):
-//! - `albedo` (RGBA8): the material's albedo times its albedo texture, glossiness in `w`;
+//! - `base_color` (RGBA8): the material's base colour times its base-colour texture, metallic
+//!   in `w` ([`crate::brdf`]);
 //! - `normal` (RGBA16F): the shading normal (the interpolated vertex normal), facing the viewer,
-//!   and in `w` the specular power, widened for specular anti-aliasing (below);
+//!   and in `w` the roughness, widened for specular anti-aliasing (below);
 //! - `geometry` (RGBA16F): the geometry normal (of the triangle, from the position's screen
 //!   derivatives), facing the viewer, and in `w` the material's index (a float);
 //! - `depth` (R32F): the linear depth along the camera's forward axis,
@@ -13,11 +14,17 @@
 //!
 //! Surfaces are two-sided. Specular anti-aliasing: across a pixel the shading normal turns by
 //! its screen derivatives, so the pixel sees the highlights of a range of normals; the stored
-//! power `p` becomes `p / (1 + 4 p s2)`, with `s2` the normal's variance over the pixel's
-//! footprint (`|dn/dx|² / 12 + |dn/dy|² / 12`) times [`GBufferCamera`]'s footprint scale (1
-//! for a frame shown alone, less for the jittered samples of a view averaged over frames,
-//! which average the pixel's area themselves). The widened Phong lobe, still normalised,
-//! spreads a highlight over the pixels it covers instead of point-sampling it.
+//! roughness is [`crate::brdf::filtered_roughness`] of the material's at the normal's variance
+//! over the pixel's footprint (`|dn/dx|² / 12 + |dn/dy|² / 12`) times [`GBufferCamera`]'s
+//! footprint scale (1 for a frame shown alone, less for the jittered samples of a view
+//! averaged over frames, which average the pixel's area themselves). The widened lobe spreads
+//! a highlight over the pixels it covers instead of point-sampling it.
+//!
+//! Compared with the thesis's Table 3.1 (albedo + glossiness, normal + Phong power), the
+//! layout keeps its four targets and formats and changes what two channels mean: albedo
+//! became base colour, glossiness metallic, the Phong power the roughness. The roughness of a
+//! smooth surface (below [`crate::TRACED_ROUGHNESS`]) tells the lighting that its specular
+//! lobe is the ray tracer's.
 //!
 //! [`GBufferPass`] draws the opaque draws' depth first (a depth-only pre-pass), then the
 //! opaque draws with depth test `Equal`, so each pixel is shaded once whatever the draw order
@@ -43,15 +50,17 @@ use super::GpuScene;
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec3};
 
-/// The G-buffer shader: [`super::MATERIAL_INC_WGSL`] then `shaders/scene/gbuffer.wgsl`.
+/// The G-buffer shader: [`super::MATERIAL_INC_WGSL`] (with the BRDF), then
+/// `shaders/scene/gbuffer.wgsl`.
 pub const GBUFFER_WGSL: &str = concat!(
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/brdf.inc.wgsl")),
+    "\n",
     include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/material.inc.wgsl")),
     "\n",
     include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/gbuffer.wgsl"))
 );
 
-/// G-buffer formats in attachment order: albedo + glossiness, shading normal + specular
-/// power, geometry normal + material id, linear depth (0: nothing drawn).
+/// G-buffer formats in attachment order: base colour + metallic, shading normal + roughness, geometry normal + material id, linear depth (0: nothing drawn).
 pub const GBUFFER_FORMATS: [wgpu::TextureFormat; 4] = [
     wgpu::TextureFormat::Rgba8Unorm,
     wgpu::TextureFormat::Rgba16Float,
@@ -67,9 +76,9 @@ pub const ZBUFFER_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Floa
 pub struct GBuffer {
     pub width: u32,
     pub height: u32,
-    /// The textures behind the views: albedo, normal, geometry, depth, z-buffer.
+    /// The textures behind the views: base colour, normal, geometry, depth, z-buffer.
     pub textures: [wgpu::Texture; 5],
-    pub albedo: wgpu::TextureView,
+    pub base_color: wgpu::TextureView,
     pub normal: wgpu::TextureView,
     pub geometry: wgpu::TextureView,
     pub depth: wgpu::TextureView,
@@ -83,15 +92,15 @@ impl GBuffer {
         let target =
             |label, format| gpu_harness::texture_2d(device, label, (width, height), format, usage);
         let textures = [
-            target("albedo", GBUFFER_FORMATS[0]),
+            target("base_color", GBUFFER_FORMATS[0]),
             target("normal", GBUFFER_FORMATS[1]),
             target("geometry", GBUFFER_FORMATS[2]),
             target("linear depth", GBUFFER_FORMATS[3]),
             target("z-buffer", ZBUFFER_FORMAT),
         ];
-        let [albedo, normal, geometry, depth, zbuffer] =
+        let [base_color, normal, geometry, depth, zbuffer] =
             textures.each_ref().map(|t| t.create_view(&Default::default()));
-        Self { width, height, textures, albedo, normal, geometry, depth, zbuffer }
+        Self { width, height, textures, base_color, normal, geometry, depth, zbuffer }
     }
 }
 
@@ -247,7 +256,7 @@ impl GBufferPass {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("gbuffer"),
             color_attachments: &[
-                clear(&gbuffer.albedo),
+                clear(&gbuffer.base_color),
                 clear(&gbuffer.normal),
                 clear(&gbuffer.geometry),
                 clear(&gbuffer.depth),

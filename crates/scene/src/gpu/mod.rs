@@ -33,10 +33,15 @@ use crate::{Material, Scene};
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 
-/// The WGSL declaration of [`GpuMaterial`] (`struct Material`), for the shaders that read
-/// [`GpuScene::materials`].
-pub const MATERIAL_INC_WGSL: &str =
-    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/material.inc.wgsl"));
+/// The WGSL declaration of [`GpuMaterial`] (`struct Material`) and of what every renderer
+/// asks a material ([`Material`]'s twins: `material_diffuse_albedo`, `material_mirror_weight`,
+/// `material_is_smooth`), after the BRDF's twin ([`BRDF_INC_WGSL`]), for the shaders that
+/// read [`GpuScene::materials`].
+pub const MATERIAL_INC_WGSL: &str = concat!(
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/brdf.inc.wgsl")),
+    "\n",
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/material.inc.wgsl"))
+);
 
 /// The WGSL twin of [`crate::brdf`] (`brdf_eval`, `brdf_eval_diffuse`, `brdf_eval_specular`,
 /// `brdf_specular_reflectance`, ...): every shader that lights a surface includes it.
@@ -56,15 +61,15 @@ const _: () = assert!(std::mem::size_of::<Vertex>() == 36);
 
 /// The material bound when a scene has none.
 const ZERO_MATERIAL: GpuMaterial =
-    GpuMaterial { albedo: [0.0; 4], params: [0.0; 4], emission: [0.0; 4], flags: [0; 4] };
+    GpuMaterial { base: [0.0; 4], params: [0.0; 4], emission: [0.0; 4], flags: [0; 4] };
 
 /// A material as the shaders read it (`Material` in [`MATERIAL_INC_WGSL`]).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuMaterial {
-    /// Albedo RGB, glossiness.
-    pub albedo: [f32; 4],
-    /// Specular power, reflectivity, transparency, index of refraction.
+    /// Base colour RGB, metallic.
+    pub base: [f32; 4],
+    /// Roughness, transparency, index of refraction, unused.
     pub params: [f32; 4],
     /// Emission RGB, alpha cutoff (0: no alpha test).
     pub emission: [f32; 4],
@@ -76,8 +81,8 @@ const _: () = assert!(std::mem::size_of::<GpuMaterial>() == 64);
 impl GpuMaterial {
     pub fn new(m: &Material) -> Self {
         Self {
-            albedo: m.albedo.extend(m.glossiness).to_array(),
-            params: [m.specular_power, m.reflectivity, m.transparency, m.ior],
+            base: m.base_color.extend(m.metallic).to_array(),
+            params: [m.roughness, m.transparency, m.ior, 0.0],
             emission: m.emission.extend(m.alpha_mask.map_or(0.0, |a| a.cutoff)).to_array(),
             flags: [u32::from(m.albedo_texture.is_some()), u32::from(m.alpha_mask.is_some()), 0, 0],
         }
@@ -105,8 +110,8 @@ pub struct GpuScene {
     pub materials: wgpu::Buffer,
     pub material_table: Vec<GpuMaterial>,
     /// Per material, the reflectance of the light it bounces diffusely (a reflective shadow
-    /// map's flux): albedo times the mean of its albedo texture (the texture's 1x1 mip,
-    /// linear) times `1 - reflectivity - transparency`. A shadow map's texels (tens of
+    /// map's flux): [`Material::diffuse_albedo`] times the mean of its albedo texture (the
+    /// texture's 1x1 mip, linear). A shadow map's texels (tens of
     /// centimetres) span many texture texels, so the mean is what a texel reflects.
     pub diffuse_albedo: Vec<Vec3>,
     /// One bind group per material (albedo texture, alpha texture, sampler) of
@@ -219,7 +224,7 @@ fn diffuse_albedo(scene: &Scene, m: &Material) -> Vec3 {
         .and_then(|t| t.levels.last())
         .and_then(|l| l.texels.first())
         .map_or(Vec3::ONE, |t| t.truncate().clamp(Vec3::ZERO, Vec3::ONE));
-    m.albedo * mean * (1.0 - m.reflectivity - m.transparency).max(0.0)
+    m.diffuse_albedo() * mean
 }
 
 #[cfg(test)]
@@ -232,21 +237,19 @@ mod tests {
     /// mean: the city's asphalt (a dark texture on a white factor) bounced as if white before
     /// (the engine's one-bounce rel RMS of the RSM gather 2.81 against 0.686 after).
     #[test]
-    fn rsm_albedo_is_the_factor_times_the_textures_mean_times_the_diffuse_share() {
+    fn rsm_albedo_is_the_diffuse_colour_times_the_textures_mean_times_the_reflected_share() {
         let mut scene = Scene::new("albedo");
         let texels = [0.1, 0.3, 0.5, 0.7].map(|v| Vec4::new(v, v * 0.5, 0.0, 1.0)).to_vec();
         let texture = Texture::from_linear("dark", 2, 2, texels).expect("a 2x2 texture");
         let id = scene.add_texture(texture);
         let textured = Material {
-            albedo: Vec3::new(1.0, 0.5, 1.0),
             albedo_texture: Some(id),
-            reflectivity: 0.25,
-            ..Default::default()
+            ..Material::metallic_roughness("half metal", Vec3::new(1.0, 0.5, 1.0), 0.25, 0.5)
         };
         let got = diffuse_albedo(&scene, &textured);
         let want = Vec3::new(1.0 * 0.4, 0.5 * 0.2, 0.0) * 0.75;
         assert!((got - want).abs().max_element() < 1e-5, "{got} against {want}");
-        let plain = Material { albedo: Vec3::splat(0.6), transparency: 0.5, ..Default::default() };
+        let plain = Material { transparency: 0.5, ..Material::diffuse("d", Vec3::splat(0.6)) };
         assert!((diffuse_albedo(&scene, &plain) - Vec3::splat(0.3)).abs().max_element() < 1e-6);
     }
 

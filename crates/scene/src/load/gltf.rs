@@ -6,13 +6,10 @@
 //! glTF describes surfaces with the metallic-roughness model, which is this crate's
 //! ([`crate::brdf`]): `pbrMetallicRoughness`'s base colour factor, metallic factor and
 //! roughness factor are the material's `base_color`, `metallic` and `roughness`; the
-//! base-colour texture is the albedo texture, decoded from sRGB to linear. The thesis's Phong
-//! fields that some renderers still read are derived by [`Material::metallic_roughness`]
-//! (its doc gives the mapping). Further:
+//! base-colour texture is the albedo texture, decoded from sRGB to linear. Further:
 //!
 //! - transparency = `KHR_materials_transmission` factor if present, else `1 - c.a` for
-//!   `alphaMode: BLEND`; IOR from `KHR_materials_ior` (default 1.5); reflectivity is capped at
-//!   `1 - transparency`;
+//!   `alphaMode: BLEND`; IOR from `KHR_materials_ior` (default 1.5);
 //! - `alphaMode: MASK` = alpha test on the base-colour texture's alpha with `alphaCutoff`;
 //! - emission = `emissiveFactor * KHR_materials_emissive_strength`;
 //! - normal texture = tangent-space normal map (linear); `doubleSided` kept.
@@ -435,7 +432,6 @@ impl Loader<'_> {
             transparency = 0.0;
         }
         let base = Material::metallic_roughness(name.clone(), rgb, metal, rough);
-        let reflectivity = base.reflectivity.min(1.0 - transparency);
         let ior = m.ior().filter(|i| i.is_finite() && *i >= 1.0).unwrap_or(1.5);
         let alpha_mask = if m.alpha_mode() == gltf::material::AlphaMode::Mask {
             let cutoff = m.alpha_cutoff().filter(|c| *c > 0.0 && *c <= 1.0).unwrap_or(0.5);
@@ -458,7 +454,6 @@ impl Loader<'_> {
         let mat = Material {
             albedo_texture,
             normal_texture,
-            reflectivity,
             transparency,
             ior,
             alpha_mask,

@@ -1,9 +1,11 @@
 //! Wavefront OBJ + MTL loading through `tobj` (polygons triangulated, one index per vertex).
 //!
-//! MTL mapping: `Kd` -> albedo, `map_Kd` -> albedo texture (sRGB); `Ks` -> glossiness (its
-//! largest channel), `Ns` -> Phong power; `map_Bump`/`bump` -> normal map (linear); `d` (or
-//! `Tr` = 1 - d) -> transparency = 1 - d, `Ni` -> IOR; `illum` 3, 5, 7 (ray-traced reflection
-//! models) -> mirror reflectivity = largest `Ks` channel; `map_d` -> alpha-test mask (its red
+//! MTL mapping: MTL's Phong model, read as the thesis's ([`crate::PhongParams`]) and converted
+//! once to metallic-roughness ([`Material::phong`]): `Kd` -> albedo, `map_Kd` -> albedo
+//! texture (sRGB); `Ks` -> glossiness (its largest channel), `Ns` -> Phong power;
+//! `map_Bump`/`bump` -> normal map (linear); `d` (or `Tr` = 1 - d) -> transparency = 1 - d,
+//! `Ni` -> IOR; `illum` 3, 5, 7 (ray-traced reflection models) -> mirror reflectivity =
+//! largest `Ks` channel; `map_d` -> alpha-test mask (its red
 //! channel, cutoff 0.5); `Ke` -> emission. Objects without a material get a grey default.
 //!
 //! A material library or texture that is missing or unreadable gives a warning (on
@@ -197,18 +199,18 @@ fn finish(
             0.0
         };
         let emission = Vec3::from(m.emissive.unwrap_or([0.0; 3]));
-        let mut mat = Material {
-            name: m.name.clone(),
+        let phong = crate::PhongParams {
             albedo: clamp3(m.diffuse, 0.8),
             glossiness: ks,
             specular_power: m.shininess.filter(|s| s.is_finite()).unwrap_or(1.0).clamp(1.0, 8192.0),
             reflectivity,
             transparency,
+        };
+        let mut mat = Material {
             ior: m.optical_density.filter(|i| i.is_finite() && *i >= 1.0).unwrap_or(1.5),
             emission: if emission.is_finite() { emission.max(Vec3::ZERO) } else { Vec3::ZERO },
-            ..Material::default()
-        }
-        .with_phong_converted();
+            ..Material::phong(m.name.clone(), phong)
+        };
         if let Some(t) = m.diffuse_texture.as_deref().filter(|t| !t.is_empty()) {
             mat.albedo_texture = Some(texture(&mut scene, t, ColorSpace::Srgb, &m.name, false)?);
         }

@@ -42,7 +42,8 @@
 //! ior = 1.52
 //! # Also: base_color, metallic, roughness (glTF's metallic-roughness parameters), or the
 //! # thesis's albedo, glossiness, specular_power, reflectivity (converted to them by
-//! # scene::PhongParams::to_metallic_roughness, applied before the glTF keys).
+//! # scene::PhongParams::to_metallic_roughness, the keys left out at the Phong model's
+//! # defaults; applied before the glTF keys).
 //!
 //! [camera]
 //! position = [0.0, 1.7, 8.0]
@@ -292,15 +293,9 @@ fn load_scene_ctx(
         })?;
         let textures = scene.textures.len();
         let m = &mut scene.materials[id.index()];
-        if let Some(a) = o.albedo {
-            m.albedo = a.into();
-        }
         if let Some(e) = o.emission {
             m.emission = e.into();
         }
-        m.glossiness = o.glossiness.unwrap_or(m.glossiness);
-        m.specular_power = o.specular_power.unwrap_or(m.specular_power);
-        m.reflectivity = o.reflectivity.unwrap_or(m.reflectivity);
         m.transparency = o.transparency.unwrap_or(m.transparency);
         m.ior = o.ior.unwrap_or(m.ior);
         let phong_edited = o.albedo.is_some()
@@ -308,7 +303,17 @@ fn load_scene_ctx(
             || o.specular_power.is_some()
             || o.reflectivity.is_some();
         if phong_edited {
-            *m = m.clone().with_phong_converted();
+            // The thesis's parameters describe the whole surface: those the override leaves
+            // out are the Phong model's defaults (a matte surface of the current base colour).
+            let phong = crate::PhongParams {
+                albedo: o.albedo.map_or(m.base_color, Vec3::from),
+                glossiness: o.glossiness.unwrap_or(0.0),
+                specular_power: o.specular_power.unwrap_or(1.0),
+                reflectivity: o.reflectivity.unwrap_or(0.0),
+                transparency: m.transparency,
+            };
+            let (base_color, metallic, roughness) = phong.to_metallic_roughness();
+            (m.base_color, m.metallic, m.roughness) = (base_color, metallic, roughness);
         }
         if let Some(c) = o.base_color {
             m.base_color = c.into();
