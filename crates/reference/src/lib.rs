@@ -65,6 +65,7 @@
 // `!(a > b)` is used on purpose: it is also true when either side is NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+pub mod analytic;
 mod camera;
 mod caustics;
 mod compare;
