@@ -5,14 +5,14 @@
 //! `reference/cornell_area_320x180_equal_time` (the area-lit Cornell box rendered with
 //! emitter sampling for as long as the estimator without it took; the variance ratio at
 //! equal time), `reference/furnace` (error against the furnace's radiance equation, solved
-//! by quadrature of the wall's BRDF) and `reference/city_320x180_caustics_{on,off}` (two independent renders with and without the
-//! caustic estimator; error = their relative RMS against each other),
-//! `reference/city_320x180_refined` (two independent renders, each `spp` samples per pixel
-//! and then `Refinement::DEFAULT`'s second stage where the image is noisiest; error = their
-//! relative RMS against each other, unclamped; the first stage's figures beside it; 64 spp
-//! quick, 1024 full: the "two minutes" render). Also: the image
-//! error of low sample counts against a higher-sample render (the comparison helpers every
-//! crate uses), and the camera-path throughput.
+//! by quadrature of the wall's BRDF) and `reference/city_320x180_caustics_{on,off}` (two
+//! independent renders with and without the caustic estimator; error = their relative RMS
+//! against each other), `reference/city_320x180_refined` (two independent renders, each
+//! `spp` samples per pixel and then `Refinement::DEFAULT`'s second stage where the image is
+//! noisiest; error = their relative RMS against each other, unclamped; the first stage's
+//! figures beside it; 64 spp quick, 1024 full: the "two minutes" render). Also: the
+//! image error of low sample counts against a higher-sample render (the comparison helpers
+//! every crate uses), and the camera-path throughput.
 
 use gi_report::{Entry, Sweep, time_ms};
 use reference::{

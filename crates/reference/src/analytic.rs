@@ -47,12 +47,12 @@ pub fn directional_albedo(brdf: &Brdf, n_dot_v: f32) -> Vec3 {
 /// material whose albedo depends on the angle.
 ///
 /// A chord of a sphere meets it at the same angle at both ends, so the radiance leaving the
-/// wall depends only on its angle `theta` to the inward normal and obeys
-/// `L(theta_o) = e + int f(theta_o, wi) L(theta_i) cos(theta_i) dwi`, a one-dimensional
-/// equation. It is solved on [`SphereFurnace::BINS`] bins of `theta` (the kernel by
-/// midpoint quadrature in each bin and in azimuth, `L` constant over a bin) by summing the
-/// series `L_k = e + K L_(k-1)` up to the number of bounces asked for (a Lambertian albedo `a` gives `e (1 + a +
-/// ... + a^k)`). A viewer at the centre sees `L(0)`.
+/// wall depends only on its angle `theta` to the inward normal and obeys `L(theta_o) = e +
+/// int f(theta_o, wi) L(theta_i) cos(theta_i) dwi`, a one-dimensional equation. It is
+/// solved on [`SphereFurnace::BINS`] bins of `theta` (the kernel by midpoint quadrature in
+/// each bin and in azimuth, `L` constant over a bin) by summing the series `L_k = e + K
+/// L_(k-1)` up to the number of bounces asked for (a Lambertian albedo `a` gives `e (1 + a
+/// + ... + a^k)`). A viewer at the centre sees `L(0)`.
 #[derive(Clone, Debug)]
 pub struct SphereFurnace {
     /// `kernel[i][j]`: the share of the radiance leaving the wall in bin `j` that the wall

@@ -19,16 +19,16 @@
 //! **Photon pass.** Photons leave the sun towards the surfaces photons follow (a mirror or
 //! glass part, or a sharp base: the *specular triangles*): a triangle `t` is chosen in
 //! proportion to its area projected towards the sun's centre, `A_t |cos theta_t|` (Walker
-//! alias table), a point `x` uniform in its area, a direction `w` uniform in the sun's cone;
-//! the photon travels along `-w` from outside the world's bounds and counts only when the
-//! first surface it meets is `t` itself (so every light ray is counted once, through the
-//! triangle it meets first). Its power is `L_sun Omega A_t |cos(n_t, w)| / (P(t) N)`: an
-//! unbiased sample of the sun's flux onto the specular surfaces. It then follows only S
+//! alias table), a point `x` uniform in its area, a direction `w` uniform in the sun's
+//! cone; the photon travels along `-w` from outside the world's bounds and counts only when
+//! the first surface it meets is `t` itself (so every light ray is counted once, through
+//! the triangle it meets first). Its power is `L_sun Omega A_t |cos(n_t, w)| / (P(t) N)`:
+//! an unbiased sample of the sun's flux onto the specular surfaces. It then follows only S
 //! events (the delta part of a material chosen as the path tracer chooses it, Fresnel
 //! included, or the whole BSDF of a sharp material; Russian roulette on the event's weight)
 //! and is **stored** wherever it meets a non-sharp surface with a lit BRDF (a rough one, or
-//! a smooth one's diffuse lobe) after at least one S event: position, the incoming direction, the normal facing it, its power and its
-//! number of S events.
+//! a smooth one's diffuse lobe) after at least one S event: position, the incoming
+//! direction, the normal facing it, its power and its number of S events.
 //!
 //! **Density estimate.** At a D vertex `x` of a camera path (normal `n` facing the viewer),
 //! the reflected caustic radiance is `sum_p f(wo, -w_p) Phi_p / (pi r^2)` over the photons

@@ -135,8 +135,9 @@ fn point_lights(world: &World, p: Vec3, n: Vec3, mut f: impl FnMut(Vec3) -> Vec3
 }
 
 /// Emitter light reflected at a surface point by `f` (the material's non-delta BSDF, a
-/// function of the incident direction), one emitter sample weighted against BRDF sampling of density
-/// `bsdf_pdf` (balance heuristic). Zero when emitter sampling is off or there are none.
+/// function of the incident direction), one emitter sample weighted against BRDF sampling
+/// of density `bsdf_pdf` (balance heuristic). Zero when emitter sampling is off or there
+/// are none.
 fn emitters_direct(
     world: &World,
     p: Vec3,
