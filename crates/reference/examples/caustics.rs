@@ -32,8 +32,9 @@ struct Args {
     /// Also render without photons.
     #[arg(long)]
     baseline: bool,
-    /// Diagnostic variants of the scene: `no_gloss` (no Phong lobe anywhere), `no_delta` (no
-    /// mirror or glass part), `no_gloss_on_delta` (no Phong lobe on mirror/glass materials).
+    /// Diagnostic variants of the scene: `no_glass` (transparency 0 everywhere), `no_mirror`
+    /// (smooth BRDFs made just rough enough to be evaluated, not traced), `no_delta` (both),
+    /// `no_sharp` (rough BRDFs below the caustics' sharp threshold, 0.25, made that rough).
     #[arg(long)]
     variant: Option<String>,
     #[arg(long, default_value = "full")]
@@ -102,28 +103,23 @@ fn main() -> Result<()> {
         bail!("unknown scene {:?}", args.scene);
     };
     let mut scene = generated.build(1);
+    let (glass, mirror, sharp) = match args.variant.as_deref() {
+        None => (false, false, false),
+        Some("no_glass") => (true, false, false),
+        Some("no_mirror") => (false, true, false),
+        Some("no_delta") => (true, true, false),
+        Some("no_sharp") => (false, false, true),
+        Some(v) => bail!("unknown variant {v:?}"),
+    };
     for m in &mut scene.materials {
-        match args.variant.as_deref() {
-            None => {}
-            Some("no_gloss") => m.glossiness = 0.0,
-            Some("no_delta") => (m.reflectivity, m.transparency) = (0.0, 0.0),
-            Some("no_gloss_on_delta") if m.reflectivity + m.transparency > 0.0 => {
-                m.glossiness = 0.0
-            }
-            Some("no_gloss_on_delta") => {}
-            Some("no_gloss_off_delta") if m.reflectivity + m.transparency == 0.0 => {
-                m.glossiness = 0.0
-            }
-            Some("no_gloss_off_delta") => {}
-            Some("no_glass_gloss") if m.transparency > 0.0 => m.glossiness = 0.0,
-            Some("no_glass_gloss") => {}
-            Some("no_mirror_gloss") if m.reflectivity > 0.9 => m.glossiness = 0.0,
-            Some("no_mirror_gloss") => {}
-            Some("no_statue_gloss") if m.reflectivity > 0.5 && m.reflectivity < 0.9 => {
-                m.glossiness = 0.0
-            }
-            Some("no_statue_gloss") => {}
-            Some(v) => bail!("unknown variant {v:?}"),
+        if glass {
+            m.transparency = 0.0;
+        }
+        if mirror {
+            m.roughness = m.roughness.max(scene::TRACED_ROUGHNESS);
+        }
+        if sharp && m.roughness >= scene::TRACED_ROUGHNESS {
+            m.roughness = m.roughness.max(0.25);
         }
     }
     let world = world_from_scene(&scene, &SceneLighting::DEFAULT)?;

@@ -3,10 +3,12 @@
 //! through a chain of specular bounces.
 //!
 //! **The partition of paths.** An *S event* is a bounce off a mirror or glass part (a delta
-//! event) or off the base BRDF of a *sharp* material, whose Phong lobe peaks at
-//! `g (n + 2) / (2 pi) >= 20` per steradian (the city's mirror, glass and chrome: highlights
-//! of the sun so narrow that a diffuse surface finds them only by chance); a *D event* is a
-//! bounce off the base BRDF of any other material (and a query point). A light path whose
+//! event: glass, or the mirror ray of a smooth BRDF, roughness below
+//! `scene::TRACED_ROUGHNESS`) or off the BRDF of a *sharp* material, a rough one whose
+//! roughness is below [`SHARP_ROUGHNESS`] (0.25: there a metal's GGX lobe peaks at 20 per
+//! steradian or more, the thesis's Phong criterion for highlights of the sun so narrow that
+//! a diffuse surface finds them only by chance); a *D event* is a bounce off the BRDF of any
+//! other material (and a query point). A light path whose
 //! last D event is followed only by S events up to the sun is a **caustic**: the photons
 //! carry it. In the path tracer (with photons) that means: after a D event, the sun seen
 //! through delta bounces and the sun's next-event estimate at a sharp vertex are left out;
@@ -17,16 +19,16 @@
 //! **Photon pass.** Photons leave the sun towards the surfaces photons follow (a mirror or
 //! glass part, or a sharp base: the *specular triangles*): a triangle `t` is chosen in
 //! proportion to its area projected towards the sun's centre, `A_t |cos theta_t|` (Walker
-//! alias table), a point `x` uniform in its area, a direction `w` uniform in the sun's cone;
-//! the photon travels along `-w` from outside the world's bounds and counts only when the
-//! first surface it meets is `t` itself (so every light ray is counted once, through the
-//! triangle it meets first). Its power is `L_sun Omega A_t |cos(n_t, w)| / (P(t) N)`: an
-//! unbiased sample of the sun's flux onto the specular surfaces. It then follows only S
+//! alias table), a point `x` uniform in its area, a direction `w` uniform in the sun's
+//! cone; the photon travels along `-w` from outside the world's bounds and counts only when
+//! the first surface it meets is `t` itself (so every light ray is counted once, through
+//! the triangle it meets first). Its power is `L_sun Omega A_t |cos(n_t, w)| / (P(t) N)`:
+//! an unbiased sample of the sun's flux onto the specular surfaces. It then follows only S
 //! events (the delta part of a material chosen as the path tracer chooses it, Fresnel
 //! included, or the whole BSDF of a sharp material; Russian roulette on the event's weight)
-//! and is **stored** wherever it meets a non-sharp surface with a base BRDF after at least
-//! one S event: position, the incoming direction, the normal facing it, its power and its
-//! number of S events.
+//! and is **stored** wherever it meets a non-sharp surface with a lit BRDF (a rough one, or
+//! a smooth one's diffuse lobe) after at least one S event: position, the incoming
+//! direction, the normal facing it, its power and its number of S events.
 //!
 //! **Density estimate.** At a D vertex `x` of a camera path (normal `n` facing the viewer),
 //! the reflected caustic radiance is `sum_p f(wo, -w_p) Phi_p / (pi r^2)` over the photons
@@ -72,18 +74,24 @@ const SAME_SURFACE_COS: f32 = 0.9;
 /// Salt that separates the photon streams from the camera streams of the same seed.
 const PHOTON_SALT: u64 = 0xC4A5_71C5_0F5E_ED00;
 
-/// Peak of the Phong lobe, `g (n + 2) / (2 pi)` (1/sr), from which a material's base BRDF
-/// counts as *sharp*: a near-mirror whose highlight of the sun is a caustic like a mirror's.
-pub(crate) const SHARP_PEAK: f32 = 20.0;
+/// Roughness below which a rough BRDF counts as *sharp*: a near-mirror whose highlight of
+/// the sun is a caustic like a mirror's. It keeps the meaning of the Phong model's criterion
+/// (a lobe peaking at 20 or more per steradian): at normal incidence a GGX lobe peaks
+/// towards the mirror direction at `F0 D(1) V(1, 1) = F0 / (4 pi alpha^2)` (`D(1) = 1 /
+/// (pi alpha^2)`, `V(1, 1) = 1/4`), which for a white metal (`F0 = 1`) reaches 20 per
+/// steradian at `alpha = (80 pi)^(-1/2)`, roughness `(80 pi)^(-1/4) = 0.251`. Smooth
+/// BRDFs (below `scene::TRACED_ROUGHNESS`) are mirrors, delta parts, already.
+pub(crate) const SHARP_ROUGHNESS: f32 = 0.25;
 
-/// True when the base BRDF of `m` is a sharp Phong lobe (peak at least [`SHARP_PEAK`]): the
-/// photons follow it like a mirror and a camera path makes no density estimate there.
+/// True when the BRDF of `m` is rough but sharp (roughness in
+/// `[TRACED_ROUGHNESS, SHARP_ROUGHNESS)`): the photons follow it like a mirror and a camera
+/// path makes no density estimate there.
 pub(crate) fn sharp(m: &Material) -> bool {
-    m.base_weight() > 0.0 && m.glossiness * scene::phong_lobe(m.specular_power, 1.0) >= SHARP_PEAK
+    m.base_weight() > 0.0 && !m.is_smooth() && m.brdf.roughness < SHARP_ROUGHNESS
 }
 
 /// True when photons follow a material's scattering: it has a mirror or glass part or a sharp
-/// base.
+/// BRDF.
 pub(crate) fn specular(m: &Material) -> bool {
     m.has_delta() || sharp(m)
 }
@@ -222,7 +230,7 @@ impl CausticSource {
             let wo = -dir;
             let (n, front) = crate::integrator::facing(&h, wo);
             let sharp = sharp(&m);
-            if bounces >= 1 && m.base_weight() > 0.0 && !sharp {
+            if bounces >= 1 && m.is_lit() && !sharp {
                 out.push(Photon { position: h.position, dir, normal: n, power, bounces });
             }
             if bounces >= cap {
@@ -339,13 +347,13 @@ mod tests {
     use super::*;
     use crate::{Material, Sun};
 
-    /// A 2 x 2 m vertical mirror (reflectance 0.8) in the plane x = 0 facing +x, on a grey
+    /// A 2 x 2 m vertical mirror (base colour 0.8) in the plane x = 0 facing +x, on a grey
     /// ground, under a sun at 45 degrees from +x: the reflected beam lands on the ground at
-    /// `x in (0, 2), z in (-1, 1)` with irradiance `0.8 E sin 45`.
+    /// `x in (0, 2), z in (-1, 1)` with irradiance `F(cos 45) E sin 45`.
     fn mirror_world(angular_radius: f32) -> World {
         let mut b = World::builder();
         let grey = b.material(Material::diffuse(Vec3::splat(0.5)));
-        let mirror = b.material(Material::mirror(0.8));
+        let mirror = b.material(Material::mirror(Vec3::splat(0.8)));
         b.quad(
             Vec3::new(-10.0, 0.0, 10.0),
             Vec3::new(20.0, 0.0, 0.0),
@@ -368,7 +376,9 @@ mod tests {
         let world = mirror_world(Sun::ANGULAR_RADIUS);
         let src = CausticSource::new(&world, 20_000, 0.1, 5).unwrap();
         assert!((src.projected_area() - 4.0 * 0.5f32.sqrt()).abs() < 1e-3);
-        let want = Vec3::new(3.0, 2.0, 1.0) * 0.8 * 0.5f32.sqrt();
+        // The mirror reflects F(n.l) of the sun, at the 45 degrees the sun makes with it.
+        let f = scene::brdf::specular_reflectance(Vec3::splat(0.8), 0.5f32.sqrt());
+        let want = Vec3::new(3.0, 2.0, 1.0) * f * 0.5f32.sqrt();
         let inside: Vec<Vec3> = [0.4f32, 1.0, 1.6]
             .iter()
             .flat_map(|&x| [-0.6f32, 0.0, 0.6].map(|z| Vec3::new(x, 0.0, z)))

@@ -4,10 +4,11 @@
 //!   the mesh's vertex normals interpolated (as the engine's G-buffer shades them; a smooth
 //!   statue's highlights sit where the engine puts them, not on single facets), geometric
 //!   normals where a mesh has none; normal maps are not used.
-//! - Materials: albedo, glossiness, specular power, reflectivity, transparency + IOR,
-//!   emission (one-sided unless the material is `double_sided`) and the alpha mask (its
-//!   texture's alpha, bilinear on level 0, at the interpolated UV) map one to one; the
-//!   albedo texture (bilinear, level 0) multiplies the albedo at each hit.
+//! - Materials: the metallic-roughness BRDF (`scene::Material::brdf`: base colour,
+//!   metallic, roughness), transparency + IOR, emission (one-sided unless the material is
+//!   `double_sided`) and the alpha mask (its texture's alpha, bilinear on level 0, at the
+//!   interpolated UV) map one to one; the base-colour texture (the scene's
+//!   `albedo_texture`, bilinear, level 0) multiplies the base colour at each hit.
 //! - Sun: with `scene.sky` the irradiance is `sun.color * atmosphere::Sky::sun_colour` (the
 //!   Earth atmosphere's transmittance, in units of the solar irradiance at the top) and the
 //!   sky radiance comes from an `atmosphere::SkyMap`; without a sky the sun's colour is read
@@ -20,7 +21,7 @@
 //!   found the horizon's radiance: `building_0_1_facade south` got 0.060 of sky irradiance,
 //!   0.036 of it from above the horizon (what the same facade gets on an endless ground).
 
-use crate::material::{AlbedoTexture, AlphaTest};
+use crate::material::{AlphaTest, BaseColorTexture};
 use crate::world::{PointLight, World};
 use crate::{Camera, Error, Material};
 use atmosphere::{Sky, SkyMap, SkyMapSettings, SkyRadiance};
@@ -62,7 +63,7 @@ pub fn world_from_scene(scene: &scene::Scene, lighting: &SceneLighting) -> Resul
     scene.validate().map_err(scene_err)?;
     let mut b = World::builder();
     let tris = scene.triangles();
-    // Per-triangle UVs, shared by the alpha tests and the albedo textures.
+    // Per-triangle UVs, shared by the alpha tests and the base-colour textures.
     let uvs: Vec<[Vec2; 3]> = (0..tris.indices.len()).map(|t| tris.corner_uvs(t)).collect();
     let uvs = Arc::new(uvs);
     for sm in &scene.materials {
@@ -76,7 +77,7 @@ pub fn world_from_scene(scene: &scene::Scene, lighting: &SceneLighting) -> Resul
             };
             Some(AlphaTest { coverage: Arc::new(coverage), cutoff: mask.cutoff })
         });
-        let albedo_texture = sm.albedo_texture.and_then(|id| {
+        let base_color_texture = sm.albedo_texture.and_then(|id| {
             let tex = scene.textures.get(id.index())?.clone();
             let uvs = Arc::clone(&uvs);
             let colour = move |tri: u32, bary: Vec2| {
@@ -84,19 +85,16 @@ pub fn world_from_scene(scene: &scene::Scene, lighting: &SceneLighting) -> Resul
                 let uv = a * (1.0 - bary.x - bary.y) + b * bary.x + c * bary.y;
                 tex.sample_bilinear(uv, 0).truncate()
             };
-            Some(AlbedoTexture(Arc::new(colour)))
+            Some(BaseColorTexture(Arc::new(colour)))
         });
         b.material(Material {
-            albedo: sm.albedo,
-            emission: sm.emission,
-            double_sided: sm.double_sided,
-            glossiness: sm.glossiness,
-            specular_power: sm.specular_power,
-            reflectivity: sm.reflectivity,
+            brdf: sm.brdf(),
             transparency: sm.transparency,
             ior: sm.ior,
+            emission: sm.emission,
+            double_sided: sm.double_sided,
             alpha,
-            albedo_texture,
+            base_color_texture,
         });
     }
     b.shaded_triangles(&tris.positions, &tris.normals, &tris.indices, &tris.materials);

@@ -134,9 +134,10 @@ fn point_lights(world: &World, p: Vec3, n: Vec3, mut f: impl FnMut(Vec3) -> Vec3
     sum
 }
 
-/// Emitter light reflected at a surface point by `f` (BRDF times base weight, a function of
-/// the incident direction), one emitter sample weighted against BRDF sampling of density
-/// `bsdf_pdf` (balance heuristic). Zero when emitter sampling is off or there are none.
+/// Emitter light reflected at a surface point by `f` (the material's non-delta BSDF, a
+/// function of the incident direction), one emitter sample weighted against BRDF sampling
+/// of density `bsdf_pdf` (balance heuristic). Zero when emitter sampling is off or there
+/// are none.
 fn emitters_direct(
     world: &World,
     p: Vec3,
@@ -253,22 +254,21 @@ pub(crate) fn trace_path_from(
         if depth >= settings.max_bounces {
             break;
         }
-        let wb = m.base_weight();
         // The sun's highlight on a sharp base after a base-BRDF vertex is a caustic too.
         let sharp = caustics.is_some() && sharp(&m);
-        if wb > 0.0 {
+        if m.is_lit() {
             if let Some((wi, e)) = sun_sample(world, h.position, n, rng)
                 && !(sharp && after_base)
             {
-                l += beta * wb * m.eval_base(n, wo, wi) * e;
+                l += beta * m.eval(n, wo, wi) * e;
             }
-            l += beta * wb * point_lights(world, h.position, n, |wi| m.eval_base(n, wo, wi));
+            l += beta * point_lights(world, h.position, n, |wi| m.eval(n, wo, wi));
             l += beta * surface_emitters(world, &m, h.position, n, wo, settings, rng);
             if let Some(map) = caustics
                 && !sharp
             {
                 let budget = settings.max_bounces - depth - 1;
-                l += beta * wb * map.estimate(h.position, n, budget, |wi| m.eval_base(n, wo, wi));
+                l += beta * map.estimate(h.position, n, budget, |wi| m.eval(n, wo, wi));
             }
         }
         let u_lobe = rng.next_f32();
@@ -293,7 +293,7 @@ pub(crate) fn trace_path_from(
     l
 }
 
-/// Emitter light reflected by a material's base part towards `wo`.
+/// Emitter light reflected by a material's non-delta part towards `wo`.
 fn surface_emitters(
     world: &World,
     m: &Material,
@@ -303,14 +303,13 @@ fn surface_emitters(
     settings: &PathSettings,
     rng: &mut Rng,
 ) -> Vec3 {
-    let wb = m.base_weight();
     emitters_direct(
         world,
         p,
         n,
         settings,
         rng,
-        |wi| wb * m.eval_base(n, wo, wi),
+        |wi| m.eval(n, wo, wi),
         |wi| m.sample_pdf(n, wo, wi),
     )
 }
@@ -396,7 +395,7 @@ pub(crate) fn radiance(
     let (n, front) = facing(&h, wo);
     match component {
         Component::SunDirect => match sun_sample(world, h.position, n, rng) {
-            Some((wi, e)) => m.base_weight() * m.eval_base(n, wo, wi) * e,
+            Some((wi, e)) => m.eval(n, wo, wi) * e,
             None => Vec3::ZERO,
         },
         Component::SunIndirectDiffuse => {
@@ -410,9 +409,7 @@ pub(crate) fn radiance(
             m.diffuse_reflectance() / PI
                 * irradiance(world, Component::SkyIrradiance, h.position, n, settings, None, rng)
         }
-        Component::PointLights => {
-            m.base_weight() * point_lights(world, h.position, n, |wi| m.eval_base(n, wo, wi))
-        }
+        Component::PointLights => point_lights(world, h.position, n, |wi| m.eval(n, wo, wi)),
         Component::Emission => m.emission,
         Component::Reflections => {
             if settings.max_bounces == 0 {

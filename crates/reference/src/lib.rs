@@ -14,11 +14,12 @@
 //! - **emission as the scene says**: from the wound front side only, unless the material
 //!   is double-sided ([`Material::double_sided`]);
 //! - **sky light** from any radiance function (`atmosphere`'s sky map, a constant),
-//!   importance-sampled with the BRDF (cosine / Phong lobe);
-//! - **multiple importance sampling** of the base BRDF's diffuse and Phong lobes (one-sample
-//!   balance heuristic, E. Veach and L. Guibas, SIGGRAPH 1995);
+//!   importance-sampled with the BRDF (its visible-normal GGX sampling or the cosine);
+//! - **multiple importance sampling** of the BRDF's sampling (the GGX lobe's visible
+//!   normals, E. Heitz, JCGT 2018, mixed with cosine sampling; `scene::Brdf::sample`)
+//!   against the emitters' (balance heuristic, E. Veach and L. Guibas, SIGGRAPH 1995);
 //! - **sun caustics by progressive photon mapping** ([`PathSettings::caustic_photons`], off
-//!   by default): sunlight reaching a surface through mirrors, glass and sharp Phong lobes
+//!   by default): sunlight reaching a surface through mirrors, glass and sharp GGX lobes
 //!   (paths `sun (S)+ D`) is a density estimate of photons shot from the sun's disk at the
 //!   specular surfaces, one photon map per sample index with the radius shrinking by
 //!   C. Knaus and M. Zwicker's schedule ("Progressive photon mapping: a probabilistic
@@ -36,8 +37,12 @@
 //!   render finds a few times in a thousand samples); each chosen pixel's sample count is
 //!   fixed before its samples are drawn, so its estimate stays unbiased;
 //! - **Russian roulette** on the path throughput;
-//! - **materials**: Lambert + energy-normalised Phong (Lafortune and Willems 1994), perfect
-//!   mirror, smooth glass with Fresnel, alpha test ([`Material`]);
+//! - **materials**: glTF's metallic-roughness BRDF, the workspace's one copy of it
+//!   (`scene::Brdf`: GGX with height-correlated Smith masking and Schlick Fresnel, plus a
+//!   coated Lambertian lobe), whose smooth surfaces (roughness below
+//!   `scene::TRACED_ROUGHNESS`) reflect a traced mirror ray of weight `F(n.v)` as the
+//!   engine's do; smooth glass with Fresnel over a transparency share; emission; alpha test
+//!   ([`Material`]);
 //! - **components** that match one technique each ([`Component`]): direct sun with area
 //!   shadows (CSM/PCSS), one-bounce diffuse from the sun (LPV), occluded sky irradiance
 //!   (sky volume), mirror reflections and refractions (ray-traced reflections), shadowed
@@ -65,6 +70,7 @@
 // `!(a > b)` is used on purpose: it is also true when either side is NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+pub mod analytic;
 mod camera;
 mod caustics;
 mod compare;
@@ -90,7 +96,7 @@ pub use error::Error;
 pub use from_scene::{SceneLighting, camera_from_scene, world_from_scene};
 pub use image::Image;
 pub use integrator::{Component, PathSettings};
-pub use material::{AlbedoTexture, AlphaTest, CoverageFn, Material, Sample, TextureFn};
+pub use material::{AlphaTest, BaseColorTexture, CoverageFn, Material, Sample, TextureFn};
 pub use partial::{Part, Partial};
 pub use progress::{Progress, ProgressFn, Stage};
 pub use query::{QueryPoint, QuerySettings, ambient_occlusion, irradiance, radiance};

@@ -1,4 +1,5 @@
-//! Sampling routines: frames, cosine hemisphere, cones, the Phong lobe, Fresnel.
+//! Sampling routines: frames, cosine hemisphere, cones, Fresnel (the BRDF's own sampling is
+//! `scene::Brdf::sample`).
 
 use glam::Vec3;
 use std::f32::consts::PI;
@@ -43,19 +44,6 @@ pub fn uniform_cone(axis: Vec3, omc: f32, u: (f32, f32)) -> Vec3 {
     let sin_t = (x * (2.0 - x)).max(0.0).sqrt();
     let phi = 2.0 * PI * u.1;
     Frame::new(axis).to_world(Vec3::new(sin_t * phi.cos(), sin_t * phi.sin(), cos_t)).normalize()
-}
-
-/// Direction around `axis` with density `(n + 1) / (2 pi) cos^n` (the Phong lobe).
-pub fn phong_lobe(axis: Vec3, power: f32, u: (f32, f32)) -> Vec3 {
-    let cos_t = u.0.powf(1.0 / (power + 1.0));
-    let sin_t = (1.0 - cos_t * cos_t).max(0.0).sqrt();
-    let phi = 2.0 * PI * u.1;
-    Frame::new(axis).to_world(Vec3::new(sin_t * phi.cos(), sin_t * phi.sin(), cos_t)).normalize()
-}
-
-/// Density of [`phong_lobe`] for a direction at cosine `cos_a` from the axis.
-pub fn phong_pdf(power: f32, cos_a: f32) -> f32 {
-    if cos_a <= 0.0 { 0.0 } else { (power + 1.0) / (2.0 * PI) * cos_a.powf(power) }
 }
 
 /// Mirror reflection of `d` (pointing towards the surface) about `n`.

@@ -237,16 +237,17 @@ impl World {
         &self.materials[id as usize]
     }
 
-    /// The material at a hit with its albedo texture applied (borrowed when untextured).
+    /// The material at a hit with its base-colour texture applied (borrowed when
+    /// untextured).
     pub fn shade(&self, h: &SurfaceHit) -> std::borrow::Cow<'_, Material> {
         let m = &self.materials[h.material as usize];
-        match &m.albedo_texture {
+        match &m.base_color_texture {
             None => std::borrow::Cow::Borrowed(m),
             Some(t) => {
                 let c = (t.0)(h.triangle, h.barycentrics);
                 let c = if c.is_finite() { c.clamp(Vec3::ZERO, Vec3::ONE) } else { Vec3::ONE };
                 let mut owned = m.clone();
-                owned.albedo *= c;
+                owned.brdf.base_color *= c;
                 std::borrow::Cow::Owned(owned)
             }
         }

@@ -14,20 +14,18 @@ use reference::{
 /// Debug builds (the workspace's `cargo test`) run the same checks on fewer samples.
 const FAST: bool = cfg!(debug_assertions);
 
-/// A 2 x 2 m vertical mirror (reflectance 0.8) at x = 0 facing +x on a grey ground, under a
+/// A 2 x 2 m vertical mirror (base colour 0.8) at x = 0 facing +x on a grey ground, under a
 /// large sun (angular radius 0.15 rad, so the path tracer alone finds the caustic often
 /// enough to be compared with) at 45 degrees from +x: the reflected beam lands on
-/// `x in (0, 2), z in (-1, 1)`. A glass pane with a sharp Phong base (as the city's glass)
-/// stands beside it, so paths also run through refraction and a glossy highlight.
+/// `x in (0, 2), z in (-1, 1)`. A glass pane whose BRDF share is rough but sharp (roughness
+/// 0.22, below the caustics' threshold of 0.25) stands beside it, so paths also run through
+/// refraction and a glossy highlight.
 fn mirror_world() -> World {
     let mut b = World::builder();
     let grey = b.material(Material::diffuse(Vec3::splat(0.5)));
-    let mirror = b.material(Material::mirror(0.8));
+    let mirror = b.material(Material::mirror(Vec3::splat(0.8)));
     let glass = b.material(Material {
-        albedo: Vec3::splat(0.3),
-        glossiness: 1.0,
-        specular_power: 256.0,
-        reflectivity: 0.08,
+        brdf: scene::Brdf::new(Vec3::splat(0.3), 0.3, 0.22),
         transparency: 0.7,
         ..Material::glass(1.5)
     });
@@ -78,8 +76,8 @@ fn caustic_estimator_and_path_tracing_agree_without_double_counting() {
     let q_on = QuerySettings { path: q_off.path.with_caustics(qphotons, 0.0), ..q_off };
     let e_off = irradiance(&world, Component::Full, &p, &q_off).unwrap()[0];
     let e_on = irradiance(&world, Component::Full, &p, &q_on).unwrap()[0];
-    // Closed form: direct sun E sin 45 plus the caustic 0.8 E sin 45 (plus a little
-    // interreflection, which both share).
+    // Closed form: direct sun E sin 45 plus the caustic F(cos 45) E sin 45 (F = 0.8004;
+    // plus a little interreflection, which both share).
     let e_sun = 3.0 * 45f32.to_radians().sin();
     let se = e_off.std_error.x.hypot(e_on.std_error.x);
     assert!((e_off.mean.x - e_on.mean.x).abs() < 4.0 * se, "{e_off:?} vs {e_on:?}");
@@ -90,12 +88,13 @@ fn caustic_estimator_and_path_tracing_agree_without_double_counting() {
 
 #[test]
 fn a_sharp_glossy_reflector_is_counted_once() {
-    // No mirror part at all: a Phong lobe of power 512 (peak 82 per steradian) reflects the
-    // sun onto the ground; the path tracer finds it by next-event estimation at the glossy
-    // vertex, the photons by following the lobe.
+    // No mirror part at all: a rough but sharp metal (roughness 0.21, above the traced
+    // threshold of 0.2; its GGX lobe peaks at 0.9 / (4 pi alpha^2) = 37 per steradian)
+    // reflects the sun onto the ground; the path tracer finds it by next-event estimation
+    // at the glossy vertex, the photons by following the lobe.
     let mut b = World::builder();
     let grey = b.material(Material::diffuse(Vec3::splat(0.5)));
-    let shiny = b.material(Material::glossy(Vec3::splat(0.1), 1.0, 512.0));
+    let shiny = b.material(Material::metal(Vec3::splat(0.9), 0.21));
     ground(&mut b, grey);
     b.quad(Vec3::new(0.0, 0.0, -1.0), Vec3::new(0.0, 0.0, 2.0), Vec3::new(0.0, 2.0, 0.0), shiny);
     b.sun(Sun::new(dir(45.0, 0.0), Vec3::new(3.0, 2.5, 2.0)));
@@ -142,7 +141,7 @@ fn caustic_images_are_deterministic_whatever_the_thread_count_and_progressive() 
 #[test]
 fn without_mirrors_or_glass_the_caustic_setting_changes_nothing() {
     let mut b = World::builder();
-    let grey = b.material(Material::glossy(Vec3::splat(0.6), 0.3, 20.0));
+    let grey = b.material(Material::glossy(Vec3::splat(0.6), 0.5));
     let red = b.material(Material::diffuse(Vec3::new(0.7, 0.2, 0.1)));
     ground(&mut b, grey);
     b.quad(Vec3::new(-0.5, 0.0, 0.5), Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0), red);

@@ -42,10 +42,19 @@ fn point_lights_give_inverse_square_cosine_irradiance_and_are_shadowed() {
     let expected = 8.0 / 5.0 * 2.0 / 5f32.sqrt();
     assert!((e[0].mean.x - expected).abs() < 1e-4, "{:?} vs {expected}", e[0].mean);
     assert_eq!(e[1].mean, Vec3::ZERO, "behind the occluder");
-    // The image: albedo / pi times that irradiance, no emission, no sun.
+    // The image: the BRDF (seen from above, lit from the light's direction) times that
+    // irradiance, no emission, no sun.
     let l =
         radiance(&w, Component::PointLights, &[(Vec3::new(-1.0, 1.0, 0.0), -Vec3::Y)], &q).unwrap();
-    assert!((l[0].mean.x - 0.5 / PI * expected).abs() < 1e-4, "{:?}", l[0].mean);
+    let to_light = Vec3::new(1.0, 2.0, 0.0).normalize();
+    let f = scene::Brdf::new(Vec3::splat(0.5), 0.0, 1.0).eval(Vec3::Y, Vec3::Y, to_light);
+    assert!((l[0].mean.x - f.x * expected).abs() < 1e-4, "{:?} vs {}", l[0].mean, f.x * expected);
+    // The BRDF's diffuse lobe is the coated Lambertian (c / pi) (1 - F_d(n.v)) (1 - F_d(n.l))
+    // / (1 - mean F_d) (Schlick at F0 = 0.04, mean F_d = 0.04 + 0.96 / 21), its specular lobe
+    // the dielectric's GGX highlight, small at roughness 1.
+    let schlick = |c: f32| 0.04 + 0.96 * (1.0 - c).powi(5);
+    let k = (1.0 - schlick(1.0)) * (1.0 - schlick(to_light.y)) / (1.0 - (0.04 + 0.96 / 21.0));
+    assert!((f.x - 0.5 / PI * k).abs() < 0.05 * f.x, "{f} vs {}", 0.5 / PI * k);
 }
 
 #[test]
@@ -58,9 +67,13 @@ fn emission_is_the_first_surface_emitted_radiance_only() {
     assert_eq!(l[1].mean, Vec3::ZERO, "lit by the light but not emissive");
 }
 
-/// A grey plane with a small emitter lying on it, under a sun, a point light and a blue
-/// sky: nothing but the plane and the emitter's edges, so no light bounces twice; with the
-/// wall, light bounces between it and the plane.
+/// A grey plane with a small emitter lying on it, under a sun and a point light: nothing but
+/// the plane and the emitter's edges, so no light bounces twice; with the wall, light
+/// bounces between it and the plane. No sky: `SkyDiffuse` is the diffuse colour over pi
+/// times the sky irradiance, what an engine makes of its sky lookup, not the BRDF's response
+/// to the sky (the coating's complement and its specular reflection of the sky are in no
+/// one-bounce component), so with a sky the sum is Full only for a Lambertian material,
+/// which glTF's model has none of.
 fn one_bounce_world(with_wall: bool) -> World {
     let mut b = World::builder();
     let grey = b.material(Material::diffuse(Vec3::splat(0.5)));
@@ -87,7 +100,6 @@ fn one_bounce_world(with_wall: bool) -> World {
         radius: 100.0,
         cone: None,
     });
-    b.sky(|d| Vec3::new(0.2, 0.3, 0.6) * (0.5 + 0.5 * d.y.max(0.0)));
     b.build().unwrap()
 }
 
@@ -127,7 +139,11 @@ fn the_one_bounce_components_add_up_to_the_full_image_where_light_bounces_once()
         if more {
             assert!(d > 6.0 * se, "the wall's bounces: full {full} vs sum {sum} +- {se}");
         } else {
-            assert!(d.abs() < 4.0 * se, "full {full} vs one-bounce sum {sum} +- {se}");
+            // Without a sky the estimates are almost noiseless, and the light the emitter's
+            // underside (1 cm over the plane) returns to the plane after a second bounce
+            // shows: 2e-4 of the whole (none without the emitter). 5e-4 bounds it.
+            let slack = 5e-4 * full;
+            assert!(d.abs() < 4.0 * se + slack, "full {full} vs one-bounce sum {sum} +- {se}");
         }
     }
 }

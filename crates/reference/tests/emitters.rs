@@ -66,7 +66,14 @@ fn one_sided_square_facing_away_gives_nothing_facing_gives_the_closed_form() {
     let away = square_over_plane(h, false, false);
     for sampling in [true, false] {
         for e in query(&away, &pts, 2000, sampling) {
-            assert_eq!(e.mean, Vec3::ZERO, "light through the back of a one-sided emitter");
+            // Nothing but rounding: the emitter's dielectric coat now reflects paths back
+            // and forth under it, and one in billions grazes its edge on the side that
+            // emits (8e-14 of the irradiance measured; light through the back would be
+            // of the order of L).
+            assert!(
+                e.mean.max_element() < 1e-9,
+                "light through the back of a one-sided emitter: {e:?}"
+            );
         }
     }
     // Facing the plane, and double-sided facing away: the closed form.
@@ -136,7 +143,7 @@ type QuadParams = ([f32; 3], [f32; 2], [f32; 2], [f32; 3], bool);
 
 /// Parameters of a random small scene: one to three emissive rectangles (corner offset,
 /// orientation angles, side lengths of 0.4 to 1.5 m, emission, sidedness) and the
-/// ground's glossiness, Phong power and albedo. The rectangles are big enough for BRDF
+/// ground's metallic, roughness and base colour. The rectangles are big enough for BRDF
 /// sampling alone to find them often: a light it almost never hits would give that
 /// estimator an error its own standard error does not show.
 fn random_scene() -> impl Strategy<Value = (Vec<QuadParams>, f32, f32, f32)> {
@@ -147,13 +154,13 @@ fn random_scene() -> impl Strategy<Value = (Vec<QuadParams>, f32, f32, f32)> {
         prop::array::uniform3(0.5f32..4.0),
         any::<bool>(),
     );
-    (prop::collection::vec(quad, 1..4), 0.0f32..0.8, 2.0f32..50.0, 0.1f32..0.9)
+    (prop::collection::vec(quad, 1..4), 0.0f32..=1.0, 0.3f32..=1.0, 0.1f32..0.9)
 }
 
 /// A glossy ground, a wall, the emissive rectangles around y = 2.2 and a dim sky.
-fn build_scene((quads, gloss, power, albedo): &(Vec<QuadParams>, f32, f32, f32)) -> World {
+fn build_scene((quads, metallic, roughness, base): &(Vec<QuadParams>, f32, f32, f32)) -> World {
     let mut b = World::builder();
-    let g = b.material(Material::glossy(Vec3::splat(*albedo), *gloss, *power));
+    let g = b.material(Material::new(scene::Brdf::new(Vec3::splat(*base), *metallic, *roughness)));
     common::ground(&mut b, g);
     b.quad(Vec3::new(-0.5, 0.0, -0.5), Vec3::Y * 0.6, Vec3::X * 0.7, g);
     for &(c, [theta, phi], [a, l], e, two) in quads {

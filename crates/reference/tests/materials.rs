@@ -8,6 +8,7 @@ use reference::{
     Camera, Component, Material, QueryPoint, QuerySettings, RenderSettings, Renderer, Rng, World,
     irradiance,
 };
+use scene::Brdf;
 use std::f32::consts::PI;
 
 fn cases() -> u32 {
@@ -15,27 +16,14 @@ fn cases() -> u32 {
 }
 
 fn material() -> impl Strategy<Value = Material> {
-    (
-        0.0f32..=1.0,
-        0.0f32..=1.0,
-        0.0f32..=1.0,
-        1.0f32..5000.0,
-        0.0f32..=1.0,
-        0.0f32..=1.0,
-        1.0f32..2.5,
+    (0.0f32..=1.0, 0.0f32..=1.0, 0.0f32..=1.0, 0.0f32..=1.0, 0.0f32..=1.0, 1.0f32..2.5).prop_map(
+        |(a, b, metallic, roughness, t, ior)| Material {
+            brdf: Brdf::new(Vec3::new(a, a * b, b), metallic, roughness),
+            transparency: t,
+            ior,
+            ..Material::diffuse(Vec3::ZERO)
+        },
     )
-        .prop_map(|(a, g, b, p, r, t, ior)| {
-            let (r, t) = if r + t > 1.0 { (r / (r + t), t / (r + t)) } else { (r, t) };
-            Material {
-                albedo: Vec3::new(a, a * b, b),
-                glossiness: g,
-                specular_power: p,
-                reflectivity: r,
-                transparency: t,
-                ior,
-                ..Material::diffuse(Vec3::ZERO)
-            }
-        })
 }
 
 /// `wo` anywhere on the upper hemisphere, grazing included.
@@ -51,7 +39,8 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(cases()))]
 
     /// Energy is never created: the mean sampling weight (the directional albedo) is at most
-    /// one per channel, every weight is finite and non-negative, every direction unit.
+    /// one per channel (within the 2e-3 that `scene::brdf` states for its white furnace at
+    /// mid roughness), every weight is finite and non-negative, every direction unit.
     #[test]
     fn directional_albedo_never_exceeds_one(m in material(), wo in outgoing(), front in any::<bool>(), seed in 0u64..1000) {
         m.validate(0).unwrap();
@@ -72,14 +61,15 @@ proptest! {
         let mean = sum / count as f32;
         let var = (sum_sq / count as f32 - mean * mean).max(Vec3::ZERO);
         let se = (var / count as f32).powf(0.5);
-        prop_assert!((mean - 3.0 * se).max_element() <= 1.0 + 1e-3, "albedo {} +- {}", mean, se);
+        prop_assert!((mean - 3.0 * se).max_element() <= 1.0 + 2e-3, "albedo {} +- {}", mean, se);
     }
 
     /// The sampler and the BRDF agree: importance-sampled albedo equals the albedo from
-    /// uniform hemisphere sampling of `f cos` (base lobe only, moderate exponents).
+    /// uniform hemisphere sampling of `f cos` (rough BRDFs of moderate roughness: a GGX lobe
+    /// of roughness 0.45 is about as wide as the Phong lobe of power 24 this test used).
     #[test]
-    fn sampling_matches_evaluation(a in 0.05f32..=1.0, g in 0.0f32..=1.0, p in 1.0f32..24.0, wo in outgoing(), seed in 0u64..1000) {
-        let m = Material::glossy(Vec3::splat(a), g, p);
+    fn sampling_matches_evaluation(a in 0.05f32..=1.0, metallic in 0.0f32..=1.0, r in 0.45f32..=1.0, wo in outgoing(), seed in 0u64..1000) {
+        let m = Material::new(Brdf::new(Vec3::splat(a), metallic, r));
         let n = Vec3::Z;
         let count = 20_000u64;
         let (mut is, mut uni) = (0.0f64, 0.0f64);
@@ -93,7 +83,7 @@ proptest! {
             let (u1, u2) = rng.next_2d();
             let st = (1.0 - u1 * u1).max(0.0).sqrt();
             let wi = Vec3::new(st * (2.0 * PI * u2).cos(), st * (2.0 * PI * u2).sin(), u1);
-            let x = (m.eval_base(n, wo, wi).x * u1 * 2.0 * PI) as f64;
+            let x = (m.eval(n, wo, wi).x * u1 * 2.0 * PI) as f64;
             uni += x;
             uni2 += x * x;
         }
@@ -120,7 +110,7 @@ proptest! {
 /// A ground plane with a unit box, sun and sky.
 fn lit_box() -> World {
     let mut b = World::builder();
-    let g = b.material(Material::glossy(Vec3::splat(0.6), 0.3, 20.0));
+    let g = b.material(Material::glossy(Vec3::splat(0.6), 0.5));
     let glass = b.material(Material::glass(1.5));
     common::ground(&mut b, g);
     let c = Vec3::new(0.0, 0.5, 0.0);
@@ -254,24 +244,43 @@ fn bad_input_is_a_typed_error() {
 }
 
 #[test]
-fn albedo_texture_multiplies_the_albedo() {
+fn base_color_texture_multiplies_the_base_color() {
     let mut b = World::builder();
     let mut m = Material::diffuse(Vec3::splat(0.8));
     // Left half of each triangle's barycentric domain dark, the rest bright.
-    m.albedo_texture =
-        Some(reference::AlbedoTexture(std::sync::Arc::new(|_, bary: glam::Vec2| {
+    m.base_color_texture =
+        Some(reference::BaseColorTexture(std::sync::Arc::new(|_, bary: glam::Vec2| {
             if bary.x < 0.5 { Vec3::splat(0.25) } else { Vec3::ONE }
         })));
     let m = b.material(m);
     common::ground(&mut b, m);
     b.sky(|_| Vec3::ONE);
     let world = b.build().unwrap();
-    let q = QuerySettings::low();
+    let q = QuerySettings { samples: 1024, ..QuerySettings::low() };
+    // Points spread over the ground's two triangles.
     let rays: Vec<(Vec3, Vec3)> = (0..20)
-        .map(|i| (Vec3::new(i as f32 - 10.0, 1.0, 0.37 * i as f32 - 3.0), -Vec3::Y))
+        .map(|i| {
+            let (x, z) = (-18.0 + 1.9 * i as f32, 18.0 - 1.8 * ((7 * i) % 20) as f32);
+            (Vec3::new(x, 1.0, z), -Vec3::Y)
+        })
         .collect();
+    // Seen along the normal under a white sky, each point reflects the directional albedo
+    // of its textured base colour.
+    let albedo = |c: f32| {
+        reference::analytic::directional_albedo(&Brdf::new(Vec3::splat(c), 0.0, 1.0), 1.0).x
+    };
+    let (dark, bright) = (albedo(0.2), albedo(0.8));
+    let (mut n_dark, mut n_bright) = (0, 0);
     for e in reference::radiance(&world, Component::Full, &rays, &q).unwrap() {
-        let v = e.mean.x;
-        assert!((v - 0.2).abs() < 1e-4 || (v - 0.8).abs() < 1e-4, "{e:?}");
+        let (v, se) = (e.mean.x, e.std_error.x);
+        assert!(se < 0.02 * v, "{e:?}");
+        if (v - dark).abs() < 4.0 * se + 1e-3 {
+            n_dark += 1;
+        } else {
+            assert!((v - bright).abs() < 4.0 * se + 1e-3, "{e:?}: neither {dark} nor {bright}");
+            n_bright += 1;
+        }
     }
+    eprintln!("texture: {n_dark} dark ({dark}), {n_bright} bright ({bright})");
+    assert!(n_dark > 0 && n_bright > 0, "{n_dark} dark, {n_bright} bright");
 }

@@ -17,7 +17,7 @@ use reference::{
 fn glint_world(sun: Vec3) -> (World, Camera) {
     let mut b = World::builder();
     let grey = b.material(Material::diffuse(Vec3::splat(0.4)));
-    let chrome = b.material(Material::mirror(0.9));
+    let chrome = b.material(Material::mirror(Vec3::splat(0.9)));
     b.quad(
         Vec3::new(-20.0, -1.0, 20.0),
         Vec3::new(40.0, 0.0, 0.0),

@@ -39,14 +39,21 @@ pub fn sphere_mesh(r: f32, slices: u32, stacks: u32) -> (Vec<Vec3>, Vec<[u32; 3]
     (p, idx)
 }
 
-/// The furnace: a closed sphere with albedo `a` and emission `e` (radiance `e / (1 - a)`),
-/// emitting from both sides (its faces point outwards; the scene crate's furnace is wound
-/// inwards and one-sided).
+/// The furnace: a closed sphere of a matte material of base colour `a` ([`furnace_brdf`])
+/// and emission `e`, emitting from both sides (its faces point outwards; the scene crate's
+/// furnace is wound inwards and one-sided). Its radiance is `reference::analytic::
+/// SphereFurnace`'s (`e / (1 - a)` for a Lambertian albedo `a`; glTF's matte material
+/// reflects a little more at grazing angles, a little less along the normal).
 pub fn furnace(a: f32, e: f32) -> World {
     let mut b = World::builder();
     let m = b.material(Material::emissive(Vec3::splat(a), Vec3::splat(e)).two_sided());
     sphere(&mut b, 1.0, 24, 12, m);
     b.build().unwrap()
+}
+
+/// The BRDF of [`furnace`]'s wall.
+pub fn furnace_brdf(a: f32) -> scene::Brdf {
+    Material::diffuse(Vec3::splat(a)).brdf
 }
 
 /// A 40 x 40 m ground plane (y = 0, facing up) with the given material.
