@@ -30,14 +30,12 @@ fn gltf_quad_loads_with_transforms_cleanup_and_material_mapping() {
     let b = scene::Aabb::from_points(tris.positions.iter().copied());
     assert!((b.min - Vec3::new(10.0, 0.0, 0.0)).length() < 1e-5);
     assert!((b.max - Vec3::new(12.0, 2.0, 0.0)).length() < 1e-5);
-    // Smooth white metal: no diffuse, a strong mirror, maximal Phong power.
+    // Smooth white metal: no diffuse, a traced mirror of weight F(n.v) = 0.9 at normal
+    // incidence. glTF's own parameters are read as they are.
     let m = &s.materials[0];
     assert_eq!(m.name, "chrome");
-    assert!(m.albedo.max_element() < 1e-6);
-    assert!((m.reflectivity - 0.9).abs() < 1e-6);
-    assert!((m.glossiness - 0.9).abs() < 1e-6);
-    assert_eq!(m.specular_power, 8192.0);
-    // glTF's own parameters are read as they are.
+    assert!(m.diffuse_albedo().max_element() < 1e-6);
+    assert!((m.mirror_weight(1.0) - Vec3::splat(0.9)).abs().max_element() < 1e-6);
     assert_eq!((m.base_color, m.metallic, m.roughness), (Vec3::splat(0.9), 1.0, 0.0));
 }
 
@@ -111,15 +109,15 @@ fn obj_with_mtl_maps_materials_and_drops_degenerate_faces() {
     assert_eq!(s.cleanup.degenerate_dropped, 1);
     let m = &s.materials[s.meshes[0].material.index()];
     assert_eq!(m.name, "shiny");
-    assert!((m.albedo - Vec3::new(0.5, 0.4, 0.3)).length() < 1e-6);
-    assert!((m.reflectivity - 0.9).abs() < 1e-6 && m.specular_power == 200.0);
     assert!((m.ior - 1.33).abs() < 1e-6 && m.transparency == 0.0);
-    // Converted to metallic-roughness: a mirror (illum 3) is a smooth metal whose F0 is the
-    // Phong reflectance at normal incidence.
+    // Converted to metallic-roughness: a mirror (illum 3, Ks 0.9) is a smooth metal whose F0
+    // is the Phong reflectance at normal incidence, reflectivity + (1 - reflectivity) Ks =
+    // 0.99, its hue the diffuse colour's (Kd 0.5 0.4 0.3).
     assert_eq!(m.brdf(), scene::Brdf::new(m.base_color, m.metallic, 0.0));
     assert!(m.brdf().is_smooth() && m.metallic > 0.9, "{:?}", m.brdf());
-    let s_phong = m.phong().reflectivity + (1.0 - m.reflectivity) * m.glossiness;
-    assert!((m.brdf().f0().max_element() - s_phong).abs() < 1e-3, "{:?}", m.brdf());
+    assert!((m.brdf().f0().max_element() - 0.99).abs() < 1e-3, "{:?}", m.brdf());
+    let hue = m.base_color / m.base_color.x;
+    assert!((hue - Vec3::new(1.0, 0.8, 0.6)).abs().max_element() < 1e-4, "{hue}");
 }
 
 #[test]
@@ -176,7 +174,9 @@ fn scene_file_adds_sun_lights_quads_overrides_and_camera() {
     let q = s.occlusion_quads.last().unwrap();
     assert_eq!((q.opacity, q.tint), (0.5, Vec3::new(0.3, 0.6, 0.2)));
     let b = s.material_by_name("box").unwrap();
-    assert_eq!(s.materials[b.index()].reflectivity, 0.9);
+    // reflectivity = 0.9 over a matte base: a smooth metal mirroring 0.9 of the light.
+    let mirror = s.materials[b.index()].mirror_weight(1.0).max_element();
+    assert!((mirror - 0.9).abs() < 1e-3, "{mirror}");
     // The generated mesh was translated by +1 in x.
     let reference = scene::plane_box(2);
     let moved = s.bounds();
@@ -226,10 +226,7 @@ fn gltf_rough_translucent_dielectric_maps_as_documented() {
     );
     let s = scene::load_gltf_slice(json.as_bytes(), None, "d.gltf").unwrap();
     let m = &s.materials[0];
-    assert!((m.albedo - Vec3::new(0.5, 0.25, 0.1)).length() < 1e-6);
-    assert!((m.glossiness - 0.04).abs() < 1e-6);
-    assert!((m.specular_power - 30.0).abs() < 1e-3); // a = 0.25: 2 / a^2 - 2
-    assert_eq!(m.reflectivity, 0.0);
+    assert_eq!(m.mirror_weight(1.0), Vec3::ZERO);
     assert_eq!((m.base_color, m.metallic, m.roughness), (Vec3::new(0.5, 0.25, 0.1), 0.0, 0.5));
     assert!((m.transparency - 0.6).abs() < 1e-6 && m.ior == 1.5);
     assert_eq!(m.emission, Vec3::new(1.0, 0.5, 0.0));

@@ -150,7 +150,7 @@ fn change_summary_reports_sun_geometry_lights_and_nothing() {
     let c = s.state();
     s.sun = None;
     s.occlusion_quads.clear();
-    s.materials[0].albedo = Vec3::splat(0.1);
+    s.materials[0].base_color = Vec3::splat(0.1);
     let ch = SceneChange::between(&c, &s.state());
     assert!(ch.sun_toggled && ch.materials_changed && ch.sky_volume_invalidated(90.0));
 }

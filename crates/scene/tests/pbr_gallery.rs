@@ -47,7 +47,7 @@ fn the_gallery_file_loads_as_the_generated_gallery() {
     assert!(f.warnings.is_empty(), "{:?}", f.warnings);
     assert_eq!(f.cleanup, g.cleanup);
 
-    // Materials: same order, the glTF fields and the Phong fields derived from them.
+    // Materials: same order, the same glTF fields.
     assert_eq!(f.materials.len(), g.materials.len());
     for (a, b) in f.materials.iter().zip(&g.materials) {
         let n = &b.name;
@@ -56,10 +56,6 @@ fn the_gallery_file_loads_as_the_generated_gallery() {
         assert!((a.metallic - b.metallic).abs() < 1e-6, "{n}");
         assert!((a.roughness - b.roughness).abs() < 1e-6, "{n}");
         assert!(close(a.emission, b.emission, 1e-6), "{n}: {} {}", a.emission, b.emission);
-        assert!(close(a.albedo, b.albedo, 1e-6), "{n}");
-        assert!((a.glossiness - b.glossiness).abs() < 1e-6, "{n}");
-        assert!((a.specular_power - b.specular_power).abs() <= 1e-4 * b.specular_power, "{n}");
-        assert!((a.reflectivity - b.reflectivity).abs() < 1e-6, "{n}");
         assert_eq!((a.transparency, a.ior, a.alpha_mask), (b.transparency, b.ior, b.alpha_mask));
         assert_eq!(a.double_sided, b.double_sided, "{n}");
         assert_eq!(a.albedo_texture.is_some(), b.albedo_texture.is_some(), "{n}");
@@ -157,8 +153,8 @@ fn the_gallery_is_a_roughness_by_material_ramp_of_metallic_roughness_materials()
             let m = g.material(id).unwrap();
             // Made by the metallic-roughness constructor: both sets of fields agree.
             assert_eq!(*m, Material::metallic_roughness(&label, color, metallic, roughness));
-            // Smooth metals are traced mirrors; rough ones and the plastic are not.
-            let mirror = metallic == 1.0 && roughness < scene::TRACED_ROUGHNESS;
+            // Smooth spheres, metal or plastic, are traced mirrors; rough ones are not.
+            let mirror = roughness < scene::TRACED_ROUGHNESS;
             assert_eq!(m.is_mirror(), mirror, "{label}");
             // One sphere each, placed at its centre by its transform.
             let mesh = g.meshes.iter().find(|x| x.material == id).unwrap();
@@ -167,13 +163,13 @@ fn the_gallery_is_a_roughness_by_material_ramp_of_metallic_roughness_materials()
             assert!(close(c, scene::pbr_gallery_sphere_center(row, column), 1e-5), "{label}: {c}");
         }
     }
-    // Gold and copper are coloured metals: their specular colour is their base colour, and
-    // the Phong fields keep it in the albedo for the rough share of the reflectance.
+    // Gold and copper are coloured metals: their specular colour is their base colour, red
+    // over blue, and they have no diffuse lobe.
     for name in ["gold", "copper"] {
         let m = g.material(g.material_by_name(&format!("{name}_roughness_0.50")).unwrap()).unwrap();
-        assert!(m.brdf().f0().max_element() - m.brdf().f0().min_element() > 0.2, "{name}");
-        assert!((m.albedo - m.base_color * scene::rough_share(0.5)).length() < 1e-6, "{name}");
-        assert!(m.albedo.x > 1.5 * m.albedo.z, "{name}: {}", m.albedo);
+        let f0 = m.brdf().f0();
+        assert!(f0.max_element() - f0.min_element() > 0.2 && f0.x > 1.5 * f0.z, "{name}: {f0}");
+        assert_eq!(m.diffuse_albedo(), glam::Vec3::ZERO, "{name}");
     }
     assert_eq!(g.materials.len(), 3 + 15);
 }
@@ -193,7 +189,8 @@ fn the_gallery_needs_its_sun_sky_spot_mirrors_and_emission() {
         assert!(need.needed, "{name}: {}", need.reason);
     }
     assert!(!n.refractions.needed, "{}", n.refractions.reason);
-    assert!(n.reflections.reason.contains("2 mirror materials"), "{}", n.reflections.reason);
+    // The smooth plastic, gold and copper spheres (roughness 0.05).
+    assert!(n.reflections.reason.contains("3 mirror materials"), "{}", n.reflections.reason);
     assert!(n.point_light_shadows.reason.contains("1 reach"), "{}", n.point_light_shadows.reason);
     // `SceneNeeds` has no decision for emitters or spot cones: the scene's own counts.
     let stats = g.stats();

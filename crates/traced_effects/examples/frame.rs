@@ -19,7 +19,7 @@ fn main() {
         scene::Camera::look_at(Vec3::new(0.0, 1.0, 5.0), Vec3::new(0.0, 1.0, 0.0), 60.0, 1.0);
     let view = ScreenView::new(camera.view_projection(), camera.position, camera.forward, (4, 4));
     let mut materials = scene.materials.clone();
-    materials.push(scene::Material { reflectivity: 1.0, ..Default::default() });
+    materials.push(scene::Material::mirror("mirror", 1.0));
     let mirror = materials.len() as u32 - 1;
     let (normal, material, depth) = (vec![Vec3::Z; 16], vec![mirror; 16], vec![3.0; 16]);
     let gbuffer = ScreenGBuffer { normal: &normal, material: &material, depth: &depth };

@@ -34,7 +34,7 @@ fn materials() -> Vec<scene::Material> {
         Material::diffuse("diffuse", Vec3::splat(0.5)),
         Material::mirror("mirror", 0.8),
         Material::glass("glass", 0.9, 1.5),
-        Material { reflectivity: 0.3, transparency: 0.4, ior: 1.33, ..Material::default() },
+        Material { transparency: 0.4, ior: 1.33, ..Material::mirror("half mirror", 0.5) },
         Material { transparency: 1.0, ior: 0.75, ..Material::default() },
     ]
 }

@@ -37,6 +37,13 @@ fn floor_scene() -> Scene {
     s
 }
 
+/// Radiance of a sunlit material of base colour `c` (dielectric, roughness 1, as
+/// `Material::diffuse`) on the floor seen along the ray direction `d`, lit by `e` from `l`:
+/// the BRDF (`scene::Brdf`) times the irradiance.
+fn lit(c: f32, d: Vec3, l: Vec3, e: Vec3) -> Vec3 {
+    scene::Brdf::new(Vec3::splat(c), 0.0, 1.0).eval(Vec3::Y, -d.normalize(), l) * e * l.y
+}
+
 fn sky(d: Vec3) -> Vec3 {
     Vec3::new(0.1, 0.2, 0.3) + d.abs() * 0.1
 }
@@ -68,12 +75,12 @@ const D2: TraceSettings = TraceSettings { max_depth: 2, alpha_test: true };
 #[test]
 fn sunlit_plane_shadow_and_sky() {
     let sun = Vec3::new(1.0, 1.0, 0.3).normalize();
-    let lit = 0.5 / PI * E * sun.y;
     let p = Vec3::new(0.3, 0.0, -0.2);
     let rays = [
         ray(p + Vec3::new(-1.0, 2.0, 0.5), p),
         TraceRay { origin: p + Vec3::Y, dir: Vec3::new(0.2, 1.0, 0.1) },
     ];
+    let lit = lit(0.5, rays[0].dir, sun, E);
     let out = trace(&floor_scene(), sun, Vec3::ZERO, &rays, D1);
     assert!(close(out[0], lit), "{} vs {lit}", out[0]);
     assert!((out[1] - sky(rays[1].dir.normalize())).abs().max_element() < 1e-6);
@@ -88,18 +95,17 @@ fn sunlit_plane_shadow_and_sky() {
 #[test]
 fn mirror_reflects_the_lit_floor_only_with_recursion() {
     let mut s = floor_scene();
-    let mirror = s.add_material(Material {
-        albedo: Vec3::ZERO,
-        glossiness: 0.0,
-        ..Material::mirror("mirror", 0.8)
-    });
+    let mirror = s.add_material(Material::mirror("mirror", 0.8));
     // At x = 2 facing -x; the ray hits it at y = 0.5 and reflects onto the floor at x = 0.
     s.meshes.push(quad(Vec3::new(2.0, 0.0, -3.0), Vec3::Z * 6.0, Vec3::Y * 3.0, mirror));
     let sun = Vec3::new(-1.0, 2.0, 0.5).normalize();
     let r = [ray(Vec3::Y, Vec3::new(2.0, 0.5, 0.0))];
-    let floor = 0.5 / PI * E * sun.y;
+    let reflected = Vec3::new(-2.0, -0.5, 0.0);
+    let floor = lit(0.5, reflected, sun, E);
+    // The smooth metal's Schlick weight at the ray's incidence.
+    let w = scene::brdf::fresnel_schlick(Vec3::splat(0.8), r[0].dir.normalize().x).x;
     let d2 = trace(&s, sun, Vec3::ZERO, &r, D2)[0];
-    assert!(close(d2, 0.8 * floor), "{d2} vs {}", 0.8 * floor);
+    assert!(close(d2, w * floor), "{d2} vs {}", w * floor);
     let d1 = trace(&s, sun, Vec3::ZERO, &r, D1)[0];
     assert!(d1.max_element() < 1e-6, "{d1}");
 }
@@ -107,11 +113,8 @@ fn mirror_reflects_the_lit_floor_only_with_recursion() {
 #[test]
 fn glass_splits_with_schlick_and_passes_sunlight() {
     let mut s = floor_scene();
-    let glass = s.add_material(Material {
-        albedo: Vec3::ZERO,
-        reflectivity: 0.0,
-        ..Material::glass("glass", 0.9, 1.5)
-    });
+    // All transmitting (the share 1 - t would add a smooth dielectric's mirror).
+    let glass = s.add_material(Material::glass("glass", 1.0, 1.5));
     s.meshes.push(quad(Vec3::new(2.0, 0.0, -3.0), Vec3::Z * 6.0, Vec3::Y * 3.0, glass));
     // The sun behind the pane (no highlight on it, no shadow of it on the floor beyond).
     let sun = Vec3::new(1.0, 2.0, 0.5).normalize();
@@ -123,16 +126,18 @@ fn glass_splits_with_schlick_and_passes_sunlight() {
     // at the sun's incidence on the pane (its normal is x).
     let schlick = |cos: f32| 0.04 + 0.96 * (1.0 - cos).powi(5);
     let f = schlick(dir.x);
-    let through = 0.9 * (1.0 - schlick(sun.x));
-    let want = 0.9 * f * 0.5 / PI * (E * sun.y * through + 1.0)
-        + 0.9 * (1.0 - f) * 0.5 / PI * (E * sun.y + 1.0);
+    let through = 1.0 - schlick(sun.x);
+    let (reflected, refracted) = (dir.reflect(Vec3::X), dir.refract(-Vec3::X, 1.0 / 1.5));
+    let want = f * (lit(0.5, reflected, sun, E * through) + 0.5 / PI)
+        + (1.0 - f) * (lit(0.5, refracted, sun, E) + 0.5 / PI);
     assert!(close(got, want), "{got} vs {want}");
     // Two panes in a row pass the product; an opaque wall behind them blocks all of it.
     s.meshes.push(quad(Vec3::new(1.8, 0.0, -3.0), Vec3::Z * 6.0, Vec3::Y * 3.0, glass));
     let two =
         trace(&s, sun, Vec3::ZERO, &[ray(Vec3::new(1.5, 1.0, 0.0), Vec3::new(1.6, 0.0, 0.0))], D1)
             [0];
-    let want = 0.5 / PI * E * sun.y * through * through;
+    let down = Vec3::new(0.1, -1.0, 0.0);
+    let want = lit(0.5, down, sun, E * through * through);
     assert!(close(two, want), "{two} vs {want}");
     s.meshes.push(quad(Vec3::new(1.9, 0.0, -3.0), Vec3::Z * 6.0, Vec3::Y * 3.0, MaterialId(0)));
     let none =
@@ -154,10 +159,10 @@ fn alpha_tested_holes_are_skipped() {
     let sun = Vec3::new(0.3, 1.0, 0.2).normalize();
     let r = [ray(Vec3::new(0.0, 3.0, 0.5), Vec3::ZERO)];
     let through = trace(&s, sun, Vec3::ZERO, &r, D1)[0];
-    assert!(close(through, 0.5 / PI * E * sun.y), "{through}");
+    assert!(close(through, lit(0.5, r[0].dir, sun, E)), "{through}");
     let st = TraceSettings { alpha_test: false, ..D1 };
     let card = trace(&s, sun, Vec3::ZERO, &r, st)[0];
-    assert!(close(card, 0.8 / PI * E * sun.y), "{card}");
+    assert!(close(card, lit(0.8, r[0].dir, sun, E)), "{card}");
 }
 
 #[test]
@@ -238,8 +243,8 @@ fn a_mirror_wall_mirrors_the_sun_onto_traced_hits() {
     let sun = Vec3::new(0.6, 0.8, 0.0);
     let scene = |roof: bool| {
         let mut s = floor_scene();
-        // Reflectivity 0.9 and a power-2048 lobe of weight 0.1: reflectance 1.
-        let m = s.add_material(Material::mirror("mirror", 0.9));
+        // A smooth white metal: reflectance 1.
+        let m = s.add_material(Material::mirror("mirror", 1.0));
         s.meshes.push(quad(Vec3::new(0.0, 0.0, 4.0), -Vec3::Z * 8.0, Vec3::Y * 4.0, m));
         if roof {
             let w = s.add_material(Material::diffuse("roof", Vec3::ONE));
@@ -265,12 +270,15 @@ fn a_mirror_wall_mirrors_the_sun_onto_traced_hits() {
     let open = scene(false);
     for x in [1.0, 2.0, 2.7] {
         let added = radiance(&open, x, true) - radiance(&open, x, false);
-        // Albedo 0.5, the mirrored direction's cosine 0.8, reflectance 1.
-        assert!(close(added, 0.5 / PI * E * 0.8), "x = {x}: {added}");
+        // The floor's BRDF, lit from the mirrored direction (cosine 0.8), reflectance 1.
+        let mirrored = Vec3::new(-0.6, 0.8, 0.0);
+        let want = lit(0.5, -Vec3::Y, mirrored, E);
+        assert!(close(added, want), "x = {x}: {added} vs {want}");
     }
     assert_eq!(radiance(&open, 3.6, true), radiance(&open, 3.6, false), "beyond the footprint");
     let roofed = scene(true);
     let sunlit = radiance(&roofed, 2.0, false);
-    assert!(close(sunlit, 0.5 / PI * E * 0.8), "the floor stays sunlit: {sunlit}");
+    let want = lit(0.5, -Vec3::Y, sun, E);
+    assert!(close(sunlit, want), "the floor stays sunlit: {sunlit} vs {want}");
     assert_eq!(radiance(&roofed, 2.0, true), sunlit, "the mirror is in the roof's shadow");
 }
