@@ -96,7 +96,7 @@ struct Surface {
     // roughness, widened for specular anti-aliasing
     roughness: f32,
     // the material's specular lobe is the ray tracer's (material_is_smooth)
-    smooth: bool,
+    traced_lobe: bool,
 }
 
 fn gbuffer_surface(m: Material, base_metallic: vec4<f32>, roughness: f32) -> Surface {
@@ -111,7 +111,7 @@ fn surface_brdf_cos(s: Surface, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>) -> vec
         return vec3<f32>(0.0);
     }
     var f = brdf_eval_diffuse(s.base, s.metallic, n, v, l);
-    if !s.smooth {
+    if !s.traced_lobe {
         f += brdf_eval_specular(s.base, s.metallic, s.roughness, n, v, l);
     }
     return f * c;

@@ -248,7 +248,7 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     // the specular lobe's reflectance F(n.v) times the radiance arriving from there (a
     // smooth surface's lobe is traced instead).
     var glossy_l = vec3<f32>(0.0);
-    if (frame.size.w & FLAG_LPV_GLOSSY) != 0u && !surface.smooth {
+    if (frame.size.w & FLAG_LPV_GLOSSY) != 0u && !surface.traced_lobe {
         let spec = brdf_specular_reflectance(brdf_f0(a.rgb, a.w), dot(n, v));
         glossy_l = base * spec * glossy[i].xyz;
     }
