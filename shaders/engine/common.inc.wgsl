@@ -44,6 +44,11 @@ const FLAG_LPV_GLOSSY: u32 = 256u;
 const FLAG_MIRRORED_SUN: u32 = 512u;
 const FLAG_VOLUME_QUERIES: u32 = 1024u;
 const PI: f32 = 3.14159265;
+// The LPV's glossy lookup (thesis 5.2.7) serves glossy lobes: roughness from the ray
+// tracer's threshold (scene::TRACED_ROUGHNESS) up to this (the thesis's Phong power 8,
+// converted); a rougher lobe reflects light from every direction, which a lookup along the
+// mirror direction does not stand for.
+const LPV_GLOSSY_MAX_ROUGHNESS: f32 = 0.7;
 // The lighting component a frame shows (engine::components::code): the full frame, or one
 // term alone, in the units of the reference path tracer's matching component.
 const COMPONENT_FULL: u32 = 0u;

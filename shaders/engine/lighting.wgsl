@@ -246,9 +246,9 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     }
     // Glossy surfaces reflect the LPV's light around their mirror direction (thesis 5.2.7):
     // the specular lobe's reflectance F(n.v) times the radiance arriving from there (a
-    // smooth surface's lobe is traced instead).
+    // smooth surface's lobe is traced instead, a rough one's is left out).
     var glossy_l = vec3<f32>(0.0);
-    if (frame.size.w & FLAG_LPV_GLOSSY) != 0u && !surface.traced_lobe {
+    if (frame.size.w & FLAG_LPV_GLOSSY) != 0u && !surface.traced_lobe && m.params.x < LPV_GLOSSY_MAX_ROUGHNESS {
         let spec = brdf_specular_reflectance(brdf_f0(a.rgb, a.w), dot(n, v));
         glossy_l = base * spec * glossy[i].xyz;
     }

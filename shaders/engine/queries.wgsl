@@ -38,9 +38,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         let ns = textureLoad(normal_t, vec2<i32>(id.xy), 0);
         n = normalize(ns.xyz);
         albedo = 1.0;
-        // The glossy lookup serves the surfaces whose specular lobe the lighting shades
-        // (rougher than the ray tracer's threshold; the G-buffer's roughness).
-        if ns.w >= BRDF_TRACED_ROUGHNESS {
+        // The glossy lookup serves the glossy lobes the lighting shades (the G-buffer's
+        // roughness between the ray tracer's threshold and LPV_GLOSSY_MAX_ROUGHNESS).
+        if ns.w >= BRDF_TRACED_ROUGHNESS && ns.w < LPV_GLOSSY_MAX_ROUGHNESS {
             r = reflect(view_ray(frame, vec2<f32>(id.xy)), n);
         }
     }

@@ -20,7 +20,7 @@
 //! | `rsm + radiance cache` | indirect `cache`: the sun RSM's VPLs light the caches the view needs, on the CPU with shadow rays, over `Settings::cache_frames` frames | Reich 2015 (seed) | `shadows`, `radiance_cache`, `kdtree_tracer` |
 //! | `ray casting buffer` | quarter-res origins + reflection/refraction rays; the texels with rays listed and read back (resident pass) | 6.2.4, 6.2.6, Table 6.1 | `traced_effects` |
 //! | `ray tracing` | CPU kd-tree tracing and shading of those rays, on a worker thread | 6.2.1-6.2.8, 6.3 | `traced_effects`, `kdtree_tracer` |
-//! | `lighting` | sun (Phong/Blinn-Phong, PCSS), point lights, sky volume + the one-bounce lookup (LPV, radiance cache) or the RSM gather, SSAO (the crates' WGSL snippets) | 4.2, 5.3.6-5.3.8 | `shadows`, `ssao`, `sky_volume`, `lpv`, `rsm_gi`, `radiance_cache` |
+//! | `lighting` | sun (glTF metallic-roughness BRDF, `scene::brdf`; PCSS), point lights, sky volume + the one-bounce lookup (LPV, radiance cache) or the RSM gather, SSAO (the crates' WGSL snippets) | 4.2, 5.3.6-5.3.8 | `shadows`, `ssao`, `sky_volume`, `lpv`, `rsm_gi`, `radiance_cache` |
 //! | `overlapped shadow maps` | with `TracedShading::Gpu`: the sun's maps around the camera for what reflections see (resident pass) | 6.3.1 | `shadows` |
 //! | `traced g-buffer lighting` | with `TracedShading::Gpu`: the traced hits uploaded and lit with the deferred pass's BRDF, the maps above, the sky volume's and the LPV's lookups | 6.2.7 (Table 6.2), 6.3 | `shadows`, `sky_volume`, `lpv` |
 //! | `traced upload + combine` | traced radiance added with Fresnel weights, depth-aware 3x3 gather, drawn over the mirror and glass draws alone (resident pass) | 6.3.4-6.3.5 | `traced_effects` |

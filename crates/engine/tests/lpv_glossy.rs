@@ -98,8 +98,8 @@ fn glossy_lookup_reflects_the_lpv_on_glossy_surfaces_only() {
     }
     let mean = |(s, n): (f64, usize)| s / n.max(1) as f64;
     let glossy = mean(sums[0]);
-    // The added radiance over the glossy weight (base 1, glossiness GLOSS), against the
-    // sunlit wall's radiance.
+    // The added radiance over the glossy weight (the converted material's F0, about GLOSS),
+    // against the sunlit wall's radiance.
     let reflected = glossy / GLOSS as f64;
     let wall = mean(wall_l);
     eprintln!(

@@ -27,8 +27,8 @@ fn rectangle(o: Vec3, u: Vec3, v: Vec3, material: scene::MaterialId) -> scene::M
 fn scene(slab: bool) -> Scene {
     let mut s = Scene::new("mirrored sun");
     let white = s.add_material(Material::diffuse("white", Vec3::ONE));
-    // Reflectivity 0.9 and a power-2048 lobe of weight 0.1: reflectance 1.
-    let mirror = s.add_material(Material::mirror("mirror", 0.9));
+    // A smooth white metal: reflectance 1.
+    let mirror = s.add_material(Material::mirror("mirror", 1.0));
     s.meshes.push(rectangle(Vec3::new(-1.0, 0.0, 4.0), Vec3::X * 12.0, -Vec3::Z * 8.0, white));
     s.meshes.push(rectangle(Vec3::new(0.0, 0.0, 4.0), -Vec3::Z * 8.0, Vec3::Y * 4.0, mirror));
     if slab {
@@ -70,8 +70,9 @@ fn a_mirror_wall_lights_the_floor_where_its_reflected_sun_comes_down() {
     let camera = scene(false).camera;
     let at = |image: &[Vec3], x: f32| image[pixel(&camera, Vec3::new(x, 0.0, 0.5))].y;
     for x in [1.0, 2.0, 2.7] {
-        // The floor's own sun: E cos / pi with cos 0.8; the mirrored sun's: E R cos / pi with
-        // R = 1 and the same cosine: as much again.
+        // The floor's own sun: E f cos with cos 0.8; the mirrored sun's: E R f cos with R = 1
+        // and the same cosine: as much again (the floor's BRDF, rough, nearly the same for
+        // the two mirror-image directions).
         let (with, without, sun) = (at(&on, x), at(&off, x), at(&direct, x));
         let ratio = (with - without) / sun;
         eprintln!("x = {x}: mirrored / direct sun {ratio}");
