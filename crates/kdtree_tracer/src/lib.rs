@@ -57,6 +57,7 @@ mod build;
 mod bvh;
 mod differentials;
 mod error;
+mod layout;
 mod leaf;
 mod mesh;
 mod node;
