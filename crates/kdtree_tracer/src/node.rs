@@ -70,3 +70,52 @@ impl Node {
         }
     }
 }
+
+/// Nodes per 64-byte cache line.
+pub(crate) const LINE: usize = 8;
+
+/// One cache line of nodes (64 bytes, 64-byte aligned).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(C, align(64))]
+pub(crate) struct Line(pub [Node; LINE]);
+
+const _: () = assert!(std::mem::size_of::<Line>() == 64);
+
+impl Node {
+    /// A slot that only fills a cache line (`crate::layout`): never reached, never a leaf of
+    /// the tree (real leaves point into the leaf blocks, whose length is below `u32::MAX`).
+    pub const PAD: Self = Self { a: 3, b: u32::MAX };
+
+    #[inline]
+    pub fn is_pad(self) -> bool {
+        self == Self::PAD
+    }
+}
+
+/// The tree's nodes in 64-byte aligned cache lines, read as one slice.
+#[derive(Clone, Debug, PartialEq, Eq, Default)]
+pub(crate) struct Nodes {
+    lines: Vec<Line>,
+    len: usize,
+}
+
+impl Nodes {
+    /// The nodes of `v`, in order, in aligned lines.
+    pub fn from_slice(v: &[Node]) -> Self {
+        let lines = v
+            .chunks(LINE)
+            .map(|c| Line(std::array::from_fn(|i| c.get(i).copied().unwrap_or(Node::PAD))))
+            .collect();
+        Self { lines, len: v.len() }
+    }
+}
+
+impl std::ops::Deref for Nodes {
+    type Target = [Node];
+    #[inline(always)]
+    fn deref(&self) -> &[Node] {
+        // SAFETY: a `Line` is exactly `LINE` nodes without padding (`repr(C)` arrays of the
+        // `repr(C)` two-`u32` node), and `len <= LINE * lines.len()`.
+        unsafe { std::slice::from_raw_parts(self.lines.as_ptr().cast::<Node>(), self.len) }
+    }
+}

@@ -40,15 +40,12 @@ pub(crate) const STACK: usize = 2 * MAX_DEPTH_LIMIT as usize + 8;
 /// its single-ray walks use.
 pub(crate) struct Scratch {
     packet: Vec<Entry>,
-    single: [traverse::Entry; traverse::STACK],
+    single: traverse::Stack,
 }
 
 impl Scratch {
     pub(crate) fn new() -> Self {
-        Self {
-            packet: Vec::with_capacity(STACK),
-            single: [traverse::Entry::default(); traverse::STACK],
-        }
+        Self { packet: Vec::with_capacity(STACK), single: traverse::new_stack() }
     }
 }
 
@@ -340,7 +337,7 @@ impl KdTree {
         t1: f32,
         bt: &mut f32,
         b: &mut Best,
-        stack: &mut [traverse::Entry; traverse::STACK],
+        stack: &mut traverse::Stack,
     ) {
         let r = &l.r[i];
         let (eps, t_min) = (l.eps[i], l.t_min[i]);

@@ -14,6 +14,8 @@
 //!   rest of the interval), and a zero or negative-zero direction component is handled by the
 //!   IEEE infinities of `1/d` (`+-inf` never lies inside the interval).
 
+use std::mem::MaybeUninit;
+
 use crate::leaf::{self, ROWS};
 use crate::node::Node;
 use crate::packet::{self, PACKET};
@@ -30,11 +32,22 @@ pub(crate) const STACK: usize = MAX_DEPTH_LIMIT as usize + 8;
 pub(crate) type Best = Option<(u32, u32, f32, f32)>;
 
 /// A pending node of the single-ray walk.
-#[derive(Clone, Copy, Default)]
+#[derive(Clone, Copy)]
 pub(crate) struct Entry {
     node: u32,
     t0: f32,
     t1: f32,
+}
+
+/// The single-ray walk's stack: left uninitialised (zeroing its 768 bytes per ray cost more
+/// than a short walk); [`KdTree::walk`] reads only the entries below its own stack pointer,
+/// which it wrote.
+pub(crate) type Stack = [MaybeUninit<Entry>; STACK];
+
+/// A stack for [`KdTree::walk`] (nothing written).
+#[inline(always)]
+pub(crate) fn new_stack() -> Stack {
+    [const { MaybeUninit::uninit() }; STACK]
 }
 
 /// The larger of two numbers that are not NaN (one `maxss`: `f32::max` also handles NaN;
@@ -163,7 +176,7 @@ impl KdTree {
         let (t0, t1) = clip_box(self, r, t_min, t_max, eps)?;
         let mut best_t = t_max;
         let mut best = None;
-        let mut stack = [Entry::default(); STACK];
+        let mut stack = new_stack();
         self.walk::<ANY, KZ, AVX>(r, eps, t_min, 0, t0, t1, &mut best_t, &mut best, &mut stack);
         self.hit(best, best_t)
     }
@@ -191,7 +204,7 @@ impl KdTree {
         mut t1: f32,
         best_t: &mut f32,
         best: &mut Best,
-        stack: &mut [Entry; STACK],
+        stack: &mut Stack,
     ) {
         let nodes: &[Node] = &self.nodes;
         let mut sp = 0usize;
@@ -209,7 +222,7 @@ impl KdTree {
                 if !(ts.abs() < f32::INFINITY) && ts.is_nan() {
                     // The ray lies in the plane: both sides, whole interval.
                     if sp < STACK {
-                        stack[sp] = Entry { node: far, t0, t1 };
+                        stack[sp] = MaybeUninit::new(Entry { node: far, t0, t1 });
                         sp += 1;
                     }
                     node = nodes[near as usize];
@@ -239,7 +252,7 @@ impl KdTree {
                     if let Some((a, b)) = push
                         && sp < STACK
                     {
-                        stack[sp] = Entry { node: far, t0: a, t1: b };
+                        stack[sp] = MaybeUninit::new(Entry { node: far, t0: a, t1: b });
                         sp += 1;
                     }
                 }
@@ -257,7 +270,9 @@ impl KdTree {
                     return;
                 }
                 sp -= 1;
-                let e = stack[sp];
+                // SAFETY: every entry below `sp` was written by this walk (pushes write
+                // `stack[sp]` before incrementing `sp`).
+                let e = unsafe { stack[sp].assume_init() };
                 if e.t0 - eps - e.t0.abs() * WIDEN <= *best_t {
                     node = nodes[e.node as usize];
                     t0 = e.t0;

@@ -6,9 +6,10 @@ use rayon::prelude::*;
 use crate::aabb::Aabb;
 use crate::build;
 use crate::error::Error;
+use crate::layout;
 use crate::leaf::{self, Quad, ROWS};
 use crate::mesh::Mesh;
-use crate::node::{MAX_FIELD, Node};
+use crate::node::{MAX_FIELD, Node, Nodes};
 use crate::settings::{MAX_DEPTH_LIMIT, Settings};
 use crate::triangle::{LeafTri, is_degenerate};
 
@@ -23,7 +24,8 @@ pub const MAX_TRIANGLES: usize = MAX_FIELD as usize;
 /// linear read. Queries are [`KdTree::intersect`] (closest hit) and [`KdTree::occluded`] (any hit).
 #[derive(Clone, Debug, PartialEq)]
 pub struct KdTree {
-    pub(crate) nodes: Vec<Node>,
+    /// Root first, in cache lines of subtrees (`crate::layout`).
+    pub(crate) nodes: Nodes,
     /// Each leaf's block of triangles with their ids (`crate::leaf`); a leaf node's offset is
     /// its first quad here.
     pub(crate) packs: Vec<Quad>,
@@ -95,8 +97,12 @@ impl KdTree {
         if packs.len() > u32::MAX as usize {
             return Err(Error::TooManyTriangles(built.refs.len()));
         }
+        let nodes = layout::treelets(&nodes);
+        if nodes.len() > MAX_FIELD as usize {
+            return Err(Error::TooManyTriangles(built.refs.len()));
+        }
         Ok(Self {
-            nodes,
+            nodes: Nodes::from_slice(&nodes),
             packs,
             bounds,
             scale: if bounds.is_empty() {
@@ -141,7 +147,7 @@ impl KdTree {
         TreeStats {
             triangles: self.triangle_count,
             indexed_triangles: self.indexed_count,
-            nodes: self.nodes.len(),
+            nodes: self.nodes.iter().filter(|n| !n.is_pad()).count(),
             leaves,
             empty_leaves: empty,
             references: refs,
@@ -197,7 +203,7 @@ impl KdTree {
             .filter(|&t| overlaps_open(mesh.triangle(t), &self.bounds))
             .collect();
         self.check_node(mesh, 0, self.bounds, 0, all, &mut seen, &mut present)?;
-        if let Some(i) = seen.iter().position(|s| !s) {
+        if let Some(i) = (0..seen.len()).find(|&i| !seen[i] && !self.nodes[i].is_pad()) {
             return bad(format!("node {i} is unreachable"));
         }
         if let Some(t) = (0..self.triangle_count as u32)
