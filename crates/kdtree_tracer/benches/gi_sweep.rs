@@ -381,7 +381,7 @@ fn main() -> std::io::Result<()> {
         ("reference".into(), Settings::reference()),
     ];
     if !quick {
-        for ki in [0.6f32, 0.8, 1.4, 2.0] {
+        for ki in [0.25f32, 0.3, 0.55, 1.0] {
             settings
                 .push((format!("ki{ki}"), Settings { intersection_cost: ki, ..Settings::DEFAULT }));
         }

@@ -198,11 +198,11 @@ fn find_split(ctx: &Ctx, input: &NodeInput) -> Option<Split> {
     (best.cost < s.intersection_cost * blocks(n)).then_some(best)
 }
 
-/// What testing a leaf of `n` triangles costs, in units of the leaf test's widest step: its
-/// chunks of eight lanes (`crate::leaf`: eight at a time with AVX, a last four with SSE).
+/// Ray/triangle tests a leaf of `n` triangles costs: its packs of four
+/// (`crate::leaf4::Tri4`), tested together.
 #[inline]
 fn blocks(n: usize) -> f32 {
-    n.div_ceil(8) as f32
+    n.div_ceil(4) as f32
 }
 
 /// One sweep over an axis's sorted events (Wald & Havran, Algorithm 4).

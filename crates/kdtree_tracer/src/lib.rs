@@ -7,15 +7,13 @@
 //!   O(N log N)", IEEE RT 2006), optional perfect splits, explicit costs in [`Settings`],
 //!   parallel subtrees (rayon), deterministic whatever the thread count.
 //! - **Layout**: 8-byte nodes (I. Wald, "Realtime Ray Tracing and Interactive Global
-//!   Illumination", PhD thesis 2004), siblings adjacent, packed into 64-byte aligned cache lines
-//!   of small subtrees (after J. Gil and A. Itai, "How to pack trees", J. Algorithms 1999), so a
-//!   descent touches a new line every second level or so; each leaf's triangles in one
+//!   Illumination", PhD thesis 2004), siblings adjacent; each leaf's triangles in one
 //!   structure-of-arrays block (rows of the nine corner coordinates, the triangle ids and the
 //!   mesh ids, a multiple of four lanes), tested eight lanes at a time with AVX where the CPU
 //!   has it (`is_x86_feature_detected!`; the traversal is compiled a second time with AVX so
 //!   that the test is inlined into it) and four at a time with SSE otherwise, bit for bit the
 //!   scalar test (including its exact-zero rule) whatever the width; the SAH counts a leaf's
-//!   cost in chunks of eight.
+//!   cost in packs of four.
 //! - **Queries**: [`KdTree::intersect`] (closest hit) and [`KdTree::occluded`] (any hit)
 //!   through the [`RayQuery`] trait; fixed stack, no allocation per ray; robust to zero and
 //!   negative-zero direction components, rays in and on split planes, `t_min`/`t_max` edges.

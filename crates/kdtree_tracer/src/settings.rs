@@ -7,20 +7,19 @@ pub const MAX_DEPTH_LIMIT: u32 = 56;
 
 /// Surface-area-heuristic costs and limits of the kd-tree build.
 ///
-/// Leaves are tested eight triangles at a time (AVX; a last four with SSE), so the SAH counts a
-/// node of `N` triangles as `B(N) = ceil(N / 8)` chunks. The cost of splitting a node with box
-/// `V` at a plane into `VL`/`VR` holding `NL`/`NR` triangles is
+/// Leaves are tested four triangles at a time, so the SAH counts a node of `N` triangles as
+/// `B(N) = ceil(N / 4)` packs. The cost of splitting a node with box `V` at a plane into
+/// `VL`/`VR` holding `NL`/`NR` triangles is
 /// `lambda * (traversal_cost + intersection_cost * (A(VL) B(NL) + A(VR) B(NR)) / A(V))`, with
 /// `lambda = 1 - empty_bonus` when one side is empty; a node becomes a leaf when no split is
-/// cheaper than `intersection_cost * B(N)` (Wald & Havran 2006, with chunks in place of
+/// cheaper than `intersection_cost * B(N)` (Wald & Havran 2006, with packs in place of
 /// triangles). Only the ratio of the two costs matters: it was swept against trace time on
-/// four meshes (`examples/kdrace.rs`), and later against instructions and simulated cache
-/// misses per ray on six (`docs/vs_embree.md`).
+/// four meshes (`examples/kdrace.rs`; the crate doc's table).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
     /// Cost of one traversal step.
     pub traversal_cost: f32,
-    /// Cost of testing one chunk of up to eight triangles.
+    /// Cost of testing one pack of up to four triangles.
     pub intersection_cost: f32,
     /// Discount for splits that cut off empty space, in `[0, 1)`.
     pub empty_bonus: f32,
@@ -38,7 +37,7 @@ impl Settings {
     pub const fn low() -> Self {
         Self {
             traversal_cost: 1.0,
-            intersection_cost: 0.6,
+            intersection_cost: 0.3,
             empty_bonus: 0.1,
             max_depth: 0,
             leaf_size: 8,
@@ -49,7 +48,7 @@ impl Settings {
     /// Balanced default (fast build, fast traversal).
     pub const DEFAULT: Self = Self {
         traversal_cost: 1.0,
-        intersection_cost: 1.0,
+        intersection_cost: 0.4,
         empty_bonus: 0.2,
         max_depth: 0,
         leaf_size: 1,
@@ -65,7 +64,7 @@ impl Settings {
     pub const fn high() -> Self {
         Self {
             traversal_cost: 1.0,
-            intersection_cost: 1.0,
+            intersection_cost: 0.4,
             empty_bonus: 0.2,
             max_depth: 0,
             leaf_size: 1,
@@ -77,7 +76,7 @@ impl Settings {
     pub const fn reference() -> Self {
         Self {
             traversal_cost: 1.0,
-            intersection_cost: 1.4,
+            intersection_cost: 0.5,
             empty_bonus: 0.3,
             max_depth: MAX_DEPTH_LIMIT,
             leaf_size: 1,
