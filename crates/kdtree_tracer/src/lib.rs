@@ -7,7 +7,9 @@
 //!   O(N log N)", IEEE RT 2006), optional perfect splits, explicit costs in [`Settings`],
 //!   parallel subtrees (rayon), deterministic whatever the thread count.
 //! - **Layout**: 8-byte nodes (I. Wald, "Realtime Ray Tracing and Interactive Global
-//!   Illumination", PhD thesis 2004), siblings adjacent; each leaf's triangles in one
+//!   Illumination", PhD thesis 2004), siblings adjacent, packed into 64-byte aligned cache lines
+//!   of small subtrees (after J. Gil and A. Itai, "How to pack trees", J. Algorithms 1999), so a
+//!   descent touches a new line every second level or so; each leaf's triangles in one
 //!   structure-of-arrays block (rows of the nine corner coordinates, the triangle ids and the
 //!   mesh ids, a multiple of four lanes), tested eight lanes at a time with AVX where the CPU
 //!   has it (`is_x86_feature_detected!`; the traversal is compiled a second time with AVX so
