@@ -265,7 +265,10 @@ mod tests {
         assert!((glass.mirror_weight(1.0) - Vec3::splat(0.3 * 0.04)).abs().max_element() < 1e-6);
         let gold = Vec3::new(1.0, 0.78, 0.34);
         assert_eq!(Material::metallic_roughness("gold", gold, 1.0, 0.1).mirror_weight(1.0), gold);
-        assert_eq!(Material::metallic_roughness("rough", gold, 1.0, 0.5).mirror_weight(1.0), Vec3::ZERO);
+        assert_eq!(
+            Material::metallic_roughness("rough", gold, 1.0, 0.5).mirror_weight(1.0),
+            Vec3::ZERO
+        );
         // Grazing: the mirror weight rises to 1 (Schlick).
         let w = Material::metallic_roughness("plastic", red, 0.0, 0.0).mirror_weight(0.0);
         assert!((w - Vec3::ONE).abs().max_element() < 1e-6, "{w}");

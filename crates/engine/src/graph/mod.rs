@@ -6,8 +6,8 @@
 use crate::EngineError;
 use crate::effects::Effect;
 use crate::frame::{
-    FLAG_INDIRECT, FLAG_LPV_GLOSSY, FLAG_MIRRORED_SUN, FLAG_SHADOWS, FLAG_SKY,
-    FLAG_SKY_VOLUME, FLAG_SUN_GLINTS, FLAG_VOLUME_QUERIES, FrameUniform,
+    FLAG_INDIRECT, FLAG_LPV_GLOSSY, FLAG_MIRRORED_SUN, FLAG_SHADOWS, FLAG_SKY, FLAG_SKY_VOLUME,
+    FLAG_SUN_GLINTS, FLAG_VOLUME_QUERIES, FrameUniform,
 };
 use crate::mirrored_sun::ReflectorSet;
 use crate::passes::display::Shown;
@@ -18,8 +18,8 @@ use crate::passes::rsm_gather::RsmGatherState;
 use crate::passes::shadow::{ShadowMaps, SunMapsPlan};
 use crate::passes::sky::{SkyLight, SkyMapState, SkyVolumeState};
 use crate::passes::traced_lighting::{OsmPass, TracedInputs, TracedLightingPass};
-use crate::settings::TracedShading;
 use crate::settings::Indirect;
+use crate::settings::TracedShading;
 use crate::state::FrameCtx;
 use crate::trace::{TraceLighting, TraceSettings, TracedHit, trace_rays, trace_surfaces};
 use frame_scheduler::{

@@ -155,18 +155,16 @@ fn build(seed: u64) -> Result<Scene, SceneError> {
     let m_metal =
         scene.add_material(Material::glossy("metal", Vec3::new(0.25, 0.26, 0.28), 0.5, 64.0));
     let m_mirror = scene.add_material(Material::mirror("mirror", 0.95));
-    let m_statue = scene.add_material(
-        Material::phong(
-            "statue_chrome",
-            PhongParams {
-                albedo: Vec3::new(0.3, 0.28, 0.25),
-                glossiness: 0.9,
-                specular_power: 256.0,
-                reflectivity: 0.6,
-                transparency: 0.0,
-            },
-        ),
-    );
+    let m_statue = scene.add_material(Material::phong(
+        "statue_chrome",
+        PhongParams {
+            albedo: Vec3::new(0.3, 0.28, 0.25),
+            glossiness: 0.9,
+            specular_power: 256.0,
+            reflectivity: 0.6,
+            transparency: 0.0,
+        },
+    ));
     let m_bark = scene.add_material(textured("bark", Vec3::ONE, t_bark));
     let m_leaves = scene.add_material(Material {
         alpha_mask: Some(AlphaMask { texture: t_leaves, cutoff: 0.5 }),
