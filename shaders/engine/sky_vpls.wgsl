@@ -1,3 +1,4 @@
+// include: scene/brdf.inc.wgsl
 // include: scene/material.inc.wgsl
 // include: traced_effects/fresnel.inc.wgsl
 // include: traced_effects/screen.inc.wgsl

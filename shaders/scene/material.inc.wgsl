@@ -1,4 +1,4 @@
-// include: scene/brdf.inc.wgsl (scene::gpu::MATERIAL_INC_WGSL carries it)
+// Needs scene/brdf.inc.wgsl before it (scene::gpu::MATERIAL_INC_WGSL carries it; a shader that includes this snippet names both).
 // A material as `scene::gpu::GpuScene::materials` stores it (`scene::gpu::GpuMaterial`; the
 // scene crate's test checks that the two have one size), and what every renderer asks of it:
 // the twins of scene::Material's methods (the model is documented there: the share
