@@ -227,14 +227,17 @@ fn ray_casting_buffer_matches_its_cpu_twin() {
         }
         // The first block chose its mirror (the second pixel), over diffuse, glass and mixed.
         let cpu = cast_rays(&g.view, &g.cpu(), &materials, RayKinds::ALL).unwrap();
+        // The mirror's weight is its Schlick reflectance, F0 0.8 (within 0.01 of it at the
+        // near-normal views here); glass under total internal reflection reflects 0.9 and more.
+        let is_mirror = |t: &RayCast| (t.reflect[3] - 0.8).abs() < 0.01;
         // Glass without a refraction ray and not the mirror: total internal reflection.
         reflected_inside += cpu
             .iter()
-            .filter(|t| t.has_ray() && t.refract[3] == 0.0 && t.reflect[3] != 0.8)
+            .filter(|t| t.has_ray() && t.refract[3] == 0.0 && !is_mirror(t))
             .count();
         if size.0 > 1 && size.1 > 1 {
             assert_eq!(cpu[0].origin[3], 4.0);
-            assert!(cpu[0].reflect[3] == 0.8 && cpu[0].refract[3] == 0.0);
+            assert!(is_mirror(&cpu[0]) && cpu[0].refract[3] == 0.0, "{:?}", cpu[0]);
         }
     }
     assert!(with_ray > 20 && without > 5, "{with_ray} texels with a ray, {without} without");
