@@ -231,10 +231,8 @@ fn ray_casting_buffer_matches_its_cpu_twin() {
         // near-normal views here); glass under total internal reflection reflects 0.9 and more.
         let is_mirror = |t: &RayCast| (t.reflect[3] - 0.8).abs() < 0.01;
         // Glass without a refraction ray and not the mirror: total internal reflection.
-        reflected_inside += cpu
-            .iter()
-            .filter(|t| t.has_ray() && t.refract[3] == 0.0 && !is_mirror(t))
-            .count();
+        reflected_inside +=
+            cpu.iter().filter(|t| t.has_ray() && t.refract[3] == 0.0 && !is_mirror(t)).count();
         if size.0 > 1 && size.1 > 1 {
             assert_eq!(cpu[0].origin[3], 4.0);
             assert!(is_mirror(&cpu[0]) && cpu[0].refract[3] == 0.0, "{:?}", cpu[0]);
