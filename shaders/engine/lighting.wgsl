@@ -254,7 +254,7 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
         glossy_l = base * spec * glossy[i].xyz;
     }
     let ao = ambient_occlusion(vec2<u32>(px), p, gn);
-    let diffuse = material_diffuse_albedo(m, a.rgb);
+    let diffuse = material_diffuse_albedo(m, a);
     var c: vec3<f32>;
     switch component {
         case COMPONENT_SUN_DIRECT: { c = base * sun; }

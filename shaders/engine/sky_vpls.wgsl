@@ -75,7 +75,7 @@ fn sky_vpl_flux(@builtin(global_invocation_id) id: vec3<u32>) {
         let px = cell_pixel(id.xy);
         let pxf = vec2<f32>(px);
         let m = materials[u32(textureLoad(geometry_t, px, 0).w + 0.5)];
-        let rho = material_diffuse_albedo(m, textureLoad(base_t, px, 0).rgb);
+        let rho = material_diffuse_albedo(m, textureLoad(base_t, px, 0));
         let ray = view_ray(frame, pxf);
         let dx = length(view_ray(frame, pxf + vec2<f32>(1.0, 0.0)) - ray);
         let dy = length(view_ray(frame, pxf + vec2<f32>(0.0, 1.0)) - ray);

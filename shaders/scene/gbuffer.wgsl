@@ -27,6 +27,8 @@ struct GBufferCamera {
 @group(1) @binding(0) var albedo_tex: texture_2d<f32>;
 @group(1) @binding(1) var alpha_tex: texture_2d<f32>;
 @group(1) @binding(2) var material_sampler: sampler;
+@group(1) @binding(3) var normal_tex: texture_2d<f32>;
+@group(1) @binding(4) var metallic_roughness_tex: texture_2d<f32>;
 
 struct VOut {
     // Invariant: the depth pre-pass and the shading draws (depth test Equal) must compute the
@@ -36,12 +38,14 @@ struct VOut {
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
     @location(3) @interpolate(flat) material: u32,
-    // The material's base colour + metallic, (roughness, alpha cutoff) and (albedo texture,
-    // alpha mask) flags, read once a vertex rather than once a pixel (a storage read is a
-    // gather lane by lane on llvmpipe).
+    // The material's base colour + metallic, (roughness, alpha cutoff, normal-map scale) and
+    // its flags (albedo texture, alpha mask, normal map, metallic-roughness texture), read
+    // once a vertex rather than once a pixel (a storage read is a gather lane by lane on
+    // llvmpipe).
     @location(4) @interpolate(flat) base: vec4<f32>,
-    @location(5) @interpolate(flat) roughness_cutoff: vec2<f32>,
-    @location(6) @interpolate(flat) flags: vec2<u32>,
+    @location(5) @interpolate(flat) params: vec3<f32>,
+    @location(6) @interpolate(flat) flags: vec4<u32>,
+    @location(7) tangent: vec4<f32>,
 }
 
 @vertex
@@ -50,6 +54,7 @@ fn vs_main(
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
     @location(3) material: u32,
+    @location(4) tangent: vec4<f32>,
 ) -> VOut {
     var o: VOut;
     o.clip = camera.view_proj * vec4<f32>(position, 1.0);
@@ -57,10 +62,11 @@ fn vs_main(
     o.normal = normal;
     o.uv = uv;
     o.material = material;
+    o.tangent = tangent;
     let m = materials[material];
     o.base = m.base;
-    o.roughness_cutoff = vec2<f32>(m.params.x, m.emission.w);
-    o.flags = m.flags.xy;
+    o.params = vec3<f32>(m.params.x, m.emission.w, m.params.w);
+    o.flags = m.flags;
     return o;
 }
 
@@ -80,14 +86,34 @@ fn fs_opaque(v: VOut) -> GBuffer {
 fn fs_alpha_tested(v: VOut) -> GBuffer {
     let o = gbuffer(v);
     let alpha = textureSample(alpha_tex, material_sampler, v.uv).a;
-    if v.flags.y != 0u && alpha < v.roughness_cutoff.y {
+    if v.flags.y != 0u && alpha < v.params.y {
         discard;
     }
     return o;
 }
 
+// The normal-mapped shading normal (scene::Material::at's twin): the interpolated tangent
+// made orthonormal to the interpolated normal, the map's texel applied in that frame.
+fn mapped_normal(v: VOut, interpolated: vec3<f32>, texel: vec3<f32>) -> vec3<f32> {
+    let t = v.tangent.xyz - interpolated * dot(interpolated, v.tangent.xyz);
+    if dot(t, t) < 1e-12 {
+        return interpolated;
+    }
+    let sign = select(1.0, -1.0, v.tangent.w < 0.0);
+    return material_perturbed_normal(interpolated, vec4<f32>(normalize(t), sign), texel, v.params.z);
+}
+
 fn gbuffer(v: VOut) -> GBuffer {
+    // Every texture is sampled (a white one stands in for a missing one) and the flags pick:
+    // sampling needs uniform control flow.
     let tex = textureSample(albedo_tex, material_sampler, v.uv);
+    let normal_texel = textureSample(normal_tex, material_sampler, v.uv).rgb;
+    let mr = textureSample(metallic_roughness_tex, material_sampler, v.uv);
+    let interpolated = normalize(v.normal);
+    var mapped = interpolated;
+    if v.flags.z != 0u {
+        mapped = mapped_normal(v, interpolated, normal_texel);
+    }
     let dx = dpdx(v.world);
     let dy = dpdy(v.world);
     // Specular anti-aliasing: across the pixel the normal turns by its screen derivatives, so
@@ -99,9 +125,9 @@ fn gbuffer(v: VOut) -> GBuffer {
     // footprint scale, camera.footprint.x; the engine's jittered_footprint in
     // crates/engine/src/state.rs has the figures): widening every sample by the whole pixel's
     // variance would count it twice.
-    let shading = normalize(v.normal);
-    let dnx = dpdx(shading);
-    let dny = dpdy(shading);
+    // The normal map's own variation across the pixel widens the lobe too.
+    let dnx = dpdx(mapped);
+    let dny = dpdy(mapped);
     let s2 = camera.footprint.x * (dot(dnx, dnx) + dot(dny, dny)) / 12.0;
     let to_eye = camera.position.xyz - v.world;
     var g = cross(dy, dx);
@@ -112,14 +138,13 @@ fn gbuffer(v: VOut) -> GBuffer {
     if dot(g, to_eye) < 0.0 {
         g = -g;
     }
-    var n = normalize(v.normal);
-    if dot(n, g) < 0.0 {
-        n = -n;
-    }
+    // The side is the interpolated normal's (a mapped normal may lean past the surface).
+    let n = select(mapped, -mapped, dot(interpolated, g) < 0.0);
     let base = v.base.rgb * select(vec3<f32>(1.0), tex.rgb, v.flags.x != 0u);
+    let mr_factors = select(vec2<f32>(1.0), mr.bg, v.flags.w != 0u);
     var o: GBuffer;
-    o.base = vec4<f32>(base, v.base.w);
-    o.normal = vec4<f32>(n, brdf_filtered_roughness(v.roughness_cutoff.x, s2));
+    o.base = vec4<f32>(base, v.base.w * mr_factors.x);
+    o.normal = vec4<f32>(n, brdf_filtered_roughness(v.params.x * mr_factors.y, s2));
     o.geometry = vec4<f32>(g, f32(v.material));
     o.depth = dot(v.world - camera.position.xyz, camera.forward.xyz);
     return o;

@@ -18,8 +18,10 @@
 //!   the triangle (vertex normals need not follow the winding: a mesh wound inwards still
 //!   shades with its outward normals, turned by the caller to the side the ray came from);
 //!   the geometric normal where a corner has none.
+//! - **Tangents** (optional, for normal maps): the corners' tangents interpolated as given
+//!   (`w` the bitangent sign); making them orthonormal is the caller's.
 
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec4};
 
 use crate::{Error, Hit, KdTree, Mesh, Ray, Settings};
 
@@ -53,6 +55,8 @@ pub struct Surfaces {
     shading: Vec<[Vec3; 3]>,
     /// Per triangle: the corners' texture coordinates (empty when none were given).
     uvs: Vec<[Vec2; 3]>,
+    /// Per triangle: the corners' tangents (empty when none were given).
+    tangents: Vec<[Vec4; 3]>,
     /// Per material: whether it has cut-outs.
     cutout: Vec<bool>,
     any_cutout: bool,
@@ -93,6 +97,7 @@ impl Surfaces {
             material: materials,
             shading: Vec::new(),
             uvs: Vec::new(),
+            tangents: Vec::new(),
             cutout: Vec::new(),
             any_cutout: false,
             epsilon: 2e-5 * extent,
@@ -112,6 +117,13 @@ impl Surfaces {
     pub fn with_uvs(mut self, corners: Vec<[Vec2; 3]>) -> Result<Self, Error> {
         self.check_len("texture coordinates", corners.len())?;
         self.uvs = corners;
+        Ok(self)
+    }
+
+    /// The corners' tangents (unit xyz along +U, the bitangent's sign in `w`), per triangle.
+    pub fn with_tangents(mut self, corners: Vec<[Vec4; 3]>) -> Result<Self, Error> {
+        self.check_len("tangents", corners.len())?;
+        self.tangents = corners;
         Ok(self)
     }
 
@@ -188,6 +200,15 @@ impl Surfaces {
             Some(&[a, b, c]) => a * (1.0 - bary.x - bary.y) + b * bary.x + c * bary.y,
             None => Vec2::ZERO,
         }
+    }
+
+    /// The corners' tangents of triangle `t` interpolated at `bary` (`None` without any; the
+    /// sign `w` is the first corner's).
+    pub fn tangent(&self, t: u32, bary: Vec2) -> Option<Vec4> {
+        let &[a, b, c] = self.tangents.get(t as usize)?;
+        let xyz =
+            a.truncate() * (1.0 - bary.x - bary.y) + b.truncate() * bary.x + c.truncate() * bary.y;
+        Some(xyz.extend(a.w))
     }
 
     /// Distance secondary rays keep from a surface, scaled with the scene's extent.
@@ -285,7 +306,8 @@ impl Surfaces {
         let ok = self.material.len() == n
             && self.normals.len() == n
             && (self.shading.is_empty() || self.shading.len() == n)
-            && (self.uvs.is_empty() || self.uvs.len() == n);
+            && (self.uvs.is_empty() || self.uvs.len() == n)
+            && (self.tangents.is_empty() || self.tangents.len() == n);
         if ok { Ok(()) } else { Err(Error::Invalid("per-triangle tables out of step".into())) }
     }
 }

@@ -41,9 +41,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .into_par_iter()
         .map(|i| {
             let d = camera.pixel_direction((i % W) as f32 + 0.5, (i / W) as f32 + 0.5, W, H);
-            let h = case.world.intersect(camera.position, d, f32::INFINITY)?;
+            let mut h = case.world.intersect(camera.position, d, f32::INFINITY)?;
             let n = if h.normal.dot(d) > 0.0 { -h.normal } else { h.normal };
-            Some((case.world.shade(&h).diffuse_reflectance(), h.position, n))
+            Some((case.world.shade(&mut h).diffuse_reflectance(), h.position, n))
         })
         .collect();
     let shade = |lpv: &Lpv| -> Vec<Vec3> {

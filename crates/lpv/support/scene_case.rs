@@ -52,7 +52,7 @@ impl SceneCase {
         let albedo = (0..triangles.len())
             .map(|t| {
                 let material = tris.materials[t];
-                let h = SurfaceHit {
+                let mut h = SurfaceHit {
                     t: 0.0,
                     position: Vec3::ZERO,
                     normal: Vec3::Y,
@@ -62,7 +62,7 @@ impl SceneCase {
                     material,
                     barycentrics: Vec2::splat(1.0 / 3.0),
                 };
-                world.shade(&h).diffuse_reflectance()
+                world.shade(&mut h).diffuse_reflectance()
             })
             .collect();
         let sun = world.sun().expect("a sunlit scene");

@@ -221,12 +221,12 @@ impl CausticSource {
         // Whatever the cap, a photon's bounce count is checked against the path's budget.
         let cap = max_bounces.min(255);
         loop {
-            let Some(h) = world.intersect(origin, dir, f32::INFINITY) else { return };
+            let Some(mut h) = world.intersect(origin, dir, f32::INFINITY) else { return };
             if first && h.triangle != t {
                 return;
             }
             first = false;
-            let m = world.shade(&h);
+            let m = world.shade(&mut h);
             let wo = -dir;
             let (n, front) = crate::integrator::facing(&h, wo);
             let sharp = sharp(&m);

@@ -3,12 +3,13 @@
 //! - Geometry: every mesh in world space, one material per mesh; surfaces are shaded with
 //!   the mesh's vertex normals interpolated (as the engine's G-buffer shades them; a smooth
 //!   statue's highlights sit where the engine puts them, not on single facets), geometric
-//!   normals where a mesh has none; normal maps are not used.
+//!   normals where a mesh has none.
 //! - Materials: the metallic-roughness BRDF (`scene::Material::brdf`: base colour,
 //!   metallic, roughness), transparency + IOR, emission (one-sided unless the material is
 //!   `double_sided`) and the alpha mask (its texture's alpha, bilinear on level 0, at the
-//!   interpolated UV) map one to one; the base-colour texture (the scene's
-//!   `albedo_texture`, bilinear, level 0) multiplies the base colour at each hit.
+//!   interpolated UV) map one to one; the textures (base colour, metallic-roughness and the
+//!   normal map in the mesh's tangent frame; `scene::Material::at`, bilinear on level 0)
+//!   apply at each hit.
 //! - Sun: with `scene.sky` the irradiance is `sun.color * atmosphere::Sky::sun_colour` (the
 //!   Earth atmosphere's transmittance, in units of the solar irradiance at the top) and the
 //!   sky radiance comes from an `atmosphere::SkyMap`; without a sky the sun's colour is read
@@ -21,11 +22,11 @@
 //!   found the horizon's radiance: `building_0_1_facade south` got 0.060 of sky irradiance,
 //!   0.036 of it from above the horizon (what the same facade gets on an endless ground).
 
-use crate::material::{AlphaTest, BaseColorTexture};
+use crate::material::{AlphaTest, SurfaceTextures};
 use crate::world::{PointLight, World};
 use crate::{Camera, Error, Material};
 use atmosphere::{Sky, SkyMap, SkyMapSettings, SkyRadiance};
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec4};
 use std::sync::Arc;
 
 /// How the sun and sky of a scene are turned into light.
@@ -63,9 +64,17 @@ pub fn world_from_scene(scene: &scene::Scene, lighting: &SceneLighting) -> Resul
     scene.validate().map_err(scene_err)?;
     let mut b = World::builder();
     let tris = scene.triangles();
-    // Per-triangle UVs, shared by the alpha tests and the base-colour textures.
+    // Per-triangle UVs, shared by the alpha tests and the textures, and tangents.
     let uvs: Vec<[Vec2; 3]> = (0..tris.indices.len()).map(|t| tris.corner_uvs(t)).collect();
     let uvs = Arc::new(uvs);
+    let any_normal_map = scene.materials.iter().any(|m| m.normal_texture.is_some());
+    let tangents: Vec<[Vec4; 3]> = if any_normal_map {
+        (0..tris.indices.len()).map(|t| tris.corner_tangents(t)).collect()
+    } else {
+        Vec::new()
+    };
+    let tangents = Arc::new(tangents);
+    let textures = Arc::new(scene.textures.clone());
     for sm in &scene.materials {
         let alpha = sm.alpha_mask.and_then(|mask| {
             let tex = scene.textures.get(mask.texture.index())?.clone();
@@ -77,15 +86,25 @@ pub fn world_from_scene(scene: &scene::Scene, lighting: &SceneLighting) -> Resul
             };
             Some(AlphaTest { coverage: Arc::new(coverage), cutoff: mask.cutoff })
         });
-        let base_color_texture = sm.albedo_texture.and_then(|id| {
-            let tex = scene.textures.get(id.index())?.clone();
-            let uvs = Arc::clone(&uvs);
-            let colour = move |tri: u32, bary: Vec2| {
+        let surface_textures = sm.is_textured().then(|| {
+            let (uvs, tangents, textures) =
+                (Arc::clone(&uvs), Arc::clone(&tangents), Arc::clone(&textures));
+            let material = sm.clone();
+            let at = move |tri: u32, bary: Vec2, normal: Vec3| {
+                let w = Vec3::new(1.0 - bary.x - bary.y, bary.x, bary.y);
                 let [a, b, c] = uvs[tri as usize];
-                let uv = a * (1.0 - bary.x - bary.y) + b * bary.x + c * bary.y;
-                tex.sample_bilinear(uv, 0).truncate()
+                let tangent = tangents.get(tri as usize).map(|[ta, tb, tc]| {
+                    (ta.truncate() * w.x + tb.truncate() * w.y + tc.truncate() * w.z).extend(ta.w)
+                });
+                let lookup = scene::TextureLookup {
+                    uv: a * w.x + b * w.y + c * w.z,
+                    footprint: 0.0,
+                    normal,
+                    tangent: scene::orthonormal_tangent(tangent, normal),
+                };
+                material.at(|id| textures.get(id.index()), &lookup)
             };
-            Some(BaseColorTexture(Arc::new(colour)))
+            SurfaceTextures(Arc::new(at))
         });
         b.material(Material {
             brdf: sm.brdf(),
@@ -94,7 +113,7 @@ pub fn world_from_scene(scene: &scene::Scene, lighting: &SceneLighting) -> Resul
             emission: sm.emission,
             double_sided: sm.double_sided,
             alpha,
-            base_color_texture,
+            textures: surface_textures,
         });
     }
     b.shaded_triangles(&tris.positions, &tris.normals, &tris.indices, &tris.materials);

@@ -231,7 +231,7 @@ pub(crate) fn trace_path_from(
     // which the photons carry when there is a photon map.
     let mut after_base = !specular;
     loop {
-        let Some(h) = world.intersect(origin, dir, f32::INFINITY) else {
+        let Some(mut h) = world.intersect(origin, dir, f32::INFINITY) else {
             // What the eye sees through delta bounces is the backdrop; after a base-BRDF
             // vertex the sky lights (from above the horizon, on a dark ground).
             l += beta * if specular { world.sky_radiance(dir) } else { world.sky_light(dir) };
@@ -244,7 +244,7 @@ pub(crate) fn trace_path_from(
             }
             break;
         };
-        let m = world.shade(&h);
+        let m = world.shade(&mut h);
         let wo = -dir;
         let (n, front) = facing(&h, wo);
         let le = m.emitted(front);
@@ -340,9 +340,9 @@ pub(crate) fn irradiance(
             let wi = cosine_hemisphere(n, rng.next_2d());
             let o = world.offset(p, n, wi);
             match world.intersect(o, wi, f32::INFINITY) {
-                Some(h) => {
+                Some(mut h) => {
+                    let rho = world.shade(&mut h).diffuse_reflectance();
                     let (ny, _) = facing(&h, -wi);
-                    let rho = world.shade(&h).diffuse_reflectance();
                     rho * sun_irradiance(world, h.position, ny, rng)
                 }
                 None => Vec3::ZERO,
@@ -354,7 +354,7 @@ pub(crate) fn irradiance(
             let o = world.offset(p, n, wi);
             world
                 .intersect(o, wi, f32::INFINITY)
-                .map_or(Vec3::ZERO, |h| PI * world.shade(&h).emission)
+                .map_or(Vec3::ZERO, |mut h| PI * world.shade(&mut h).emission)
         }
         Component::Full | Component::Reflections => {
             let cos_pdf = |wi: Vec3| wi.dot(n).max(0.0) / PI;
@@ -389,8 +389,8 @@ pub(crate) fn radiance(
     if component == Component::Full {
         return trace_path(world, origin, dir, Vec3::ONE, true, 0, settings, caustics, rng);
     }
-    let Some(h) = world.intersect(origin, dir, f32::INFINITY) else { return Vec3::ZERO };
-    let m = world.shade(&h);
+    let Some(mut h) = world.intersect(origin, dir, f32::INFINITY) else { return Vec3::ZERO };
+    let m = world.shade(&mut h);
     let wo = -dir;
     let (n, front) = facing(&h, wo);
     match component {

@@ -96,7 +96,7 @@ pub use error::Error;
 pub use from_scene::{SceneLighting, camera_from_scene, world_from_scene};
 pub use image::Image;
 pub use integrator::{Component, PathSettings};
-pub use material::{AlphaTest, BaseColorTexture, CoverageFn, Material, Sample, TextureFn};
+pub use material::{AlphaTest, CoverageFn, Material, Sample, SurfaceTextures, TextureFn};
 pub use partial::{Part, Partial};
 pub use progress::{Progress, ProgressFn, Stage};
 pub use query::{QueryPoint, QuerySettings, ambient_occlusion, irradiance, radiance};

@@ -51,16 +51,18 @@ impl fmt::Debug for AlphaTest {
     }
 }
 
-/// Colour of a surface point: `(triangle, barycentrics) -> RGB`, multiplying the base colour.
-pub type TextureFn = dyn Fn(u32, Vec2) -> Vec3 + Send + Sync;
+/// A material's surface at a point: `(triangle, barycentrics, unit interpolated shading
+/// normal) ->` its base colour, metallic, roughness and (normal-mapped) shading normal there.
+pub type TextureFn = dyn Fn(u32, Vec2, Vec3) -> scene::SurfacePoint + Send + Sync;
 
-/// A base-colour texture (already linear), looked up at each hit.
+/// A material's textures (base colour, metallic-roughness, normal map; `scene::Material::at`
+/// reads a scene's), looked up at each hit.
 #[derive(Clone)]
-pub struct BaseColorTexture(pub Arc<TextureFn>);
+pub struct SurfaceTextures(pub Arc<TextureFn>);
 
-impl fmt::Debug for BaseColorTexture {
+impl fmt::Debug for SurfaceTextures {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str("BaseColorTexture(..)")
+        f.write_str("SurfaceTextures(..)")
     }
 }
 
@@ -81,9 +83,9 @@ pub struct Material {
     pub double_sided: bool,
     /// Optional alpha test.
     pub alpha: Option<AlphaTest>,
-    /// Optional base-colour texture (multiplies `brdf.base_color`; values are clamped to
-    /// `[0, 1]`).
-    pub base_color_texture: Option<BaseColorTexture>,
+    /// Optional textures: at each hit they give the BRDF's base colour, metallic and
+    /// roughness (clamped to `[0, 1]`) and the shading normal.
+    pub textures: Option<SurfaceTextures>,
 }
 
 /// The parts of a material seen from one direction, with the luminance estimates that
@@ -113,7 +115,7 @@ impl Material {
             emission: Vec3::ZERO,
             double_sided: false,
             alpha: None,
-            base_color_texture: None,
+            textures: None,
         }
     }
 

@@ -214,10 +214,10 @@ pub fn glint_pixels(world: &World, camera: &Camera, width: u32, height: u32) -> 
         let mut origin = camera.position;
         let mut dir = camera.pixel_direction(x, y, width, height);
         for bounce in 0..=GLINT_BOUNCES {
-            let Some(h) = world.intersect(origin, dir, f32::INFINITY) else {
+            let Some(mut h) = world.intersect(origin, dir, f32::INFINITY) else {
                 return (bounce > 0).then_some(dir);
             };
-            if bounce == GLINT_BOUNCES || !world.material(h.material).has_delta() {
+            if bounce == GLINT_BOUNCES || !world.shade(&mut h).has_delta() {
                 return None;
             }
             let (n, _) = facing(&h, -dir);

@@ -6,6 +6,7 @@ use crate::{Error, Material};
 use glam::{Vec2, Vec3};
 pub use kdtree_tracer::SurfaceHit;
 use kdtree_tracer::{Mesh, Settings, Surfaces};
+use scene::Brdf;
 use std::sync::Arc;
 
 /// Sky radiance in a world direction (unit, pointing away from the viewer), without the sun
@@ -237,20 +238,26 @@ impl World {
         &self.materials[id as usize]
     }
 
-    /// The material at a hit with its base-colour texture applied (borrowed when
-    /// untextured).
-    pub fn shade(&self, h: &SurfaceHit) -> std::borrow::Cow<'_, Material> {
+    /// The material at a hit with its textures applied (borrowed when untextured); the
+    /// hit's shading normal becomes the normal map's.
+    pub fn shade(&self, h: &mut SurfaceHit) -> std::borrow::Cow<'_, Material> {
         let m = &self.materials[h.material as usize];
-        match &m.base_color_texture {
-            None => std::borrow::Cow::Borrowed(m),
-            Some(t) => {
-                let c = (t.0)(h.triangle, h.barycentrics);
-                let c = if c.is_finite() { c.clamp(Vec3::ZERO, Vec3::ONE) } else { Vec3::ONE };
-                let mut owned = m.clone();
-                owned.brdf.base_color *= c;
-                std::borrow::Cow::Owned(owned)
-            }
+        let Some(t) = &m.textures else { return std::borrow::Cow::Borrowed(m) };
+        let p = (t.0)(h.triangle, h.barycentrics, h.shading_normal);
+        let unit = |v: f32, or: f32| if v.is_finite() { v.clamp(0.0, 1.0) } else { or };
+        let mut owned = m.clone();
+        if p.base_color.is_finite() {
+            owned.brdf.base_color = p.base_color.clamp(Vec3::ZERO, Vec3::ONE);
         }
+        owned.brdf = Brdf::new(
+            owned.brdf.base_color,
+            unit(p.metallic, m.brdf.metallic),
+            unit(p.roughness, m.brdf.roughness),
+        );
+        if p.normal.is_finite() && p.normal.is_normalized() {
+            h.shading_normal = p.normal;
+        }
+        std::borrow::Cow::Owned(owned)
     }
 
     /// Number of emissive triangles (sampled by next-event estimation).

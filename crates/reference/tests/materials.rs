@@ -248,10 +248,14 @@ fn base_color_texture_multiplies_the_base_color() {
     let mut b = World::builder();
     let mut m = Material::diffuse(Vec3::splat(0.8));
     // Left half of each triangle's barycentric domain dark, the rest bright.
-    m.base_color_texture =
-        Some(reference::BaseColorTexture(std::sync::Arc::new(|_, bary: glam::Vec2| {
-            if bary.x < 0.5 { Vec3::splat(0.25) } else { Vec3::ONE }
-        })));
+    m.textures = Some(reference::SurfaceTextures(std::sync::Arc::new(
+        |_, bary: glam::Vec2, normal: Vec3| scene::SurfacePoint {
+            base_color: Vec3::splat(0.8) * if bary.x < 0.5 { 0.25 } else { 1.0 },
+            metallic: 0.0,
+            roughness: 1.0,
+            normal,
+        },
+    )));
     let m = b.material(m);
     common::ground(&mut b, m);
     b.sky(|_| Vec3::ONE);

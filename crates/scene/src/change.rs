@@ -50,10 +50,11 @@ impl Scene {
             hash_f32s(&mut h, [m.transparency, m.ior]);
             hash_f32s(&mut h, m.emission.to_array());
             hash_f32s(&mut h, m.base_color.extend(m.metallic).to_array());
-            hash_f32s(&mut h, [m.roughness]);
+            hash_f32s(&mut h, [m.roughness, m.normal_scale]);
             (
                 m.albedo_texture,
                 m.normal_texture,
+                m.metallic_roughness_texture,
                 m.alpha_mask.map(|a| (a.texture, a.cutoff.to_bits())),
                 m.double_sided,
             )

@@ -56,6 +56,7 @@ mod mesh;
 mod needs;
 mod occluders;
 mod scene;
+pub mod surface;
 mod texture;
 mod volumes;
 mod warning;
@@ -91,10 +92,11 @@ pub use load::scene_file::{load_scene_file, load_scene_str};
 #[cfg(feature = "load")]
 pub use load::{LoadOptions, load, load_with};
 pub use material::{AlphaMask, Material, MaterialId, RAY_TRACE_THRESHOLD};
-pub use mesh::{Cleanup, Mesh, MeshData};
+pub use mesh::{Cleanup, Mesh, MeshData, orthonormal_tangent};
 pub use needs::{Need, SKY_DARK_ELEVATION_DEG, SceneNeeds};
 pub use occluders::{DeriveSettings, derive_occlusion_quads};
 pub use scene::{Scene, SceneStats, SceneTriangles};
+pub use surface::{SurfacePoint, TextureLookup, perturbed_normal};
 pub use texture::{
     ColorSpace, MAX_TEXTURE_SIZE, Texture, TextureId, TextureLevel, Wrap, linear_to_srgb,
     srgb_to_linear,

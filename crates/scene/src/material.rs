@@ -1,6 +1,7 @@
 //! A surface material in glTF 2.0's metallic-roughness model ([`crate::brdf`]: base colour,
 //! metallic, roughness), with what the ray tracer needs beyond it (transmission with an index
-//! of refraction), a tangent-space normal map, an alpha-test mask and emission.
+//! of refraction), its textures (base colour, metallic-roughness, a tangent-space normal map;
+//! read at a surface point by [`crate::surface`]), an alpha-test mask and emission.
 //!
 //! # One surface model for every renderer
 //!
@@ -60,8 +61,14 @@ pub struct Material {
     pub roughness: f32,
     /// glTF's base-colour texture: multiplies `base_color` (linear RGB after sRGB decoding).
     pub albedo_texture: Option<TextureId>,
-    /// Tangent-space normal map (stored linear, `rgb * 2 - 1`).
+    /// glTF's metallic-roughness texture (linear): its green channel multiplies `roughness`,
+    /// its blue channel `metallic`.
+    pub metallic_roughness_texture: Option<TextureId>,
+    /// Tangent-space normal map (stored linear, `rgb * 2 - 1`), in the mesh's MikkTSpace
+    /// tangent frame ([`crate::perturbed_normal`]).
     pub normal_texture: Option<TextureId>,
+    /// glTF's `normalTexture.scale`: multiplies the normal map's x and y (1: as stored).
+    pub normal_scale: f32,
     /// Share of light transmitted through a smooth dielectric, [0, 1] (ray traced).
     pub transparency: f32,
     /// Index of refraction of the transmitting medium, >= 1.
@@ -148,7 +155,9 @@ impl Material {
             metallic,
             roughness,
             albedo_texture: None,
+            metallic_roughness_texture: None,
             normal_texture: None,
+            normal_scale: 1.0,
             transparency: 0.0,
             ior: 1.5,
             alpha_mask: None,
@@ -231,6 +240,10 @@ impl Material {
         };
         tex(self.albedo_texture, "albedo")?;
         tex(self.normal_texture, "normal")?;
+        tex(self.metallic_roughness_texture, "metallic-roughness")?;
+        if !self.normal_scale.is_finite() {
+            return Err(SceneError::invalid(el(), format!("normal scale {}", self.normal_scale)));
+        }
         if let Some(m) = self.alpha_mask {
             tex(Some(m.texture), "alpha mask")?;
             if !(m.cutoff > 0.0 && m.cutoff <= 1.0) {

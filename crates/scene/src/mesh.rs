@@ -1,5 +1,5 @@
 //! Triangle meshes and the clean-up every loader runs: validation, degenerate-triangle removal,
-//! normal recomputation and tangent generation.
+//! normal recomputation and tangent generation (MikkTSpace).
 
 use crate::{Aabb, LoadErrorKind, MaterialId, SceneError};
 use glam::{Affine3A, Mat3, Vec2, Vec3, Vec4};
@@ -51,7 +51,7 @@ pub struct MeshData {
 impl Mesh {
     /// Validates and cleans raw data: non-finite positions/UVs and out-of-range indices are
     /// errors; degenerate triangles are dropped and counted; missing or zero-length normals are
-    /// recomputed (area-weighted face normals); tangents are generated from the UVs.
+    /// recomputed (area-weighted face normals); tangents are generated from the UVs (MikkTSpace).
     pub fn build(
         name: impl Into<String>,
         data: MeshData,
@@ -146,6 +146,25 @@ impl Mesh {
         Ok((mesh, cleanup))
     }
 
+    /// The file's own tangents (glTF's `TANGENT`: unit xyz along +U, bitangent sign in `w`)
+    /// in place of the generated ones, made orthonormal to the normals; an error when their
+    /// count is not the vertex count.
+    pub fn with_tangents(mut self, tangents: Vec<Vec4>) -> Result<Self, LoadErrorKind> {
+        if tangents.len() != self.positions.len() {
+            return Err(LoadErrorKind::Inconsistent(format!(
+                "{} tangents for {} vertices",
+                tangents.len(),
+                self.positions.len()
+            )));
+        }
+        self.tangents = tangents
+            .iter()
+            .zip(&self.normals)
+            .map(|(&t, &n)| orthonormal_tangent(Some(t), n))
+            .collect();
+        Ok(self)
+    }
+
     pub fn triangle_count(&self) -> usize {
         self.indices.len()
     }
@@ -232,37 +251,70 @@ fn perpendicular(n: Vec3) -> Vec3 {
     n.any_orthonormal_vector()
 }
 
-/// Per-vertex tangents from UV gradients (Lengyel 2001), orthogonalised against the normal;
-/// vertices without usable UVs get an arbitrary perpendicular with `w = 1`.
+/// Per-vertex tangents by MikkTSpace (Mikkelsen 2008, the tangent space glTF's normal maps are
+/// baked against), through `bevy_mikktspace`, with the bitangent up the image (`-V`: the
+/// normal maps' `+Y`, see `tex_coord` below). MikkTSpace gives a tangent per triangle corner;
+/// a vertex shared by corners of different tangent spaces (mirrored UVs on one vertex) keeps
+/// the last one. Corners it cannot give a tangent (no usable UVs) get an arbitrary
+/// perpendicular with `w = 1`; every tangent is orthogonalised against the vertex normal.
 fn tangents(p: &[Vec3], n: &[Vec3], uv: &[Vec2], tris: &[[u32; 3]]) -> Vec<Vec4> {
-    let mut tan = vec![Vec3::ZERO; p.len()];
-    let mut bit = vec![Vec3::ZERO; p.len()];
-    for &[a, b, c] in tris {
-        let (a, b, c) = (a as usize, b as usize, c as usize);
-        let (e1, e2) = (p[b] - p[a], p[c] - p[a]);
-        let (d1, d2) = (uv[b] - uv[a], uv[c] - uv[a]);
-        let det = d1.x * d2.y - d2.x * d1.y;
-        if det.abs() < 1e-12 || !det.is_finite() {
-            continue;
-        }
-        let r = 1.0 / det;
-        let t = (e1 * d2.y - e2 * d1.y) * r;
-        let s = (e2 * d1.x - e1 * d2.x) * r;
-        if !t.is_finite() || !s.is_finite() {
-            continue;
-        }
-        for i in [a, b, c] {
-            tan[i] += t;
-            bit[i] += s;
+    struct Geometry<'a> {
+        p: &'a [Vec3],
+        n: &'a [Vec3],
+        uv: &'a [Vec2],
+        tris: &'a [[u32; 3]],
+        out: Vec<Option<Vec4>>,
+    }
+    impl Geometry<'_> {
+        fn vertex(&self, face: usize, vert: usize) -> usize {
+            self.tris[face][vert] as usize
         }
     }
-    (0..p.len())
-        .map(|i| {
-            let t = (tan[i] - n[i] * n[i].dot(tan[i]))
-                .try_normalize()
-                .unwrap_or_else(|| perpendicular(n[i]));
-            let w = if n[i].cross(t).dot(bit[i]) < 0.0 { -1.0 } else { 1.0 };
-            t.extend(w)
-        })
-        .collect()
+    impl bevy_mikktspace::Geometry for Geometry<'_> {
+        fn num_faces(&self) -> usize {
+            self.tris.len()
+        }
+        fn num_vertices_of_face(&self, _face: usize) -> usize {
+            3
+        }
+        fn position(&self, face: usize, vert: usize) -> [f32; 3] {
+            self.p[self.vertex(face, vert)].to_array()
+        }
+        fn normal(&self, face: usize, vert: usize) -> [f32; 3] {
+            self.n[self.vertex(face, vert)].to_array()
+        }
+        fn tex_coord(&self, face: usize, vert: usize) -> [f32; 2] {
+            // glTF's V runs down the image and its normal maps' +Y up it; MikkTSpace's
+            // bitangent follows +V, so it is given V flipped (as the glTF sample models'
+            // NormalTangentTest expects; KhronosGroup/glTF-Sample-Models#174).
+            let uv = self.uv[self.vertex(face, vert)];
+            [uv.x, 1.0 - uv.y]
+        }
+        fn set_tangent(
+            &mut self,
+            space: Option<bevy_mikktspace::TangentSpace>,
+            face: usize,
+            vert: usize,
+        ) {
+            let v = self.vertex(face, vert);
+            if let Some(s) = space {
+                self.out[v] = Some(Vec4::from_array(s.tangent_encoded()));
+            }
+        }
+    }
+    let mut g = Geometry { p, n, uv, tris, out: vec![None; p.len()] };
+    // The error type has no variants: generation cannot fail.
+    let _ = bevy_mikktspace::generate_tangents(&mut g);
+    g.out.iter().zip(n).map(|(t, &n)| orthonormal_tangent(*t, n)).collect()
+}
+
+/// `t` made a unit tangent perpendicular to `n` with a bitangent sign of +-1 (an arbitrary
+/// perpendicular with `w = 1` when `t` is missing, parallel to `n` or not finite).
+pub fn orthonormal_tangent(t: Option<Vec4>, n: Vec3) -> Vec4 {
+    let Some(t) = t.filter(|t| t.is_finite()) else { return perpendicular(n).extend(1.0) };
+    let xyz = (t.truncate() - n * n.dot(t.truncate())).try_normalize();
+    match xyz {
+        Some(xyz) => xyz.extend(if t.w < 0.0 { -1.0 } else { 1.0 }),
+        None => perpendicular(n).extend(1.0),
+    }
 }

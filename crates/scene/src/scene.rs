@@ -4,7 +4,7 @@ use crate::{
     Aabb, Camera, Cleanup, LoadWarning, LpvPlacement, Material, MaterialId, Mesh, OcclusionQuad,
     PointLight, SceneError, SkyVolumePlacement, Sun, Texture, TextureId,
 };
-use glam::{Affine3A, Vec2, Vec3};
+use glam::{Affine3A, Vec2, Vec3, Vec4};
 use std::fmt;
 
 /// Everything a renderer needs to know about the world.
@@ -42,6 +42,10 @@ pub struct SceneTriangles {
     /// Per vertex: the texture coordinates, or zero where the mesh has none (or a
     /// non-finite one).
     pub uvs: Vec<Vec2>,
+    /// Per vertex: the unit world-space tangent along +U with the bitangent sign in `w`
+    /// (`B = w N x T`, turned with the transform's handedness), `(1, 0, 0, 1)` where the
+    /// mesh has none.
+    pub tangents: Vec<Vec4>,
     pub indices: Vec<[u32; 3]>,
     /// For each triangle, the index of its mesh in [`Scene::meshes`].
     pub mesh_ids: Vec<u32>,
@@ -63,6 +67,11 @@ impl SceneTriangles {
     /// The corners' normals of triangle `t` (zero where unknown).
     pub fn corner_normals(&self, t: usize) -> [Vec3; 3] {
         self.indices[t].map(|i| self.normals[i as usize])
+    }
+
+    /// The corners' tangents of triangle `t`.
+    pub fn corner_tangents(&self, t: usize) -> [Vec4; 3] {
+        self.indices[t].map(|i| self.tangents[i as usize])
     }
 
     /// The corners' texture coordinates of triangle `t`.
@@ -183,6 +192,7 @@ impl Scene {
         for mut m in other.materials {
             shift(&mut m.albedo_texture);
             shift(&mut m.normal_texture);
+            shift(&mut m.metallic_roughness_texture);
             if let Some(a) = &mut m.alpha_mask {
                 a.texture.0 += toff;
             }
@@ -261,6 +271,7 @@ impl Scene {
         out.positions.reserve(vertices);
         out.normals.reserve(vertices);
         out.uvs.reserve(vertices);
+        out.tangents.reserve(vertices);
         out.indices.reserve(triangles);
         out.mesh_ids.reserve(triangles);
         out.materials.reserve(triangles);
@@ -277,6 +288,13 @@ impl Scene {
                 (0..m.vertex_count())
                     .map(|v| m.uvs.get(v).copied().filter(|u| u.is_finite()).unwrap_or_default()),
             );
+            let m3 = glam::Mat3::from(m.transform.matrix3);
+            let handedness = m3.determinant().signum();
+            out.tangents.extend((0..m.vertex_count()).map(|v| {
+                let t = m.tangents.get(v).copied().unwrap_or(Vec4::new(1.0, 0.0, 0.0, 1.0));
+                let xyz = (m3 * t.truncate()).try_normalize().unwrap_or(Vec3::X);
+                xyz.extend(if t.w * handedness < 0.0 { -1.0 } else { 1.0 })
+            }));
             out.indices.extend(m.indices.iter().map(|t| t.map(|i| i + base)));
             out.mesh_ids.extend(std::iter::repeat_n(id as u32, m.indices.len()));
             out.materials.extend(std::iter::repeat_n(m.material.0, m.indices.len()));

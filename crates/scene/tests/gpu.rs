@@ -303,3 +303,101 @@ fn wgsl_brdf_equals_the_cpu_brdf() {
     }
     eprintln!("worst relative difference GPU vs CPU: {worst:e}");
 }
+
+/// The G-buffer applies the normal map in the mesh's tangent frame (MikkTSpace, +Y of the
+/// map up the image) and the metallic-roughness texture's blue and green channels: two quads
+/// facing the camera, one whose map leans 45 degrees along +U (+x), one along +Y of the map
+/// (up the image: +y, the quad's V runs down it) with a metallic-roughness texture. Without
+/// the maps both normals would be +z and the factors unchanged.
+#[test]
+fn gbuffer_applies_normal_maps_and_metallic_roughness_textures() {
+    let Some(ctx) = gpu_test_context() else { return };
+    let s = std::f32::consts::FRAC_1_SQRT_2;
+    let mut scene = Scene::new("mapped quads");
+    let mut one = |name: &str, v: Vec4| {
+        scene.add_texture(Texture::from_linear(name, 1, 1, vec![v]).expect("a 1x1 texture"))
+    };
+    let stored = |m: Vec3| ((m + Vec3::ONE) * 0.5).extend(1.0);
+    let along_u = one("along u", stored(Vec3::new(s, 0.0, s)));
+    let up = one("up", stored(Vec3::new(0.0, s, s)));
+    let mr = one("mr", Vec4::new(0.0, 0.5, 0.25, 1.0));
+    let base = Material::metallic_roughness("m", Vec3::splat(0.5), 0.8, 0.6);
+    scene.add_material(Material { normal_texture: Some(along_u), ..base.clone() });
+    scene.add_material(Material {
+        normal_texture: Some(up),
+        metallic_roughness_texture: Some(mr),
+        ..base
+    });
+    scene.meshes.push(quad("left", 0.0, (-1.0, 0.0), (-1.0, 1.0), Vec3::Z, 0));
+    scene.meshes.push(quad("right", 0.0, (0.0, 1.0), (-1.0, 1.0), Vec3::Z, 1));
+    scene.camera = Camera::look_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, 60.0, 1.0);
+    scene.validate().expect("a valid scene");
+    let cam = scene.camera;
+    let gpu = GpuScene::new(&ctx.device, &ctx.queue, &scene);
+    let gbuffer = GBuffer::new(&ctx.device, 32, 32);
+    let pass = GBufferPass::new(&ctx.device, &gpu).expect("the G-buffer pipelines");
+    let camera = GBufferCamera::new(cam.view_projection(), cam.position, cam.forward, 1.0);
+    let mut encoder = ctx.device.create_command_encoder(&Default::default());
+    pass.record(&ctx.queue, &mut encoder, &gbuffer, &gpu, &camera);
+    ctx.queue.submit([encoder.finish()]);
+    let t = Targets::read(&ctx, &gbuffer);
+    // Half floats and an RGBA8 metallic: 2e-3 and one step of 1/255.
+    let [_, normal, _, _] = t.at(&cam, Vec3::new(-0.5, 0.0, 0.0));
+    assert!(near(normal, Vec4::new(s, 0.0, s, 0.6), 2e-3), "along +U: {normal}");
+    let [albedo, normal, _, _] = t.at(&cam, Vec3::new(0.5, 0.0, 0.0));
+    assert!(near(normal, Vec4::new(0.0, s, s, 0.3), 2e-3), "up the image: {normal}");
+    assert!((albedo.w - 0.2).abs() <= 1.0 / 255.0 + 1e-3, "metallic 0.8 x 0.25: {}", albedo.w);
+}
+
+/// The normal map's WGSL twin (`material_perturbed_normal`) equals `scene::perturbed_normal`
+/// on seeded random frames, texels (some degenerate: a zero texel) and scales.
+#[test]
+fn wgsl_perturbed_normal_equals_the_cpu_one() {
+    use rand::{Rng, SeedableRng};
+    let Some(ctx) = gpu_test_context() else { return };
+    let mut rng = rand_pcg::Pcg64::seed_from_u64(5354);
+    let count = 512usize;
+    let mut inputs: Vec<[f32; 4]> = Vec::new();
+    let mut cases = Vec::new();
+    for i in 0..count {
+        let n = Vec3::new(rng.random_range(-1.0..1.0), rng.random(), rng.random_range(-1.0..1.0))
+            .normalize_or(Vec3::Y);
+        let t = n.any_orthonormal_vector().extend(if i % 2 == 0 { 1.0 } else { -1.0 });
+        let texel = if i % 31 == 0 {
+            Vec3::splat(0.5)
+        } else {
+            Vec3::new(rng.random(), rng.random(), rng.random_range(0.5..1.0))
+        };
+        let scale: f32 = rng.random_range(0.0..2.0);
+        inputs.extend([n.extend(scale), t, texel.extend(0.0)].map(|v| v.to_array()));
+        cases.push(scene::perturbed_normal(n, t, texel, scale));
+    }
+    let kernel = format!(
+        "{MATERIAL_INC_WGSL}
+        @group(0) @binding(0) var<storage, read> cases: array<vec4<f32>>;
+        @group(0) @binding(1) var<storage, read_write> out: array<vec4<f32>>;
+        @compute @workgroup_size(64) fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
+            let i = id.x;
+            if i >= arrayLength(&cases) / 3u {{ return; }}
+            let n = cases[3u * i];
+            out[i] = vec4<f32>(material_perturbed_normal(n.xyz, cases[3u * i + 1u],
+                cases[3u * i + 2u].xyz, n.w), 0.0);
+        }}"
+    );
+    let out = ctx
+        .run_compute(
+            &kernel,
+            "main",
+            &[
+                gpu_harness::Binding::Read(bytemuck::cast_slice(&inputs)),
+                gpu_harness::Binding::Output((count * 16) as u64),
+            ],
+            [count.div_ceil(64) as u32, 1, 1],
+        )
+        .expect("dispatch");
+    let gpu: Vec<[f32; 4]> = gpu_harness::cast_vec(&out[1]);
+    for (i, cpu) in cases.iter().enumerate() {
+        let g = Vec4::from_array(gpu[i]).truncate();
+        assert!((g - *cpu).length() < 1e-5, "case {i}: GPU {g} vs CPU {cpu}");
+    }
+}

@@ -234,3 +234,54 @@ fn gltf_rough_translucent_dielectric_maps_as_documented() {
     let n = s.needs();
     assert!(!n.reflections.needed);
 }
+
+/// A primitive's `TANGENT`s replace the generated frame (here along +y, sign -1: not what
+/// MikkTSpace gives for this quad, +x with sign +1), the metallic-roughness texture and the
+/// normal texture with its `scale` reach the material.
+#[test]
+fn gltf_tangents_metallic_roughness_texture_and_normal_scale_are_read() {
+    let (mut buf, offs) = common::quad_buffer(false);
+    let tangent_offset = buf.len();
+    for _ in 0..4 {
+        for v in [0.0f32, 1.0, 0.0, -1.0] {
+            buf.extend_from_slice(&v.to_le_bytes());
+        }
+    }
+    let uri = format!("data:application/octet-stream;base64,{}", common::base64(&buf));
+    let png = common::png(1, 1, |_, _| [128, 128, 255, 255]);
+    let extra = format!(
+        r#", "normalTexture": {{"index": 0, "scale": 0.5}}}}], "textures": [{{"source": 0}}], "images": [{{"uri": "data:image/png;base64,{}"}}], "ignored": [{{"#,
+        common::base64(&png)
+    );
+    let json = common::gltf_json(Some(uri), buf.len(), offs, &extra)
+        .replace(
+            r#""roughnessFactor": 0.0}"#,
+            r#""roughnessFactor": 0.0, "metallicRoughnessTexture": {"index": 0}}"#,
+        )
+        .replace(r#", "ignored": [{}]"#, "")
+        .replace(r#""TEXCOORD_0": 2}"#, r#""TEXCOORD_0": 2, "TANGENT": 4}"#)
+        .replace(
+            r#""byteLength": 18}"#,
+            &format!(
+                r#""byteLength": 18}}, {{"buffer": 0, "byteOffset": {tangent_offset}, "byteLength": 64}}"#
+            ),
+        )
+        .replace(
+            r#""count": 9, "type": "SCALAR"}"#,
+            r#""count": 9, "type": "SCALAR"}, {"bufferView": 4, "componentType": 5126, "count": 4, "type": "VEC4"}"#,
+        );
+    let s = scene::load_gltf_slice(json.as_bytes(), None, "tangents.gltf").unwrap();
+    let m = &s.materials[0];
+    assert!(m.metallic_roughness_texture.is_some(), "the metallic-roughness texture is read");
+    assert!(m.normal_texture.is_some() && m.normal_scale == 0.5, "normal scale {}", m.normal_scale);
+    let mesh = &s.meshes[0];
+    assert!(
+        mesh.tangents.iter().all(|t| *t == glam::Vec4::new(0.0, 1.0, 0.0, -1.0)),
+        "{:?}",
+        mesh.tangents
+    );
+    // Without the attribute, MikkTSpace's: +x (u runs along +x), +1 (v runs down +y's image).
+    let plain = scene::load_gltf_slice(&common::tiny_gltf(false), None, "t.gltf").unwrap();
+    let t = plain.meshes[0].tangents[0];
+    assert!((t - glam::Vec4::new(1.0, 0.0, 0.0, 1.0)).length() < 1e-5, "generated {t}");
+}

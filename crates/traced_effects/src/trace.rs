@@ -41,7 +41,7 @@ use crate::TraceError;
 use glam::{Vec2, Vec3};
 use kdtree_tracer::{Hit, Mesh, Ray, RayQuery, Settings, SurfaceHit, Surfaces};
 use rayon::prelude::*;
-use scene::{Material, Texture, TextureId};
+use scene::{Material, SurfacePoint, Texture, TextureId, TextureLookup};
 use std::f32::consts::PI;
 /// The sun of [`TraceLighting`], the one sun type of the serein crates.
 pub use vocab::Sun;
@@ -110,7 +110,9 @@ impl TraceScene {
             .collect();
         let used = |id: usize| {
             scene.materials.iter().any(|m| {
-                m.albedo_texture.is_some_and(|t| t.index() == id)
+                [m.albedo_texture, m.metallic_roughness_texture, m.normal_texture]
+                    .iter()
+                    .any(|t| t.is_some_and(|t| t.index() == id))
                     || m.alpha_mask.is_some_and(|a| a.texture.index() == id)
             })
         };
@@ -134,6 +136,7 @@ impl TraceScene {
         let surfaces = Surfaces::build(mesh, tris.materials.clone(), &Settings::DEFAULT)?
             .with_shading_normals((0..n).map(|t| tris.corner_normals(t)).collect())?
             .with_uvs((0..n).map(|t| tris.corner_uvs(t)).collect())?
+            .with_tangents((0..n).map(|t| tris.corner_tangents(t)).collect())?
             .with_cutouts(cutouts);
         Ok(Self {
             surfaces,
@@ -322,11 +325,10 @@ pub fn trace_surfaces(
             ..TracedHit::default()
         };
         if let Some(b) = found.base {
-            let m = b.material;
             hit.position = b.p.extend(0.0).to_array();
             hit.normal = b.n.extend(b.weight).to_array();
-            hit.geometric = b.ng.extend(m.metallic).to_array();
-            hit.base_color = b.base_color.extend(m.roughness).to_array();
+            hit.geometric = b.ng.extend(b.surface.metallic).to_array();
+            hit.base_color = b.surface.base_color.extend(b.surface.roughness).to_array();
         }
         hit
     })
@@ -374,14 +376,13 @@ struct Tracer<'a> {
 }
 
 /// The BRDF part of a surface a ray found, as it is lit.
-struct Base<'a> {
+struct Base {
     /// `1 - transparency`.
     weight: f32,
-    material: &'a Material,
-    /// The base colour times its texture at the hit.
-    base_color: Vec3,
+    /// The material at the hit, its textures applied.
+    surface: SurfacePoint,
     p: Vec3,
-    /// Unit geometric and shading normals, on the side the ray came from.
+    /// Unit geometric and (normal-mapped) shading normals, on the side the ray came from.
     ng: Vec3,
     n: Vec3,
     dir: Vec3,
@@ -389,9 +390,9 @@ struct Base<'a> {
 
 /// What a ray finds: all its light but the base part's (emission, the sky for a miss, the
 /// mirror and glass parts followed as deep as asked), and the base part to light.
-struct Found<'a> {
+struct Found {
     other: Vec3,
-    base: Option<Base<'a>>,
+    base: Option<Base>,
 }
 
 impl Tracer<'_> {
@@ -403,7 +404,7 @@ impl Tracer<'_> {
     }
 
     /// The surface along the ray and everything but its base part's light.
-    fn find(&self, origin: Vec3, dir: Vec3, depth: u32, dist: f32) -> Found<'_> {
+    fn find(&self, origin: Vec3, dir: Vec3, depth: u32, dist: f32) -> Found {
         let s = self.scene;
         let Some(h) = s.intersect(origin, dir, 0.0, f32::INFINITY, self.alpha) else {
             return Found { other: finite((self.lighting.sky)(dir)), base: None };
@@ -413,12 +414,11 @@ impl Tracer<'_> {
         // Both normals turned to the side the ray came from.
         let front = h.normal.dot(dir) < 0.0;
         let ng = if front { h.normal } else { -h.normal };
-        let n = if h.shading_normal.dot(dir) > 0.0 { -h.shading_normal } else { h.shading_normal };
+        let surface = self.surface(m, &h, dist + h.t);
+        // The side is the interpolated normal's (a mapped normal may lean past the surface).
+        let n = if h.shading_normal.dot(dir) > 0.0 { -surface.normal } else { surface.normal };
         let weight = (1.0 - m.transparency).max(0.0);
-        let base = (weight > 0.0).then(|| {
-            let base_color = self.base_color(m, &h, dist + h.t);
-            Base { weight, material: m, base_color, p, ng, n, dir }
-        });
+        let base = (weight > 0.0).then_some(Base { weight, surface, p, ng, n, dir });
         let mut l = finite(m.emission);
         if depth <= 1 {
             return Found { other: l, base };
@@ -454,14 +454,14 @@ impl Tracer<'_> {
     /// the ambient light, with shadow rays.
     fn light_base(&self, b: &Base) -> Vec3 {
         let po = self.scene.surfaces.offset(b.p, b.ng, -b.dir);
-        self.direct(b.material, b.base_color, b.p, po, b.n, b.dir)
+        self.direct(&b.surface, b.p, po, b.n, b.dir)
     }
 
     /// The BRDF part lit by the sun, the point lights and the ambient light. `po` is the
     /// surface point moved off the surface on the lit side.
-    fn direct(&self, m: &Material, base: Vec3, p: Vec3, po: Vec3, n: Vec3, dir: Vec3) -> Vec3 {
+    fn direct(&self, m: &SurfacePoint, p: Vec3, po: Vec3, n: Vec3, dir: Vec3) -> Vec3 {
         let s = self.scene;
-        let brdf = scene::Brdf::new(base, m.metallic, m.roughness);
+        let brdf = scene::Brdf::new(m.base_color, m.metallic, m.roughness);
         let ambient = finite((self.lighting.ambient)(p, n));
         let mut reflected = brdf.diffuse_color() / PI * ambient;
         // Irradiance `e` from unit direction `l` (visibility applied), reflected by the BRDF
@@ -518,17 +518,30 @@ impl Tracer<'_> {
         reflected
     }
 
-    /// The material's base colour times its texture at the hit (`dist`: distance travelled).
-    fn base_color(&self, m: &Material, h: &SurfaceHit, dist: f32) -> Vec3 {
+    /// The material at the hit with its textures applied ([`Material::at`]), trilinear at
+    /// the level of detail of the ray's footprint (`dist`: distance travelled).
+    fn surface(&self, m: &Material, h: &SurfaceHit, dist: f32) -> SurfacePoint {
         let s = self.scene;
-        let mut albedo = m.base_color;
-        if let Some(tex) = m.albedo_texture.and_then(|id| s.texture(id)) {
-            let texels = (tex.width() as f32 * tex.height() as f32).sqrt();
-            let footprint = dist * PIXEL_SPREAD * s.uv_density[h.triangle as usize] * texels;
-            let lod = if footprint > 0.0 { footprint.log2() } else { 0.0 };
-            albedo *= tex.sample_trilinear(h.uv, lod).truncate();
+        let untextured = SurfacePoint {
+            base_color: m.base_color,
+            metallic: m.metallic,
+            roughness: m.roughness,
+            normal: h.shading_normal,
+        };
+        if !m.is_textured() {
+            return untextured;
         }
-        finite(albedo).min(Vec3::ONE)
+        let lookup = TextureLookup {
+            uv: h.uv,
+            footprint: dist * PIXEL_SPREAD * s.uv_density[h.triangle as usize],
+            normal: h.shading_normal,
+            tangent: scene::orthonormal_tangent(
+                s.surfaces.tangent(h.triangle, h.barycentrics),
+                h.shading_normal,
+            ),
+        };
+        let p = m.at(|id| s.texture(id), &lookup);
+        SurfacePoint { base_color: finite(p.base_color).min(Vec3::ONE), ..p }
     }
 }
 

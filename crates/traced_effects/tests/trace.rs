@@ -282,3 +282,36 @@ fn a_mirror_wall_mirrors_the_sun_onto_traced_hits() {
     assert!(close(sunlit, want), "the floor stays sunlit: {sunlit} vs {want}");
     assert_eq!(radiance(&roofed, 2.0, true), sunlit, "the mirror is in the roof's shadow");
 }
+
+/// A traced hit is shaded with the normal map in the mesh's tangent frame: a floor whose
+/// constant map leans 45 degrees along +U (+x) faces a sun 45 degrees up towards +x, so it
+/// is lit as if facing the sun (the BRDF at the mapped normal, `n.l = 1`); unmapped it would
+/// be lit at `n.l = 0.71`.
+#[test]
+fn traced_hits_apply_the_normal_map() {
+    let s = std::f32::consts::FRAC_1_SQRT_2;
+    let mut scene = Scene::new("mapped floor");
+    let stored = ((Vec3::new(s, 0.0, s) + Vec3::ONE) * 0.5).extend(1.0);
+    let map = scene.add_texture(Texture::from_linear("lean", 1, 1, vec![stored]).unwrap());
+    let m = scene.add_material(Material {
+        normal_texture: Some(map),
+        ..Material::diffuse("floor", Vec3::splat(0.5))
+    });
+    // u along +x, v along +z (down the image: the map's +Y is -z).
+    let positions = [(-5.0, -5.0), (5.0, -5.0), (5.0, 5.0), (-5.0, 5.0)]
+        .map(|(x, z)| Vec3::new(x, 0.0, z))
+        .to_vec();
+    let uvs = positions.iter().map(|p| Vec2::new(p.x + 5.0, p.z + 5.0) / 10.0).collect();
+    let data =
+        MeshData { positions, normals: None, uvs: Some(uvs), indices: vec![0, 2, 1, 0, 3, 2] };
+    scene.meshes.push(scene::Mesh::build("floor", data, m).unwrap().0);
+    let sun = Vec3::new(1.0, 1.0, 0.0).normalize();
+    let d = Vec3::new(0.1, -1.0, 0.2);
+    let got = trace(&scene, sun, Vec3::ZERO, &[TraceRay { origin: -d * 3.0, dir: d }], D1)[0];
+    let mapped = Vec3::new(s, s, 0.0);
+    let brdf = scene::Brdf::new(Vec3::splat(0.5), 0.0, 1.0);
+    let want = brdf.eval(mapped, -d.normalize(), sun) * E * mapped.dot(sun);
+    assert!((got - want).abs().max_element() < 1e-3 * want.max_element(), "{got} vs {want}");
+    let flat = lit(0.5, d, sun, E);
+    assert!(got.x > 1.3 * flat.x, "the map turns the floor to the sun: {got} vs flat {flat}");
+}

@@ -56,8 +56,10 @@ pub struct Vertex {
     pub normal: [f32; 3],
     pub uv: [f32; 2],
     pub material: u32,
+    /// Unit tangent along +U, bitangent sign in `w` ([`crate::SceneTriangles::tangents`]).
+    pub tangent: [f32; 4],
 }
-const _: () = assert!(std::mem::size_of::<Vertex>() == 36);
+const _: () = assert!(std::mem::size_of::<Vertex>() == 52);
 
 /// The material bound when a scene has none.
 const ZERO_MATERIAL: GpuMaterial =
@@ -69,11 +71,12 @@ const ZERO_MATERIAL: GpuMaterial =
 pub struct GpuMaterial {
     /// Base colour RGB, metallic.
     pub base: [f32; 4],
-    /// Roughness, transparency, index of refraction, unused.
+    /// Roughness, transparency, index of refraction, normal-map scale.
     pub params: [f32; 4],
     /// Emission RGB, alpha cutoff (0: no alpha test).
     pub emission: [f32; 4],
-    /// Has an albedo texture, has an alpha mask, unused x2.
+    /// Has an albedo texture, has an alpha mask, has a normal map, has a metallic-roughness
+    /// texture.
     pub flags: [u32; 4],
 }
 const _: () = assert!(std::mem::size_of::<GpuMaterial>() == 64);
@@ -82,9 +85,15 @@ impl GpuMaterial {
     pub fn new(m: &Material) -> Self {
         Self {
             base: m.base_color.extend(m.metallic).to_array(),
-            params: [m.roughness, m.transparency, m.ior, 0.0],
+            params: [m.roughness, m.transparency, m.ior, m.normal_scale],
             emission: m.emission.extend(m.alpha_mask.map_or(0.0, |a| a.cutoff)).to_array(),
-            flags: [u32::from(m.albedo_texture.is_some()), u32::from(m.alpha_mask.is_some()), 0, 0],
+            flags: [
+                m.albedo_texture.is_some(),
+                m.alpha_mask.is_some(),
+                m.normal_texture.is_some(),
+                m.metallic_roughness_texture.is_some(),
+            ]
+            .map(u32::from),
         }
     }
 }
@@ -114,7 +123,8 @@ pub struct GpuScene {
     /// texture's 1x1 mip, linear). A shadow map's texels (tens of
     /// centimetres) span many texture texels, so the mean is what a texel reflects.
     pub diffuse_albedo: Vec<Vec3>,
-    /// One bind group per material (albedo texture, alpha texture, sampler) of
+    /// One bind group per material (albedo texture, alpha texture, sampler, normal map,
+    /// metallic-roughness texture) of
     /// [`GpuScene::material_layout`].
     pub material_groups: Vec<wgpu::BindGroup>,
     pub material_layout: wgpu::BindGroupLayout,
@@ -170,11 +180,12 @@ impl GpuScene {
     pub const NORMAL_OFFSET: u64 = 12;
     pub const UV_OFFSET: u64 = 24;
 
-    /// The vertex layout of [`Vertex`] at locations 0-3 (position, normal, uv, material;
-    /// only the position when `positions_only`).
+    /// The vertex layout of [`Vertex`] at locations 0-4 (position, normal, uv, material,
+    /// tangent; only the position when `positions_only`).
     pub fn vertex_layout(positions_only: bool) -> wgpu::VertexBufferLayout<'static> {
-        const ALL: [wgpu::VertexAttribute; 4] =
-            wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Uint32];
+        const ALL: [wgpu::VertexAttribute; 5] = wgpu::vertex_attr_array![
+            0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Uint32, 4 => Float32x4
+        ];
         wgpu::VertexBufferLayout {
             array_stride: std::mem::size_of::<Vertex>() as u64,
             step_mode: wgpu::VertexStepMode::Vertex,
@@ -198,6 +209,7 @@ fn flatten(scene: &Scene) -> (Vec<Vertex>, Vec<u32>, Vec<Draw>) {
                 .to_array(),
             uv: tris.uvs[v].to_array(),
             material: material[v],
+            tangent: tris.tangents[v].to_array(),
         })
         .collect();
     let mut order: Vec<usize> = (0..tris.indices.len()).collect();

@@ -3,8 +3,8 @@
 
 use crate::{Scene, Texture, TextureId};
 
-/// The layout of a material's textures (albedo, alpha mask, sampler), visible to fragment
-/// shaders: [`super::GpuScene::material_layout`].
+/// The layout of a material's textures (albedo, alpha mask, sampler, normal map,
+/// metallic-roughness), visible to fragment shaders: [`super::GpuScene::material_layout`].
 pub(super) fn material_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     let tex_entry = |binding| wgpu::BindGroupLayoutEntry {
         binding,
@@ -27,6 +27,8 @@ pub(super) fn material_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
                 ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
                 count: None,
             },
+            tex_entry(3),
+            tex_entry(4),
         ],
     })
 }
@@ -67,7 +69,8 @@ impl GpuTextures {
         &self.sampler
     }
 
-    /// One bind group per material (albedo, alpha mask, sampler) in `layout`.
+    /// One bind group per material (albedo, alpha mask, sampler, normal map,
+    /// metallic-roughness) in `layout`.
     pub(super) fn groups(
         &self,
         device: &wgpu::Device,
@@ -83,6 +86,8 @@ impl GpuTextures {
                     (0, R::TextureView(self.view(m.albedo_texture))),
                     (1, R::TextureView(self.view(m.alpha_mask.map(|a| a.texture)))),
                     (2, R::Sampler(&self.sampler)),
+                    (3, R::TextureView(self.view(m.normal_texture))),
+                    (4, R::TextureView(self.view(m.metallic_roughness_texture))),
                 ];
                 gpu_harness::bind_entries(device, "material", layout, &entries)
             })

@@ -12,7 +12,10 @@
 //!   `alphaMode: BLEND`; IOR from `KHR_materials_ior` (default 1.5);
 //! - `alphaMode: MASK` = alpha test on the base-colour texture's alpha with `alphaCutoff`;
 //! - emission = `emissiveFactor * KHR_materials_emissive_strength`;
-//! - normal texture = tangent-space normal map (linear); `doubleSided` kept.
+//! - normal texture = tangent-space normal map (linear) with its `scale`, in the frame of the
+//!   primitive's `TANGENT`s, or of MikkTSpace tangents where it has none; the
+//!   metallic-roughness texture (linear) multiplies the factors (green: roughness, blue:
+//!   metallic); `doubleSided` kept.
 //!
 //! Node transforms are composed down the hierarchy; each (node, primitive) becomes a mesh.
 //! The first perspective camera, if any, becomes the scene's camera; a file without one gets a
@@ -32,7 +35,7 @@ use crate::{
     AlphaMask, Camera, ColorSpace, LoadError, LoadErrorKind, Material, MaterialId, Mesh, MeshData,
     Scene, SceneError, Texture, TextureId,
 };
-use glam::{Affine3A, Mat4, Vec2, Vec3};
+use glam::{Affine3A, Mat4, Vec2, Vec3, Vec4};
 use gltf::accessor::{DataType, Dimensions};
 use std::collections::HashMap;
 use std::path::Path;
@@ -206,8 +209,11 @@ fn load_gltf_ctx(
                 } as u64
                     / 3;
                 loader.ctx.add_instance(triangles).map_err(|k| err(pel(), k))?;
-                let data = loader.primitive(&prim).map_err(|k| err(pel(), k))?;
+                let (data, tangents) = loader.primitive(&prim).map_err(|k| err(pel(), k))?;
                 let (mut m, c) = Mesh::build(pel(), data, material).map_err(|k| err(pel(), k))?;
+                if let Some(t) = tangents {
+                    m = m.with_tangents(t).map_err(|k| err(pel(), k))?;
+                }
                 m.name = mesh.name().map_or_else(
                     || format!("mesh_{}_{}", mesh.index(), prim.index()),
                     |n| format!("{n}_{}", prim.index()),
@@ -419,8 +425,15 @@ impl Loader<'_> {
             Some(info) => Some(self.texture(info.texture(), ColorSpace::Srgb, &user)?),
             None => None,
         };
-        let normal_texture = match m.normal_texture() {
-            Some(n) => Some(self.texture(n.texture(), ColorSpace::Linear, &user)?),
+        let (normal_texture, normal_scale) = match m.normal_texture() {
+            Some(n) => {
+                let scale = if n.scale().is_finite() { n.scale() } else { 1.0 };
+                (Some(self.texture(n.texture(), ColorSpace::Linear, &user)?), scale)
+            }
+            None => (None, 1.0),
+        };
+        let metallic_roughness_texture = match pbr.metallic_roughness_texture() {
+            Some(info) => Some(self.texture(info.texture(), ColorSpace::Linear, &user)?),
             None => None,
         };
         let mut transparency = match m.transmission() {
@@ -453,7 +466,9 @@ impl Loader<'_> {
         let emission = Vec3::from(m.emissive_factor()).max(Vec3::ZERO) * strength;
         let mat = Material {
             albedo_texture,
+            metallic_roughness_texture,
             normal_texture,
+            normal_scale,
             transparency,
             ior,
             alpha_mask,
@@ -466,7 +481,11 @@ impl Loader<'_> {
         Ok(self.scene.add_material(mat))
     }
 
-    fn primitive(&self, prim: &gltf::Primitive) -> Result<MeshData, LoadErrorKind> {
+    /// The primitive's vertex data and its `TANGENT`s, if it has them.
+    fn primitive(
+        &self,
+        prim: &gltf::Primitive,
+    ) -> Result<(MeshData, Option<Vec<Vec4>>), LoadErrorKind> {
         let pos = prim
             .get(&gltf::Semantic::Positions)
             .ok_or_else(|| LoadErrorKind::Inconsistent("no POSITION attribute".into()))?;
@@ -499,7 +518,19 @@ impl Loader<'_> {
             }
             None => (0..positions.len() as u32).collect(),
         };
-        Ok(MeshData { positions, normals, uvs, indices })
+        let tangents = match prim.get(&gltf::Semantic::Tangents) {
+            Some(a) if a.dimensions() == Dimensions::Vec4 => {
+                let v = read(&a, self.buffers, "TANGENT")?;
+                Some(
+                    v.chunks_exact(4)
+                        .map(|c| Vec4::new(c[0] as f32, c[1] as f32, c[2] as f32, c[3] as f32))
+                        .collect(),
+                )
+            }
+            Some(_) => return Err(LoadErrorKind::Inconsistent("TANGENT is not VEC4".into())),
+            None => None,
+        };
+        Ok((MeshData { positions, normals, uvs, indices }, tangents))
     }
 }
 

@@ -60,7 +60,6 @@ const NOT_HONOURED: &[NotHonoured] = &[
         "those textures are read with TEXCOORD_0",
         tex_coords,
     ),
-    core("metallic-roughness textures", "the metallic and roughness factors alone", mr_textures),
     core("occlusion textures", "no baked ambient occlusion", occlusion_textures),
     core("emissive textures", "the emissive factor alone, uniform over the surface", emissive),
     core("sampler wrap modes other than REPEAT", "textures repeat", wrap_modes),
@@ -175,10 +174,6 @@ fn tex_coords(r: &json::Root) -> Option<String> {
             .chain(m.occlusion_texture.as_ref().map(|t| t.tex_coord))
             .any(|c| c != 0)
     })
-}
-
-fn mr_textures(r: &json::Root) -> Option<String> {
-    material(r, |m| m.pbr_metallic_roughness.metallic_roughness_texture.is_some())
 }
 
 fn occlusion_textures(r: &json::Root) -> Option<String> {

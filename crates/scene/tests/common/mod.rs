@@ -34,7 +34,7 @@ pub fn quad_buffer(index_past_end: bool) -> (Vec<u8>, [usize; 4]) {
     (b, [0, 48, 96, 128])
 }
 
-fn gltf_json(
+pub fn gltf_json(
     buffer_uri: Option<String>,
     buffer_len: usize,
     offsets: [usize; 4],
