@@ -115,6 +115,80 @@ pub fn specular_reflectance(f0: Vec3, n_dot_v: f32) -> Vec3 {
     fresnel_schlick(f0, n_dot_v)
 }
 
+/// Size of [`SpecularAlbedo`]'s table along each axis (cosine, roughness).
+pub const SPECULAR_ALBEDO_SIZE: usize = 16;
+
+/// The specular lobe's directional albedo, the light it reflects of a uniform sky seen from
+/// `n.v`: `F0 A(n.v, r) + B(n.v, r)` (Schlick's Fresnel is linear in `F0`: the split sum's
+/// scale and bias, Karis 2013, "Real Shading in Unreal Engine 4"), integrated numerically
+/// from this module's own lobe (visible-normal sampling, 64 x 64 strata per node) on a
+/// [`SPECULAR_ALBEDO_SIZE`]² grid over `sqrt(n.v)` and roughness in `[0, 1]` (nodes at
+/// `i / (N - 1)`, the cosine at least 1e-3; the square root puts nodes where the albedo turns
+/// fastest, at grazing views) and read bilinearly. Renderers that light a rough lobe by
+/// irradiance alone (sky and bounce light: its radiance over the lobe taken as uniform,
+/// `E / pi`) reflect `E / pi` times it; the GPU reads the same table as a texture
+/// (`scene::gpu::specular_albedo_texture`), whose filtering is the same bilinear.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SpecularAlbedo {
+    /// `(A, B)` per node, cosine fastest.
+    pub nodes: Vec<Vec2>,
+}
+
+impl SpecularAlbedo {
+    /// The table, computed once (a few milliseconds).
+    pub fn get() -> &'static Self {
+        static TABLE: std::sync::OnceLock<SpecularAlbedo> = std::sync::OnceLock::new();
+        TABLE.get_or_init(Self::integrate)
+    }
+
+    fn integrate() -> Self {
+        let n = SPECULAR_ALBEDO_SIZE;
+        let k = 64;
+        let node = |i: usize| i as f32 / (n - 1) as f32;
+        let nodes = (0..n * n)
+            .map(|idx| {
+                let (mu, roughness) = ((node(idx % n).powi(2)).max(1e-3), node(idx / n));
+                let wo = Vec3::new((1.0 - mu * mu).sqrt(), 0.0, mu);
+                let alpha = Brdf::new(Vec3::ZERO, 1.0, roughness).alpha();
+                // F = F0 (1 - w) + w with w = (1 - v.h)^5: A sums the first part, B the second.
+                let mut ab = Vec2::ZERO;
+                for s in 0..k * k {
+                    let u = Vec2::new(
+                        ((s % k) as f32 + 0.5) / k as f32,
+                        ((s / k) as f32 + 0.5) / k as f32,
+                    );
+                    let h = sample_vndf(alpha, wo, u);
+                    let wi = 2.0 * wo.dot(h) * h - wo;
+                    if wi.z <= 0.0 {
+                        continue;
+                    }
+                    // f cos / pdf = F G2 / G1 for visible-normal sampling.
+                    let g = smith_v(alpha, mu, wi.z) * 4.0 * mu * wi.z / smith_g1(alpha, mu);
+                    let w = (1.0 - wo.dot(h).clamp(0.0, 1.0)).powi(5);
+                    ab += Vec2::new(1.0 - w, w) * g;
+                }
+                ab / (k * k) as f32
+            })
+            .collect();
+        Self { nodes }
+    }
+
+    /// `(A, B)` at `n_dot_v` and `roughness` (clamped to `[0, 1]`), bilinear between nodes
+    /// in `sqrt(n.v)` and roughness.
+    pub fn scale_bias(&self, n_dot_v: f32, roughness: f32) -> Vec2 {
+        let n = SPECULAR_ALBEDO_SIZE;
+        let at = |v: f32| {
+            let x = if v.is_finite() { v.clamp(0.0, 1.0) } else { 0.0 } * (n - 1) as f32;
+            let i = (x as usize).min(n - 2);
+            (i, x - i as f32)
+        };
+        let ((i, fx), (j, fy)) = (at(n_dot_v.max(0.0).sqrt()), at(roughness));
+        let v = |i: usize, j: usize| self.nodes[j * n + i];
+        let row = |j| v(i, j).lerp(v(i + 1, j), fx);
+        row(j).lerp(row(j + 1), fy)
+    }
+}
+
 /// Largest widening of `alpha^2` by [`filtered_roughness`] (Tokuyoshi and Kaplanyan's
 /// clamp): a pixel's normal spread never makes a surface rougher than this much.
 pub const SPECULAR_AA_MAX_WIDENING: f32 = 0.18;
@@ -227,6 +301,18 @@ impl Brdf {
         }
         let a = self.alpha();
         fresnel_schlick(self.f0(), wo.dot(h)) * (ggx_d(a, n.dot(h)) * smith_v(a, nv, nl))
+    }
+
+    /// The diffuse lobe's directional albedo, what it reflects of a uniform sky seen from
+    /// `n_dot_v`: `(1 - F_d(n.v)) (1 - m) c` (see the module doc).
+    pub fn diffuse_albedo(&self, n_dot_v: f32) -> Vec3 {
+        self.diffuse_color() * coating_complement(n_dot_v.clamp(0.0, 1.0))
+    }
+
+    /// The specular lobe's directional albedo from `n_dot_v`, `F0 A + B` ([`SpecularAlbedo`]).
+    pub fn specular_albedo(&self, n_dot_v: f32) -> Vec3 {
+        let ab = SpecularAlbedo::get().scale_bias(n_dot_v, self.roughness);
+        self.f0() * ab.x + Vec3::splat(ab.y)
     }
 
     /// The whole BRDF (no cosine factor).

@@ -209,3 +209,45 @@ fn visible_normals_face_the_viewer() {
         }
     }
 }
+
+/// The specular lobe's directional albedo table (`Brdf::specular_albedo`) against a brute
+/// force quadrature of the lobe over the hemisphere (uniform in cosine and azimuth, no
+/// importance sampling, so independent of the table's visible-normal estimator), on and
+/// between the table's nodes, for a dielectric, a gold and a white metal: within 0.012, the
+/// bilinear interpolation's error between nodes (a table off by one node in roughness, or
+/// missing the Fresnel bias B, is off by 0.03 or more at these points).
+#[test]
+fn specular_albedo_table_matches_brute_force_quadrature() {
+    let quadrature = |b: &Brdf, mu: f32| -> Vec3 {
+        let wo = Vec3::new((1.0 - mu * mu).sqrt(), 0.0, mu);
+        // Midpoint rule uniform in the polar angle (dense at the horizon, where a grazing
+        // view's lobe lies) and the azimuth: dw = sin(theta) dtheta dphi.
+        let (nt, np) = (1024, 512);
+        let (dt, dp) = (std::f32::consts::FRAC_PI_2 / nt as f32, std::f32::consts::TAU / np as f32);
+        let mut e = Vec3::ZERO;
+        for i in 0..nt {
+            let theta = (i as f32 + 0.5) * dt;
+            let (s, c) = theta.sin_cos();
+            for j in 0..np {
+                let phi = (j as f32 + 0.5) * dp;
+                let wi = Vec3::new(s * phi.cos(), s * phi.sin(), c);
+                e += b.eval_specular(Vec3::Z, wo, wi) * (c * s);
+            }
+        }
+        e * (dt * dp)
+    };
+    let gold = Vec3::new(1.0, 0.78, 0.34);
+    let mut worst = 0.0f32;
+    for (c, m) in [(Vec3::splat(0.5), 0.0), (gold, 1.0), (Vec3::ONE, 1.0)] {
+        for r in [0.3, 0.5, 0.6, 0.8, 1.0] {
+            for mu in [0.1, 0.35, 0.6, 0.9] {
+                let b = Brdf::new(c, m, r);
+                let (got, want) = (b.specular_albedo(mu), quadrature(&b, mu));
+                let err = (got - want).abs().max_element();
+                worst = worst.max(err);
+                assert!(err < 0.012, "{b:?} at n.v {mu}: table {got} vs quadrature {want}");
+            }
+        }
+    }
+    eprintln!("worst difference table vs quadrature: {worst}");
+}
