@@ -2,7 +2,9 @@
 //! (`crates/scene/tests/data/closed_room.gltf`, made by `scene`'s test generator): the file
 //! authors no occlusion quads, so the engine's sky volume is occluded by quads derived from
 //! the walls. The engine's ratio of the sky irradiance seen inside to the irradiance seen
-//! outside must match the path-traced reference's within 0.05 (#17's target).
+//! outside is checked against the path-traced reference's (#17's target asked for 0.05
+//! absolute, which around a ratio of 0.07 is a band of +-70%: a sky twice as bright inside
+//! passed). See the test's comments for the figures and tolerances.
 
 mod common;
 
@@ -23,20 +25,35 @@ fn engine_sky(r: &mut engine::Renderer, camera: scene::Camera) -> f64 {
     common::settled_mean_luminance(r, Component::SkyIrradiance)
 }
 
-/// Mean luminance of the reference's sky-irradiance image from `camera`.
-fn reference_sky(scene: &scene::Scene, camera: &scene::Camera) -> f64 {
+/// Samples per pixel of the reference (relative standard error of the inside/outside ratio
+/// 1.7% here).
+const SPP: u32 = 16;
+
+/// Mean luminance of the reference's sky-irradiance image from `camera`, and its standard
+/// error (pixels independent: `sqrt(sum se_i^2) / n`).
+fn reference_sky(scene: &scene::Scene, camera: &scene::Camera) -> (f64, f64) {
     let r = app::compare::reference_component(
         scene,
         camera,
         SIZE,
-        16,
+        SPP,
         reference::Component::SkyIrradiance,
         false,
     )
     .expect("reference");
-    let px = &r.mean.pixels;
-    px.iter().map(|&p| luminance(p)).sum::<f64>() / px.len() as f64
+    let n = r.mean.pixels.len() as f64;
+    let mean = r.mean.pixels.iter().map(|&p| luminance(p)).sum::<f64>() / n;
+    let se = r.std_error.pixels.iter().map(|&p| luminance(p).powi(2)).sum::<f64>().sqrt() / n;
+    (mean, se)
 }
+
+/// The engine's inside/outside ratio (docs/ACCURACY.md, "glTF closed room"). The engine is
+/// deterministic (lavapipe run to run: identical); 5% is room for other GPUs' rounding.
+const ENGINE_RATIO: f64 = 0.0661;
+/// The engine's ratio over the reference's: the sky volume reads the window's light a little
+/// dim from inside (probe spacing and sample directions, as the city's window reveals at
+/// 0.78x: docs/ACCURACY.md, "every sky region within 0.9-1.1").
+const BIAS: f64 = 0.890;
 
 #[test]
 fn sky_light_inside_a_loaded_closed_room_matches_the_reference() {
@@ -59,16 +76,33 @@ fn sky_light_inside_a_loaded_closed_room_matches_the_reference() {
     let settings = engine::Settings::preset(engine::Preset::Low, SIZE.0, SIZE.1);
     let Some(mut r) = common::renderer(scene.clone(), settings) else { return };
     let (e_in, e_out) = (engine_sky(&mut r, inside), engine_sky(&mut r, outside));
-    let (r_in, r_out) = (reference_sky(&scene, &inside), reference_sky(&scene, &outside));
+    let ((r_in, se_in), (r_out, se_out)) =
+        (reference_sky(&scene, &inside), reference_sky(&scene, &outside));
     let (engine_ratio, reference_ratio) = (e_in / e_out, r_in / r_out);
+    let rel_se = ((se_in / r_in).powi(2) + (se_out / r_out).powi(2)).sqrt();
     eprintln!(
         "sky irradiance, mean luminance inside / outside: engine {e_in:.4} / {e_out:.4} = \
-         {engine_ratio:.4}, reference {r_in:.4} / {r_out:.4} = {reference_ratio:.4}"
+         {engine_ratio:.4}, reference {r_in:.4} / {r_out:.4} = {reference_ratio:.4} (relative \
+         standard error {rel_se:.4}); engine / reference {:.3}",
+        engine_ratio / reference_ratio
     );
     assert!(e_out > 0.0 && r_out > 0.0, "the outside sees the sky");
+    assert!(rel_se < 0.03, "the reference's ratio has a relative standard error of {rel_se}");
+    // The engine's figure: a sky inside 10% brighter or dimmer (a leak through a wall the
+    // derived quads miss, a window the quads close) fails.
     assert!(
-        (engine_ratio - reference_ratio).abs() <= 0.05,
-        "inside/outside: engine {engine_ratio}, reference {reference_ratio}"
+        (engine_ratio / ENGINE_RATIO - 1.0).abs() <= 0.05,
+        "engine inside/outside {engine_ratio}, documented {ENGINE_RATIO}"
+    );
+    // Its relation to the truth: the documented bias within 3 standard errors of the
+    // reference's ratio plus the engine's 5% (about 10%); a sky inside 25% off the truth's
+    // share fails, where the old bound (0.05 absolute) accepted 0.3x-1.7x.
+    let tol = 3.0 * rel_se + 0.05;
+    assert!(
+        (engine_ratio / reference_ratio / BIAS - 1.0).abs() <= tol,
+        "inside/outside: engine {engine_ratio}, reference {reference_ratio}: {:.3}x, \
+         documented {BIAS}x within {tol:.3}",
+        engine_ratio / reference_ratio
     );
     let _ = std::fs::remove_dir_all(&dir);
 }

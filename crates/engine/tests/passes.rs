@@ -324,14 +324,27 @@ fn furnace_without_sun_or_sky_skips_the_sun_passes_and_shows_its_emission() {
             assert_outcome(&f, p, Outcome::Skipped, &when);
         }
         assert!(!f.ray_traced);
-        // Every pixel sees the emitting wall: emission E without indirect light (no sun to
-        // feed the LPV), at most the converged E / (1 - albedo).
-        let lo = 0.9 * scene::FURNACE_EMISSION;
-        let hi = 1.05 * scene::furnace_radiance();
+        // Every pixel sees the emitting wall. The engine's frame is one bounce of the sun and
+        // the sky plus emission, and the furnace has neither sun nor sky (nor point lights,
+        // mirrors or glass): every channel of every pixel is exactly the emission E = 0.5
+        // (not the converged furnace radiance E / (1 - albedo) = 1.0, which needs the
+        // bounces the engine does not compute: `docs/ACCURACY.md`, light beyond one bounce).
+        // The HDR target stores halves, in which 0.5 is exact; 0.1% is float rounding in the
+        // lighting pass. Emission doubled, or any light added to the black room (an ambient
+        // term, a bounce of the emission, AO darkening the wall by 1%), fails.
+        let e = scene::FURNACE_EMISSION;
+        let tol = 1e-3 * e;
+        let (lo, hi) = f
+            .hdr
+            .pixels
+            .iter()
+            .flat_map(|p| &p[..3])
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &v| (lo.min(v), hi.max(v)));
+        eprintln!("{when}: every channel in [{lo}, {hi}] (expected {e})");
         for (k, p) in f.hdr.pixels.iter().enumerate() {
             assert!(
-                p[..3].iter().all(|v| v.is_finite() && (lo..=hi).contains(v)),
-                "{when}: pixel {k} = {p:?}, expected every channel in [{lo}, {hi}]"
+                p[..3].iter().all(|v| (v - e).abs() <= tol),
+                "{when}: pixel {k} = {p:?}, expected every channel {e} within {tol}"
             );
         }
     }

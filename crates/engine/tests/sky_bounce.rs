@@ -4,9 +4,12 @@
 //! light alone. On the wall's lower band it is compared with the floor's radiosity carried
 //! by the view factor (`rho_floor E_floor * integral cos_w cos_f / (pi r^2) dA` over the
 //! floor, per pixel), and so is the sun's bounce through the same LPV: the sky-bounce VPLs
-//! must bounce like the sun's RSM texels do (measured: 2.30x and 2.37x the view factor's;
-//! the LPV's own excess on this geometry, where the wall's VPLs also light the wall
-//! itself). A VPL flux off by pi, or a footprint off by a distance factor, breaks that.
+//! must bounce like the sun's RSM texels do: 2.35x and 2.36x the view factor's, the LPV's
+//! own excess on this geometry, where the wall's VPLs also light the wall itself (the
+//! documented bias [`LPV_EXCESS`], held within 10%: a sky-bounce 25% weaker or stronger
+//! fails), and the two within 5% of each other (they go through the same volume from the
+//! same floor: a sky VPL flux 10% off fails). A VPL flux off by pi, or a footprint off by a
+//! distance factor, fails by far.
 
 mod common;
 
@@ -21,6 +24,10 @@ const FLOOR_ALBEDO: f32 = 0.8;
 const WALL_ALBEDO: f32 = 0.5;
 /// The floor spans x -3..3, z -6..0 at y 0; the wall x -3..3, y 0..6 at z -6, facing +z.
 const HALF: f32 = 3.0;
+/// The LPV's bounce on the wall's lower band over the view factor's closed form, for the
+/// sun's RSM texels and the sky-bounce VPLs alike (the module doc). The engine is
+/// deterministic; the 10% around it is room for other GPUs and the sky volume's sampling.
+const LPV_EXCESS: f64 = 2.35;
 const WALL_Z: f32 = -6.0;
 
 fn scene() -> Scene {
@@ -157,9 +164,15 @@ fn sky_bounce_lights_a_wall_by_the_floors_radiosity() {
         want / wall.len() as f64
     );
     assert!(off.iter().all(|c| c.is_finite()) && on.iter().all(|c| c.is_finite()));
-    assert!(ratio > 0.5 && ratio < 4.0, "sky bounce over the view factor's: {ratio}");
+    assert!(
+        (ratio / LPV_EXCESS - 1.0).abs() <= 0.10,
+        "sky bounce over the view factor's: {ratio}, documented {LPV_EXCESS} within 10%"
+    );
     let agree = ratio / sun_ratio;
-    assert!(agree > 0.8 && agree < 1.25, "sky bounce {ratio}x against the sun's {sun_ratio}x");
+    assert!(
+        (agree - 1.0).abs() <= 0.05,
+        "sky bounce {ratio}x against the sun's {sun_ratio}x: they differ by more than 5%"
+    );
 }
 
 /// The resident LPV injects the sky-bounce targets straight from the GPU: the same image as

@@ -112,3 +112,29 @@ pub fn settled_mean_luminance(r: &mut Renderer, component: engine::Component) ->
     assert!(r.sky_volume_complete(), "the sky volume fills");
     hdr_stats(&frame).0
 }
+
+/// The reference path tracer's mean luminance of `component` over `scene`'s own view at
+/// `size` and `spp` samples per pixel (seeded: the same numbers every run), and the standard
+/// error of that mean (the pixels' estimates are independent: `sqrt(sum se_i^2) / n`).
+pub fn reference_mean_luminance(
+    scene: &scene::Scene,
+    size: (u32, u32),
+    spp: u32,
+    component: engine::Component,
+) -> (f64, f64) {
+    let world = reference::world_from_scene(scene, &reference::SceneLighting::DEFAULT)
+        .expect("reference world");
+    let settings = reference::RenderSettings::DEFAULT
+        .with_size(size.0, size.1)
+        .with_spp(spp)
+        .with_component(component);
+    let mut r = reference::Renderer::new(&world, reference::camera_from_scene(scene), settings)
+        .expect("reference renderer");
+    r.add_samples(spp);
+    let lum = |p: glam::Vec3| f64::from(0.2126 * p.x + 0.7152 * p.y + 0.0722 * p.z);
+    let (mean, se) = (r.mean(), r.std_error());
+    let n = mean.pixels.len().max(1) as f64;
+    let m = mean.pixels.iter().map(|&p| lum(p)).sum::<f64>() / n;
+    let s = se.pixels.iter().map(|&p| lum(p).powi(2)).sum::<f64>().sqrt() / n;
+    (m, s)
+}
