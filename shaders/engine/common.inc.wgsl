@@ -121,3 +121,21 @@ fn surface_brdf_cos(s: Surface, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>) -> vec
     }
     return f * c;
 }
+
+// What a surface reflects of irradiance whose radiance is taken as uniform over its lobes
+// (the sky's and the bounce's, E / pi), seen from n.v: the diffuse lobe's directional albedo
+// and, on a rough surface, the specular lobe's (scene::Brdf::diffuse_albedo and
+// specular_albedo; a smooth surface's specular lobe is traced). `ab` is the specular albedo
+// table's (A, B) at (n.v, roughness), read by the caller (the table is its binding).
+struct Ambient {
+    diffuse: vec3<f32>,
+    specular: vec3<f32>,
+}
+
+fn surface_ambient(s: Surface, n_dot_v: f32, ab: vec2<f32>) -> Ambient {
+    var specular = vec3<f32>(0.0);
+    if !s.traced_lobe {
+        specular = brdf_f0(s.base, s.metallic) * ab.x + ab.y;
+    }
+    return Ambient(brdf_diffuse_albedo(s.base, s.metallic, n_dot_v), specular);
+}

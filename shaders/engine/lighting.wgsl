@@ -47,7 +47,11 @@ var<private> frame: Frame;
 // The sky volume's lookup uniform (no points: no sky volume bound).
 @group(0) @binding(16) var<uniform> sky_lookup_uniform: SkyVolumeLookup;
 // The sky map (the background's draw alone reads it).
-@group(0) @binding(17) var<storage, read> skymap: array<vec4<f32>>;
+@group(0) @binding(19) var<storage, read> skymap: array<vec4<f32>>;
+// The specular lobe's directional albedo table (scene::gpu::specular_albedo_texture) and its
+// bilinear sampler.
+@group(0) @binding(17) var specular_albedo_t: texture_2d<f32>;
+@group(0) @binding(18) var table_sampler: sampler;
 // The two uniforms above as fs_lighting reads them (`load_lighting_uniforms`).
 var<private> reflectors: Reflectors;
 var<private> sky_lookup: SkyVolumeLookup;
@@ -255,20 +259,31 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     }
     let ao = ambient_occlusion(vec2<u32>(px), p, gn);
     let diffuse = material_diffuse_albedo(m, a);
+    // What the full frame reflects of the sky's irradiance (surface_ambient): a rough metal
+    // under the sky alone is lit through its specular lobe. The bounce keeps its
+    // component's definition (the diffuse albedo, as the reference's SunIndirectDiffuse),
+    // so that switching it off removes exactly that component; the LPV's glossy lookup
+    // lights the specular lobe with it. SkyDiffuse keeps the reference's definition too.
+    let nv = clamp(dot(n, v), 0.0, 1.0);
+    let ab = textureSampleLevel(specular_albedo_t, table_sampler, brdf_specular_albedo_uv(nv, ns.w), 0.0).xy;
+    let amb = surface_ambient(surface, nv, ab);
+    let ambient_diffuse = base * amb.diffuse;
+    let ambient_specular = base * amb.specular;
     var c: vec3<f32>;
     switch component {
         case COMPONENT_SUN_DIRECT: { c = base * sun; }
         case COMPONENT_POINT_LIGHTS: { c = base * points; }
         // Irradiance at the surface, as the reference's SkyIrradiance image.
         case COMPONENT_SKY_IRRADIANCE: { c = sky_e * ao; }
-        // The sky light the full frame reflects, as the reference's SkyDiffuse image.
+        // The sky light the diffuse albedo reflects, as the reference's SkyDiffuse image.
         case COMPONENT_SKY_DIFFUSE: { c = diffuse / PI * sky_e * ao; }
         case COMPONENT_SUN_INDIRECT: { c = diffuse / PI * bounce_e * ao; }
         case COMPONENT_EMISSION: { c = m.emission.rgb; }
         // The sun seen in the mirror and glass parts; the combine pass adds the traced rays.
         case COMPONENT_REFLECTIONS: { c = glint; }
         default: {
-            c = base * (sun + points + mirrored) + (diffuse / PI * (sky_e + bounce_e) + glossy_l) * ao + m.emission.rgb + glint;
+            let ambient = (ambient_diffuse + ambient_specular) / PI * sky_e + diffuse / PI * bounce_e + glossy_l;
+            c = base * (sun + points + mirrored) + ambient * ao + m.emission.rgb + glint;
         }
     }
     return vec4<f32>(max(c, vec3<f32>(0.0)), 1.0);

@@ -65,6 +65,9 @@ struct TracedParams {
 @group(0) @binding(14) var<uniform> reflectors: Reflectors;
 // The sky volume's lookup uniform (no points: no sky volume bound).
 @group(0) @binding(15) var<uniform> sky_lookup: SkyVolumeLookup;
+// The specular lobe's directional albedo table (scene::gpu::SpecularAlbedoTexture).
+@group(0) @binding(16) var specular_albedo_t: texture_2d<f32>;
+@group(0) @binding(17) var table_sampler: sampler;
 
 fn sky_volume_params() -> SkyVolumeLookup {
     return sky_lookup;
@@ -135,13 +138,16 @@ fn traced_lighting(@builtin(global_invocation_id) id: vec3<u32>) {
                 light += mirrored_sunlight(s, n, v, p);
             }
         }
-        // Sky light and the bounce reach the BRDF's diffuse lobe.
-        let diffuse = h.base_color.rgb * (1.0 - h.geometric.w) / PI;
+        // Sky light, its radiance taken as uniform over the lobes (surface_ambient), and the
+        // bounce by the diffuse albedo (as the main view's lighting.wgsl).
+        let nv = clamp(dot(n, v), 0.0, 1.0);
+        let ab = textureSampleLevel(specular_albedo_t, table_sampler, brdf_specular_albedo_uv(nv, roughness), 0.0).xy;
+        let amb = surface_ambient(s, nv, ab);
         if (frame.size.w & FLAG_SKY_VOLUME) != 0u {
-            light += diffuse * sky_volume_irradiance(p, n);
+            light += (amb.diffuse + amb.specular) / PI * sky_volume_irradiance(p, n);
         }
         if params.counts.z != 0u {
-            light += diffuse * bounce[i].xyz;
+            light += h.base_color.rgb * (1.0 - h.geometric.w) / PI * bounce[i].xyz;
         }
         c += base * light;
     }

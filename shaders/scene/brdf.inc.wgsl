@@ -57,6 +57,23 @@ fn brdf_coating_complement(cos_theta: f32) -> f32 {
     return 1.0 - brdf_fresnel_schlick(vec3<f32>(BRDF_DIELECTRIC_F0), cos_theta).x;
 }
 
+// scene::Brdf::diffuse_albedo: what the diffuse lobe reflects of a uniform sky seen from n.v,
+// (1 - F_d(n.v)) (1 - m) c.
+fn brdf_diffuse_albedo(base_color: vec3<f32>, metallic: f32, n_dot_v: f32) -> vec3<f32> {
+    return base_color * (1.0 - metallic) * brdf_coating_complement(clamp(n_dot_v, 0.0, 1.0));
+}
+
+// scene::brdf::SPECULAR_ALBEDO_SIZE, the nodes along each axis of the specular albedo table.
+const BRDF_SPECULAR_ALBEDO_SIZE: f32 = 16.0;
+
+// Where (n.v, roughness) lies in the specular albedo table's texture
+// (scene::gpu::SpecularAlbedoTexture: (A, B) at nodes i / (N - 1) in sqrt(n.v) and
+// roughness); linear filtering there reads scene::brdf::SpecularAlbedo::scale_bias.
+fn brdf_specular_albedo_uv(n_dot_v: f32, roughness: f32) -> vec2<f32> {
+    let x = vec2<f32>(sqrt(clamp(n_dot_v, 0.0, 1.0)), clamp(roughness, 0.0, 1.0));
+    return (x * (BRDF_SPECULAR_ALBEDO_SIZE - 1.0) + 0.5) / BRDF_SPECULAR_ALBEDO_SIZE;
+}
+
 // The weight of a smooth surface's traced mirror ray, F(n.v).
 fn brdf_specular_reflectance(f0: vec3<f32>, n_dot_v: f32) -> vec3<f32> {
     return brdf_fresnel_schlick(f0, n_dot_v);

@@ -5,15 +5,19 @@
 //! world space (6.2.2, [`kdtree_tracer::KdTree`]) and shades each hit (6.2.8, 6.3):
 //!
 //! - **Surface**: barycentric interpolation of the per-vertex world normals and UVs at the hit
-//!   (6.2.8); the base-colour texture is sampled trilinearly with a level of detail from the hit
+//!   (6.2.8); the material's textures (base colour, metallic-roughness, normal map:
+//!   [`scene::Material::at`]) are sampled trilinearly with a level of detail from the hit
 //!   distance and the triangle's texel density (a stand-in for the ray differentials of
 //!   6.2.9, whose per-pixel neighbours this flat ray list does not have). The normal is
 //!   flipped towards the ray.
 //! - **Light** (the deferred pass's model, 6.3, on [`scene::Material`]'s split): `emission +
-//!   (1 - t) (sum_lights f(v, l) E_l V_l cos + c_d / pi E_ambient)`, with `t` the
+//!   (1 - t) (sum_lights f(v, l) E_l V_l cos + a(n.v) / pi E_ambient)`, with `t` the
 //!   transparency, `f` the material's BRDF ([`scene::Brdf::eval`]; its diffuse lobe alone
 //!   for a smooth surface, whose specular lobe is a traced mirror ray), `E_l` the sun's and
-//!   each point or spot light's irradiance and `c_d` the BRDF's diffuse colour. Visibility
+//!   each point or spot light's irradiance and `a` the directional albedo the ambient light
+//!   is reflected by, its radiance taken as uniform over the lobes (the diffuse lobe's,
+//!   [`scene::Brdf::diffuse_albedo`], plus a rough surface's specular lobe's,
+//!   [`scene::Brdf::specular_albedo`]). Visibility
 //!   `V` comes from shadow rays through the same tree, which replace the thesis's overlapped
 //!   shadow maps (6.3.1); glass panes on the way pass `transparency * (1 - F)` of the light
 //!   (the sun lights a glass tower's floors, as it does in the reference, where it is a
@@ -463,7 +467,15 @@ impl Tracer<'_> {
         let s = self.scene;
         let brdf = scene::Brdf::new(m.base_color, m.metallic, m.roughness);
         let ambient = finite((self.lighting.ambient)(p, n));
-        let mut reflected = brdf.diffuse_color() / PI * ambient;
+        // The ambient light's radiance taken as uniform over the lobes: the diffuse lobe's
+        // directional albedo and a rough surface's specular lobe's (the GPU's
+        // `surface_ambient` in shaders/engine/common.inc.wgsl).
+        let nv = n.dot(-dir);
+        let mut albedo = brdf.diffuse_albedo(nv);
+        if !brdf.is_smooth() {
+            albedo += brdf.specular_albedo(nv);
+        }
+        let mut reflected = albedo / PI * ambient;
         // Irradiance `e` from unit direction `l` (visibility applied), reflected by the BRDF
         // (its diffuse lobe alone on a smooth surface: the specular lobe is traced).
         let mut add = |l: Vec3, e: Vec3| {

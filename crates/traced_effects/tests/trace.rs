@@ -128,8 +128,15 @@ fn glass_splits_with_schlick_and_passes_sunlight() {
     let f = schlick(dir.x);
     let through = 1.0 - schlick(sun.x);
     let (reflected, refracted) = (dir.reflect(Vec3::X), dir.refract(-Vec3::X, 1.0 / 1.5));
-    let want = f * (lit(0.5, reflected, sun, E * through) + 0.5 / PI)
-        + (1.0 - f) * (lit(0.5, refracted, sun, E) + 0.5 / PI);
+    // The unit ambient irradiance reflected by the floor's directional albedo, diffuse and
+    // (roughness 1) specular, seen along `d`.
+    let ambient = |d: Vec3| {
+        let b = scene::Brdf::new(Vec3::splat(0.5), 0.0, 1.0);
+        let nv = -d.normalize().y;
+        (b.diffuse_albedo(nv) + b.specular_albedo(nv)) / PI
+    };
+    let want = f * (lit(0.5, reflected, sun, E * through) + ambient(reflected))
+        + (1.0 - f) * (lit(0.5, refracted, sun, E) + ambient(refracted));
     assert!(close(got, want), "{got} vs {want}");
     // Two panes in a row pass the product; an opaque wall behind them blocks all of it.
     s.meshes.push(quad(Vec3::new(1.8, 0.0, -3.0), Vec3::Z * 6.0, Vec3::Y * 3.0, glass));

@@ -248,6 +248,7 @@ pub(super) fn lighting_pass(g: &mut FrameGraph<FrameCtx>, r: Resources) {
                 sky_volume: c.needs.sky_lighting.needed && sky.is_some(),
                 indirect: indirect_source(io, r),
                 materials: &s.scene.materials,
+                specular_albedo: &s.scene.gpu.specular_albedo,
                 reflectors: &reflectors,
                 lights: &s.lights,
                 cubes: s.point_shadow.bindings(),

@@ -160,6 +160,7 @@ pub(super) fn traced_gbuffer_passes(g: &mut FrameGraph<FrameCtx>, r: Resources) 
                 cubes: s.point_shadow.bindings(),
                 out: s.combine.traced(),
                 reflectors: &s.scene.reflectors,
+                specular_albedo: &s.scene.gpu.specular_albedo,
             };
             pass.run(&s.gpu, io.read(r.batch)?, hits, &inputs)?;
             s.gpu.take_error()?;

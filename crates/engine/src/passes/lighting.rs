@@ -52,6 +52,8 @@ pub struct LightingInputs<'a> {
     pub sky_volume: bool,
     pub indirect: IndirectSource<'a>,
     pub materials: &'a wgpu::Buffer,
+    /// The specular lobe's directional albedo table (`scene::gpu::GpuScene::specular_albedo`).
+    pub specular_albedo: &'a scene::gpu::SpecularAlbedoTexture,
     /// The planar reflectors that may mirror the sun into this view (`crate::mirrored_sun`,
     /// `ReflectorSet::in_view`).
     pub reflectors: &'a crate::mirrored_sun::ReflectorSet,
@@ -228,13 +230,15 @@ impl LightingPass {
                 self.glossy_out.as_entire_binding(),
                 self.reflectors.as_entire_binding(),
                 sky_lookup.as_entire_binding(),
+                tv(&inputs.specular_albedo.view),
+                wgpu::BindingResource::Sampler(&inputs.specular_albedo.sampler),
             ],
         );
         let sky_bg = self.sky_group.get(
             device,
             "sky",
             &self.sky.get_bind_group_layout(0),
-            &[(0, inputs.frame.as_entire_binding()), (17, skymap.as_entire_binding())],
+            &[(0, inputs.frame.as_entire_binding()), (19, skymap.as_entire_binding())],
         );
         let (black, z) = (wgpu::LoadOp::Clear(wgpu::Color::BLACK), Some(&targets.zbuffer));
         let mut pass = gpu_harness::depth_tested_pass(enc, "lighting", &targets.lit, black, z);

@@ -79,6 +79,8 @@ pub struct TracedInputs<'a> {
     pub out: &'a wgpu::Buffer,
     /// The scene's planar reflectors (`crate::mirrored_sun`).
     pub reflectors: &'a wgpu::Buffer,
+    /// The specular lobe's directional albedo table (`scene::gpu::GpuScene::specular_albedo`).
+    pub specular_albedo: &'a scene::gpu::SpecularAlbedoTexture,
 }
 
 /// The traced G-buffer's per-hit buffers, for `capacity` hits.
@@ -195,6 +197,8 @@ impl TracedLightingPass {
                 (13, inputs.out.as_entire_binding()),
                 (14, inputs.reflectors.as_entire_binding()),
                 (15, sky_lookup.as_entire_binding()),
+                (16, tv(&inputs.specular_albedo.view)),
+                (17, wgpu::BindingResource::Sampler(&inputs.specular_albedo.sampler)),
             ],
         );
         dispatch(&mut enc, &self.lighting, &lighting, groups);

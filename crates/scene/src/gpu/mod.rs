@@ -27,7 +27,7 @@ mod textures;
 pub use gbuffer::{
     GBUFFER_FORMATS, GBUFFER_WGSL, GBuffer, GBufferCamera, GBufferPass, ZBUFFER_FORMAT,
 };
-pub use textures::GpuTextures;
+pub use textures::{GpuTextures, SpecularAlbedoTexture};
 
 use crate::{Material, Scene};
 use bytemuck::{Pod, Zeroable};
@@ -129,6 +129,9 @@ pub struct GpuScene {
     pub material_groups: Vec<wgpu::BindGroup>,
     pub material_layout: wgpu::BindGroupLayout,
     pub textures: GpuTextures,
+    /// The specular lobe's directional albedo table that lighting passes read the rough
+    /// lobe's ambient reflectance from.
+    pub specular_albedo: SpecularAlbedoTexture,
     pub triangle_count: usize,
 }
 
@@ -159,6 +162,7 @@ impl GpuScene {
             material_groups,
             material_layout,
             textures,
+            specular_albedo: SpecularAlbedoTexture::new(device, queue),
             triangle_count: indices.len() / 3,
         }
     }

@@ -129,3 +129,29 @@ fn upload_texture(device: &wgpu::Device, queue: &wgpu::Queue, t: &Texture) -> wg
     }
     texture.create_view(&Default::default())
 }
+
+/// The specular lobe's directional albedo table ([`crate::brdf::SpecularAlbedo`]) as a
+/// `N x N` RGBA16F texture, `(A, B)` in red and green, `sqrt(n.v)` along x and roughness
+/// along y, with its bilinear, clamped sampler: sampled at `brdf_specular_albedo_uv` (in
+/// [`super::BRDF_INC_WGSL`]) it reads `SpecularAlbedo::scale_bias`.
+pub struct SpecularAlbedoTexture {
+    pub view: wgpu::TextureView,
+    pub sampler: wgpu::Sampler,
+}
+
+impl SpecularAlbedoTexture {
+    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue) -> Self {
+        let n = crate::brdf::SPECULAR_ALBEDO_SIZE as u32;
+        let nodes = &crate::brdf::SpecularAlbedo::get().nodes;
+        let texels = nodes.iter().map(|ab| ab.extend(0.0).extend(1.0)).collect();
+        let t = Texture::from_linear("specular albedo", n, n, texels)
+            .expect("the specular albedo table is a valid texture");
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("specular albedo table"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
+        Self { view: upload_texture(device, queue, &t), sampler }
+    }
+}
