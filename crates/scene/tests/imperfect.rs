@@ -209,13 +209,15 @@ fn a_required_extension_that_is_not_supported_is_named() {
 #[test]
 fn each_unsupported_gltf_feature_is_one_warning_naming_it() {
     let json = String::from_utf8(textured_gltf()).unwrap();
-    // Base colour through TEXCOORD_1, a clamping sampler, COLOR_0, a clear coat, an unknown
+    // Base colour through TEXCOORD_1 but the normal map through TEXCOORD_0 (one mapping per
+    // material is honoured), a clamping sampler, COLOR_0, a clear coat, an unknown
     // extension, and two materials using the same unsupported thing (one warning for both).
     let json = json
         .replace(
             r#""baseColorTexture": {"index": 0}"#,
             r#""baseColorTexture": {"index": 0, "texCoord": 1}"#,
         )
+        .replace(r#""alphaMode": "MASK""#, r#""normalTexture": {"index": 0}, "alphaMode": "MASK""#)
         .replace(
             r#""textures": [{"source": 0}]"#,
             r#""textures": [{"source": 0, "sampler": 0}], "samplers": [{"wrapS": 33071}]"#,
@@ -240,8 +242,8 @@ fn each_unsupported_gltf_feature_is_one_warning_naming_it() {
             (
                 "material 0 \"chrome\"",
                 &unsupported(
-                    "texture coordinate sets other than TEXCOORD_0",
-                    "those textures are read with TEXCOORD_0"
+                    "different texture coordinates or transforms within one material",
+                    "all its textures are read with its base-colour texture's (or first texture's)"
                 )
             ),
             (

@@ -285,3 +285,54 @@ fn gltf_tangents_metallic_roughness_texture_and_normal_scale_are_read() {
     let t = plain.meshes[0].tangents[0];
     assert!((t - glam::Vec4::new(1.0, 0.0, 0.0, 1.0)).length() < 1e-5, "generated {t}");
 }
+
+/// A material whose base-colour texture reads `TEXCOORD_1` through a `KHR_texture_transform`
+/// (offset, rotation, scale) gets those coordinates, transformed as the extension composes
+/// them (`T R S`), baked into its primitive's coordinates; without the set or the transform
+/// the quad's `TEXCOORD_0` would be read as it is.
+#[test]
+fn gltf_tex_coord_sets_and_texture_transforms_are_baked_into_the_coordinates() {
+    let (mut buf, offs) = common::quad_buffer(false);
+    let set1_offset = buf.len();
+    let set1 = [[0.5f32, 0.0], [0.0, 0.5], [0.25, 0.25], [1.0, 1.0]];
+    for v in set1.iter().flatten() {
+        buf.extend_from_slice(&v.to_le_bytes());
+    }
+    let uri = format!("data:application/octet-stream;base64,{}", common::base64(&buf));
+    let png = common::png(1, 1, |_, _| [255, 255, 255, 255]);
+    let extra = format!(
+        r#"}}], "textures": [{{"source": 0}}], "images": [{{"uri": "data:image/png;base64,{}"}}], "extensionsUsed": ["KHR_texture_transform"], "ignored": [{{"#,
+        common::base64(&png)
+    );
+    let (rotation, offset, scale) = (std::f32::consts::FRAC_PI_2, [0.25f32, 0.5], [2.0f32, 4.0]);
+    let json = common::gltf_json(Some(uri), buf.len(), offs, &extra)
+        .replace(
+            r#""roughnessFactor": 0.0}"#,
+            &format!(
+                r#""roughnessFactor": 0.0, "baseColorTexture": {{"index": 0, "texCoord": 0, "extensions": {{"KHR_texture_transform": {{"offset": [{}, {}], "rotation": {rotation}, "scale": [{}, {}], "texCoord": 1}}}}}}}}"#,
+                offset[0], offset[1], scale[0], scale[1]
+            ),
+        )
+        .replace(r#", "ignored": [{}]"#, "")
+        .replace(r#""TEXCOORD_0": 2}"#, r#""TEXCOORD_0": 2, "TEXCOORD_1": 4}"#)
+        .replace(
+            r#""byteLength": 18}"#,
+            &format!(r#""byteLength": 18}}, {{"buffer": 0, "byteOffset": {set1_offset}, "byteLength": 32}}"#),
+        )
+        .replace(
+            r#""count": 9, "type": "SCALAR"}"#,
+            r#""count": 9, "type": "SCALAR"}, {"bufferView": 4, "componentType": 5126, "count": 4, "type": "VEC2"}"#,
+        );
+    let s = scene::load_gltf_slice(json.as_bytes(), None, "mapped.gltf").unwrap();
+    assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+    // By hand: scale, then rotate a quarter turn (u, v) -> (cos u + sin v, -sin u + cos v) =
+    // (v, -u), then offset.
+    let want = set1.map(|[u, v]| {
+        let (su, sv) = (u * scale[0], v * scale[1]);
+        glam::Vec2::new(sv + offset[0], -su + offset[1])
+    });
+    let got = &s.meshes[0].uvs;
+    for (g, w) in got.iter().zip(want) {
+        assert!((*g - w).length() < 1e-5, "{got:?} against {want:?}");
+    }
+}

@@ -120,9 +120,11 @@ fn load_gltf_ctx(
         ctx,
     };
     let mut material_ids = Vec::new();
+    let mut mappings = Vec::new();
     for m in doc.materials() {
         let id = loader.material(&m)?;
         material_ids.push(id);
+        mappings.push(UvMapping::of(&m));
     }
     let mut default_material = None;
 
@@ -198,6 +200,7 @@ fn load_gltf_ctx(
                 if prim.mode() != gltf::mesh::Mode::Triangles {
                     continue;
                 }
+                let mapping = prim.material().index().map_or(UvMapping::IDENTITY, |i| mappings[i]);
                 let material = match prim.material().index() {
                     Some(i) => material_ids[i],
                     None => *default_material
@@ -209,7 +212,8 @@ fn load_gltf_ctx(
                 } as u64
                     / 3;
                 loader.ctx.add_instance(triangles).map_err(|k| err(pel(), k))?;
-                let (data, tangents) = loader.primitive(&prim).map_err(|k| err(pel(), k))?;
+                let (data, tangents) =
+                    loader.primitive(&prim, mapping).map_err(|k| err(pel(), k))?;
                 let (mut m, c) = Mesh::build(pel(), data, material).map_err(|k| err(pel(), k))?;
                 if let Some(t) = tangents {
                     m = m.with_tangents(t).map_err(|k| err(pel(), k))?;
@@ -485,6 +489,7 @@ impl Loader<'_> {
     fn primitive(
         &self,
         prim: &gltf::Primitive,
+        mapping: UvMapping,
     ) -> Result<(MeshData, Option<Vec<Vec4>>), LoadErrorKind> {
         let pos = prim
             .get(&gltf::Semantic::Positions)
@@ -494,13 +499,16 @@ impl Loader<'_> {
             Some(a) => Some(vec3s(&read(&a, self.buffers, "NORMAL")?, &a, "NORMAL")?),
             None => None,
         };
-        let uvs = match prim.get(&gltf::Semantic::TexCoords(0)) {
+        let set = mapping.set;
+        let uvs = match prim.get(&gltf::Semantic::TexCoords(set as u32)) {
             Some(a) => {
+                let name = format!("TEXCOORD_{set}");
                 if a.dimensions() != Dimensions::Vec2 {
-                    return Err(LoadErrorKind::Inconsistent("TEXCOORD_0 is not VEC2".into()));
+                    return Err(LoadErrorKind::Inconsistent(format!("{name} is not VEC2")));
                 }
-                let v = read(&a, self.buffers, "TEXCOORD_0")?;
-                Some(v.chunks_exact(2).map(|c| Vec2::new(c[0] as f32, c[1] as f32)).collect())
+                let v = read(&a, self.buffers, &name)?;
+                let uv = v.chunks_exact(2).map(|c| Vec2::new(c[0] as f32, c[1] as f32));
+                Some(uv.map(|u| mapping.transform.transform_point2(u)).collect())
             }
             None => None,
         };
@@ -531,6 +539,44 @@ impl Loader<'_> {
             None => None,
         };
         Ok((MeshData { positions, normals, uvs, indices }, tangents))
+    }
+}
+
+/// How a material's textures map onto its primitives: the texture coordinate set they read
+/// and `KHR_texture_transform`'s affine map (`offset`, then `rotation` counter-clockwise,
+/// then `scale`, as the extension composes them: `T R S`), both taken from the base-colour
+/// texture, else the metallic-roughness one, else the normal map's set. Baked into each
+/// primitive's coordinates, so every renderer reads one set of coordinates.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct UvMapping {
+    set: usize,
+    transform: glam::Affine2,
+}
+
+impl UvMapping {
+    const IDENTITY: Self = Self { set: 0, transform: glam::Affine2::IDENTITY };
+
+    fn of(m: &gltf::Material) -> Self {
+        let pbr = m.pbr_metallic_roughness();
+        let info = pbr.base_color_texture().or_else(|| pbr.metallic_roughness_texture());
+        let Some(info) = info else {
+            let set = m.normal_texture().map_or(0, |n| n.tex_coord());
+            return Self { set: set as usize, ..Self::IDENTITY };
+        };
+        let Some(t) = info.texture_transform() else {
+            return Self { set: info.tex_coord() as usize, ..Self::IDENTITY };
+        };
+        let (r, [sx, sy]) = (t.rotation(), t.scale());
+        // The extension's matrix: translation(offset) * rotation * scale, where its rotation
+        // turns (u, v) to (cos u + sin v, -sin u + cos v).
+        let (sin, cos) = if r.is_finite() { r.sin_cos() } else { (0.0, 1.0) };
+        let rs = glam::Mat2::from_cols(
+            glam::Vec2::new(cos * sx, -sin * sx),
+            glam::Vec2::new(sin * sy, cos * sy),
+        );
+        let transform = glam::Affine2::from_mat2_translation(rs, glam::Vec2::from(t.offset()));
+        let transform = if transform.is_finite() { transform } else { glam::Affine2::IDENTITY };
+        Self { set: t.tex_coord().unwrap_or(info.tex_coord()) as usize, transform }
     }
 }
 

@@ -17,6 +17,7 @@ pub(crate) const HONOURED_EXTENSIONS: &[&str] = &[
     "KHR_materials_ior",
     "KHR_materials_emissive_strength",
     "KHR_lights_punctual",
+    "KHR_texture_transform",
 ];
 
 /// How a feature is found in a document.
@@ -56,15 +57,14 @@ const NOT_HONOURED: &[NotHonoured] = &[
     core("primitives other than TRIANGLES", "points, lines, strips and fans are skipped", modes),
     core("vertex colours (COLOR_0)", "not multiplied into the base colour", colors),
     core(
-        "texture coordinate sets other than TEXCOORD_0",
-        "those textures are read with TEXCOORD_0",
-        tex_coords,
+        "different texture coordinates or transforms within one material",
+        "all its textures are read with its base-colour texture's (or first texture's)",
+        mixed_mappings,
     ),
     core("occlusion textures", "no baked ambient occlusion", occlusion_textures),
     core("emissive textures", "the emissive factor alone, uniform over the surface", emissive),
     core("sampler wrap modes other than REPEAT", "textures repeat", wrap_modes),
     core("nearest-neighbour sampler filters", "textures are filtered linearly", filters),
-    ext("KHR_texture_transform", "textures are not offset, rotated or scaled"),
     ext("KHR_materials_clearcoat", "no clear-coat layer"),
     ext("KHR_materials_sheen", "no sheen"),
     ext("KHR_materials_volume", "transmissive materials are thin-walled (no absorption)"),
@@ -163,16 +163,26 @@ fn material(r: &json::Root, f: impl Fn(&json::Material) -> bool) -> Option<Strin
     Some(named("material", i, &m.name))
 }
 
-fn tex_coords(r: &json::Root) -> Option<String> {
+/// The first material whose applied textures (base colour, metallic-roughness, normal) do
+/// not share one texture coordinate set, or whose base-colour and metallic-roughness
+/// textures differ in `KHR_texture_transform`: the loader bakes one mapping per material into
+/// its primitives' coordinates. (The `gltf` crate does not parse the extension on normal
+/// textures; a normal map takes its material's mapping.)
+fn mixed_mappings(r: &json::Root) -> Option<String> {
     material(r, |m| {
         let pbr = &m.pbr_metallic_roughness;
-        [&pbr.base_color_texture, &pbr.metallic_roughness_texture, &m.emissive_texture]
-            .into_iter()
-            .flatten()
-            .map(|t| t.tex_coord)
-            .chain(m.normal_texture.as_ref().map(|t| t.tex_coord))
-            .chain(m.occlusion_texture.as_ref().map(|t| t.tex_coord))
-            .any(|c| c != 0)
+        let info = [&pbr.base_color_texture, &pbr.metallic_roughness_texture];
+        let mapping = |t: &json::texture::Info| {
+            let tt = t.extensions.as_ref().and_then(|e| e.texture_transform.as_ref());
+            let set = tt.and_then(|x| x.tex_coord).unwrap_or(t.tex_coord);
+            (set, tt.map(|x| (x.offset.0, x.rotation.0, x.scale.0)))
+        };
+        let mappings: Vec<_> = info.into_iter().flatten().map(mapping).collect();
+        let sets =
+            mappings.iter().map(|m| m.0).chain(m.normal_texture.as_ref().map(|n| n.tex_coord));
+        let mut sets = sets.peekable();
+        let first = sets.peek().copied();
+        sets.any(|s| Some(s) != first) || mappings.windows(2).any(|w| w[0].1 != w[1].1)
     })
 }
 
