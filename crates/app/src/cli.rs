@@ -35,6 +35,9 @@ pub struct RenderJob {
     /// Bounces the radiance cache carries (`--indirect cache`;
     /// `engine::Settings::radiance_cache`'s `bounces`; the presets: one).
     pub cache_bounces: engine::Bounces,
+    /// Frames the radiance cache keeps relighting after a move (`engine::Settings::
+    /// cache_frames`; `None`: the preset's).
+    pub cache_frames: Option<u32>,
     /// The sun's glint in mirror and glass parts (`engine::Settings::sun_glints`).
     pub sun_glints: bool,
     /// The sun mirrored by planar reflectors (`engine::Settings::mirrored_sun`; on in the
@@ -88,6 +91,7 @@ impl Default for RenderJob {
             preset: Preset::Default,
             indirect: Indirect::Rsm,
             cache_bounces: engine::Bounces::One,
+            cache_frames: None,
             sun_glints: false,
             mirrored_sun: true,
             sky_bounce: 0,
@@ -394,6 +398,7 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
         engine::CacheSettings { bounces: job.cache_bounces, ..preset.radiance_cache };
     let settings = Settings {
         radiance_cache,
+        cache_frames: job.cache_frames.unwrap_or(preset.cache_frames),
         still_samples: job.still_samples.unwrap_or(preset.still_samples),
         trace_depth: job.trace_depth.unwrap_or(preset.trace_depth),
         indirect: job.indirect,

@@ -39,6 +39,11 @@ struct Args {
     /// converging; see `engine::passes::cache_bounce`).
     #[arg(long, default_value = "1", value_parser = app::cli::parse_bounces)]
     cache_bounces: engine::Bounces,
+    /// Frames the radiance cache keeps relighting its oldest caches after the camera or the
+    /// sun moved (`--indirect cache`; `engine::Settings::cache_frames`). Default: the
+    /// preset's.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    cache_frames: Option<u32>,
     /// Adds the sun's glint in mirror and glass parts (off in the presets; see
     /// `engine::Settings::sun_glints` for what it buys and costs on the ledger).
     #[arg(long)]
@@ -89,6 +94,7 @@ fn main() -> anyhow::Result<()> {
         preset: a.engine.preset,
         indirect: a.engine.indirect,
         cache_bounces: a.cache_bounces,
+        cache_frames: a.cache_frames,
         sun_glints: a.sun_glints,
         mirrored_sun: !a.no_mirrored_sun,
         sky_bounce: a.sky_bounce,
