@@ -389,20 +389,24 @@ fn supersampled_entries(sweep: &mut Sweep, view: &View, timed: usize) {
 ///   off);
 /// - `engine/lpv_glossy_<view>_<steps>`: the LPV's glossy lookup (thesis 5.2.7; 0 is off);
 /// - `engine/mirrored_sun_<view>_{0,1}`: the sun mirrored by planar reflectors
-///   (`engine::mirrored_sun`; the presets' RSM gather, 0 is off).
+///   (`engine::mirrored_sun`; the presets' RSM gather, 0 is off);
+/// - `engine/cache_bounces_<view>_{1,many}`: the radiance cache (`--indirect cache`) with
+///   one bounce (the VPLs') or many (`engine::Bounces::Many`).
 ///
-/// Time = the LPV pass (with the VPLs' queries and read-back) for sky bounce, the lighting
-/// pass (where the lookups and the mirrored sun run) for the others, in frames whose camera
+/// Time = the LPV pass (with the VPLs' queries and read-back) for sky bounce, the radiance
+/// cache pass (one update) for the cache's bounces, the lighting pass (where the lookups and
+/// the mirrored sun run) for the others, in frames whose camera
 /// steps 1.01 m sideways and back, so that the LPV reruns (its key is the camera's 1 m cell).
 fn option_entries(sweep: &mut Sweep, view: &View) {
     use engine::Indirect;
     let (w, h) = (view.width, view.height);
     let base = Settings { indirect: Indirect::Lpv, ..Settings::preset(Preset::Default, w, h) };
-    let mut runs = Vec::new();
+    // (what, its value, the timed pass, the settings)
+    let mut runs: Vec<(&str, serde_json::Value, &str, Settings)> = Vec::new();
     for columns in [0u32, 32, 64, 128] {
         runs.push((
             "sky_bounce",
-            columns,
+            columns.into(),
             engine::pass::LPV,
             Settings { sky_bounce: columns, ..base },
         ));
@@ -410,18 +414,27 @@ fn option_entries(sweep: &mut Sweep, view: &View) {
     for steps in [0u32, 1, 2, 4] {
         runs.push((
             "lpv_glossy",
-            steps,
+            steps.into(),
             engine::pass::LIGHTING,
             Settings { lpv_glossy: steps, ..base },
         ));
     }
     for on in [false, true] {
         let settings = Settings { mirrored_sun: on, ..Settings::preset(Preset::Default, w, h) };
-        runs.push(("mirrored_sun", u32::from(on), engine::pass::LIGHTING, settings));
+        runs.push(("mirrored_sun", u32::from(on).into(), engine::pass::LIGHTING, settings));
+    }
+    for bounces in [engine::Bounces::One, engine::Bounces::Many] {
+        let preset = Settings::preset(Preset::Default, w, h);
+        let radiance_cache = engine::CacheSettings { bounces, ..preset.radiance_cache };
+        let settings = Settings { indirect: Indirect::Cache, radiance_cache, ..preset };
+        let knob = app::cli::bounces_name(bounces).into();
+        runs.push(("cache_bounces", knob, engine::pass::RADIANCE_CACHE, settings));
     }
     for (what, knob, timed_pass, settings) in runs {
         let indirect = settings.indirect.to_string();
-        let tag = format!("{}_{w}x{h}_{knob}", view.name);
+        // A number's or a name's text ("1", "many"), without JSON's quotes.
+        let name = knob.as_str().map_or_else(|| knob.to_string(), str::to_owned);
+        let tag = format!("{}_{w}x{h}_{name}", view.name);
         sweep.stage(&format!("{what} {tag}"));
         let mut r = renderer(&view.scene, settings);
         r.set_camera(view.camera).expect("camera");

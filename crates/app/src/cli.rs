@@ -32,6 +32,12 @@ pub struct RenderJob {
     pub preset: Preset,
     /// The one-bounce technique (the presets': the RSM gather).
     pub indirect: Indirect,
+    /// Bounces the radiance cache carries (`--indirect cache`;
+    /// `engine::Settings::radiance_cache`'s `bounces`; the presets: one).
+    pub cache_bounces: engine::Bounces,
+    /// Frames the radiance cache keeps relighting after a move (`engine::Settings::
+    /// cache_frames`; `None`: the preset's).
+    pub cache_frames: Option<u32>,
     /// The sun's glint in mirror and glass parts (`engine::Settings::sun_glints`).
     pub sun_glints: bool,
     /// The sun mirrored by planar reflectors (`engine::Settings::mirrored_sun`; on in the
@@ -84,6 +90,8 @@ impl Default for RenderJob {
             height: 900,
             preset: Preset::Default,
             indirect: Indirect::Rsm,
+            cache_bounces: engine::Bounces::One,
+            cache_frames: None,
             sun_glints: false,
             mirrored_sun: true,
             sky_bounce: 0,
@@ -187,6 +195,23 @@ pub struct EngineArgs {
     /// (dynamic radiance volumes with ray-traced indirect shadows), none.
     #[arg(long, default_value = "rsm")]
     pub indirect: Indirect,
+}
+
+/// `1` (or `one`) and `many`: the radiance cache's [`engine::Bounces`].
+pub fn parse_bounces(s: &str) -> Result<engine::Bounces, EngineError> {
+    match s {
+        "1" | "one" => Ok(engine::Bounces::One),
+        "many" => Ok(engine::Bounces::Many),
+        _ => Err(EngineError::Settings(format!("cache bounces {s:?}: expected 1 or many"))),
+    }
+}
+
+/// The name [`parse_bounces`] reads.
+pub fn bounces_name(b: engine::Bounces) -> &'static str {
+    match b {
+        engine::Bounces::One => "1",
+        engine::Bounces::Many => "many",
+    }
 }
 
 /// Most pixels per side [`RenderJob::supersample`] renders per image pixel.
@@ -369,7 +394,11 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
     let warnings = warning_lines(&scene);
     let ss = job.supersample.clamp(1, MAX_SUPERSAMPLE);
     let preset = Settings::preset(job.preset, job.width * ss, job.height * ss);
+    let radiance_cache =
+        engine::CacheSettings { bounces: job.cache_bounces, ..preset.radiance_cache };
     let settings = Settings {
+        radiance_cache,
+        cache_frames: job.cache_frames.unwrap_or(preset.cache_frames),
         still_samples: job.still_samples.unwrap_or(preset.still_samples),
         trace_depth: job.trace_depth.unwrap_or(preset.trace_depth),
         indirect: job.indirect,
@@ -454,7 +483,7 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
         );
     }
     if let Some(c) = renderer.radiance_cache().filter(|_| job.indirect == Indirect::Cache) {
-        notes.push(format!("radiance cache: {c}"));
+        notes.push(format!("radiance cache: {c}, bounces: {}", bounces_name(job.cache_bounces)));
     }
     notes.push(format!(
         "the passes table is of frame {}: after {} frames of a still camera the camera moved 1 cm, \

@@ -209,3 +209,22 @@ fn strict_turns_a_warning_into_an_error_whose_chain_names_each_cause_once() {
     assert_eq!(format!("{e:#}"), chain.join(": "));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `--cache-bounces` reads `1` (or `one`) and `many`, writes them back, and names what it
+/// expects otherwise.
+#[test]
+fn cache_bounces_strings() {
+    use app::cli::{bounces_name, parse_bounces};
+    for b in [engine::Bounces::One, engine::Bounces::Many] {
+        assert_eq!(parse_bounces(bounces_name(b)).expect("its own name"), b);
+    }
+    assert_eq!(parse_bounces("one").expect("one"), engine::Bounces::One);
+    for bad in ["2", "0", "Many", ""] {
+        match parse_bounces(bad) {
+            Err(e @ EngineError::Settings(_)) => {
+                assert!(e.to_string().contains("1 or many"), "{e}")
+            }
+            other => panic!("{bad:?}: expected a settings error, got {other:?}"),
+        }
+    }
+}

@@ -17,7 +17,7 @@
 //! | `g-buffer` | albedo + gloss, normal + power (specular anti-aliasing), geometry normal + material, depth; a depth pre-pass shades each pixel once (resident pass) | 3.3.2, Table 3.1 | `scene` |
 //! | `lpv` | indirect `lpv`: its own sun RSM (and with `Settings::sky_bounce` the G-buffer's sky-bounce VPLs, `passes::sky_bounce`) → injection (from their textures on a GPU) + propagation in 3 cascades | 5.2, 5.3.7 | `shadows`, `lpv`, `sky_volume` |
 //! | `rsm (gather)` | indirect `rsm`: the sun RSM, kept on the GPU for the lighting pass's interleaved gather | Hahn 2012 (seed) | `shadows`, `rsm_gi` |
-//! | `rsm + radiance cache` | indirect `cache`: the sun RSM's VPLs light the caches the view needs, on the CPU with shadow rays, over `Settings::cache_frames` frames | Reich 2015 (seed) | `shadows`, `radiance_cache`, `kdtree_tracer` |
+//! | `rsm + radiance cache` | indirect `cache`: the sun RSM's VPLs light the caches the view needs, on the CPU with shadow rays, over `Settings::cache_frames` frames; with many bounces (`radiance_cache::Bounces::Many`) the caches' rays also gather the sky, the point lights and the caches' own light their hits reflect (`passes::cache_bounce`) | Reich 2015 (seed) | `shadows`, `radiance_cache`, `kdtree_tracer` |
 //! | `ray casting buffer` | quarter-res origins + reflection/refraction rays; the texels with rays listed and read back (resident pass) | 6.2.4, 6.2.6, Table 6.1 | `traced_effects` |
 //! | `ray tracing` | CPU kd-tree tracing and shading of those rays, on a worker thread | 6.2.1-6.2.8, 6.3 | `traced_effects`, `kdtree_tracer` |
 //! | `lighting` | sun (glTF metallic-roughness BRDF, `scene::brdf`; PCSS), point lights, sky volume + the one-bounce lookup (LPV, radiance cache) or the RSM gather, SSAO (the crates' WGSL snippets) | 4.2, 5.3.6-5.3.8 | `shadows`, `ssao`, `sky_volume`, `lpv`, `rsm_gi`, `radiance_cache` |
@@ -60,7 +60,7 @@ pub use effects::{Effect, Effects};
 pub use error::{EngineError, error_chain};
 pub use gpu::{TransferCounts, check_capabilities};
 pub use graph::pass;
-pub use radiance_cache::CacheSummary;
+pub use radiance_cache::{Bounces, CacheSummary, Settings as CacheSettings};
 pub use renderer::{Frame, FrameStats, HdrFrame, Renderer};
 pub use settings::{Indirect, Preset, Settings, TracedShading};
 /// The ray casting buffer's rays, their CPU tracing and the mirrored sun live in

@@ -164,8 +164,14 @@ impl TraceScene {
         self.textures.get(id.index())?.as_ref()
     }
 
+    /// The index in the scene's material table of triangle `triangle`'s material (the
+    /// triangles of a [`kdtree_tracer::Hit`]).
+    pub fn material_index(&self, triangle: u32) -> usize {
+        self.surfaces.material(triangle) as usize
+    }
+
     fn material(&self, triangle: u32) -> &Material {
-        &self.materials[self.surfaces.material(triangle) as usize]
+        &self.materials[self.material_index(triangle)]
     }
 
     /// False when the surface point falls in an alpha-tested hole.

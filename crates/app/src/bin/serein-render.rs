@@ -34,6 +34,16 @@ struct Args {
     /// components.png (contact sheet) and a ledger section in report.md / report.json.
     #[arg(long, requires = "reference")]
     components: bool,
+    /// Bounces the radiance cache carries (`--indirect cache`): 1 (the VPLs' one bounce, as in
+    /// the presets) or many (its caches light each other, one bounce more per update,
+    /// converging; see `engine::passes::cache_bounce`).
+    #[arg(long, default_value = "1", value_parser = app::cli::parse_bounces)]
+    cache_bounces: engine::Bounces,
+    /// Frames the radiance cache keeps relighting its oldest caches after the camera or the
+    /// sun moved (`--indirect cache`; `engine::Settings::cache_frames`). Default: the
+    /// preset's.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    cache_frames: Option<u32>,
     /// Adds the sun's glint in mirror and glass parts (off in the presets; see
     /// `engine::Settings::sun_glints` for what it buys and costs on the ledger).
     #[arg(long)]
@@ -83,6 +93,8 @@ fn main() -> anyhow::Result<()> {
         height,
         preset: a.engine.preset,
         indirect: a.engine.indirect,
+        cache_bounces: a.cache_bounces,
+        cache_frames: a.cache_frames,
         sun_glints: a.sun_glints,
         mirrored_sun: !a.no_mirrored_sun,
         sky_bounce: a.sky_bounce,

@@ -2,6 +2,7 @@
 //! the one-bounce techniques, the deferred lighting and the tone mapping.
 
 use super::*;
+use crate::passes::cache_bounce::SceneHitShading;
 use crate::passes::display::post_err;
 
 /// The sky map (when the sun moved) and the sky volume filled over frames.
@@ -166,8 +167,17 @@ pub(super) fn bounce_passes(g: &mut FrameGraph<FrameCtx>, r: Resources, sky_boun
 
 /// The radiance cache: allocated from the view, lit on the CPU, written to its GPU copy;
 /// `cache_frames` frames after each camera or sun move (one unit per frame), then reused.
-pub(super) fn cache_pass(g: &mut FrameGraph<FrameCtx>, r: Resources, cache_frames: u32) {
-    g.sync_point(pass::RADIANCE_CACHE)
+/// With `many_bounces` (`radiance_cache::Bounces::Many`) its rays' hits are shaded with the
+/// sky volume's light too ([`SceneHitShading`]), so the pass also reads the sky and starts
+/// again when the sky volume changed (while it fills, and after the sun moved).
+pub(super) fn cache_pass(
+    g: &mut FrameGraph<FrameCtx>,
+    r: Resources,
+    cache_frames: u32,
+    many_bounces: bool,
+) {
+    let p = g
+        .sync_point(pass::RADIANCE_CACHE)
         .writes(r.cache)
         .switched(Effect::IndirectLight)
         .run_if(BOUNCE_NEEDED, bounce_needed)
@@ -175,18 +185,29 @@ pub(super) fn cache_pass(g: &mut FrameGraph<FrameCtx>, r: Resources, cache_frame
             c.indirect == Indirect::Cache
         })
         .key("camera", camera_key)
-        .key("sun direction", sun_key)
-        .amortised(cache_frames, Budget::Units(1))
-        .run(move |io| -> PassResult {
-            let mut cache = previous_or(io, r.cache, |c| c.state.new_cache())?;
-            let c = io.ctx();
-            let (s, sun) = (&c.state, sun_of(c)?);
-            let lookup = s.lighting.lookup_io();
-            cache.update(&s.gpu, &s.scene, &s.trace, &c.camera, &sun, lookup)?;
-            s.gpu.take_error()?;
-            io.put(r.cache, cache)?;
-            Ok(())
+        .key("sun direction", sun_key);
+    let p = if many_bounces {
+        let sky_needed = |c: &FrameCtx| c.needs.sky_lighting.needed;
+        p.reads(r.sky_map).reads(r.sky_vol).key("sky lighting", sky_needed)
+    } else {
+        p
+    };
+    p.amortised(cache_frames, Budget::Units(1)).run(move |io| -> PassResult {
+        let mut cache = previous_or(io, r.cache, |c| c.state.new_cache())?;
+        let c = io.ctx();
+        let (s, sun) = (&c.state, sun_of(c)?);
+        let lookup = s.lighting.lookup_io();
+        let shading = many_bounces.then(|| SceneHitShading {
+            trace: &s.trace,
+            albedo: &s.scene.diffuse_albedo,
+            sky: sky_light(io, r).filter(|_| c.needs.sky_lighting.needed),
+            point_lights: &s.point_lights,
         });
+        cache.update(&s.gpu, &s.scene, &s.trace, &c.camera, &sun, lookup, shading.as_ref())?;
+        s.gpu.take_error()?;
+        io.put(r.cache, cache)?;
+        Ok(())
+    });
 }
 
 /// The one-bounce source the lighting pass binds this frame.

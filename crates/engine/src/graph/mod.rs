@@ -255,7 +255,8 @@ pub fn build(set: &crate::Settings, sky_layers: u32) -> (FrameGraph<FrameCtx>, O
     shadow_passes(&mut g, r);
     gbuffer_pass(&mut g, r);
     bounce_passes(&mut g, r, set.sky_bounce > 0);
-    cache_pass(&mut g, r, set.cache_frames);
+    let many_bounces = set.radiance_cache.bounces == radiance_cache::Bounces::Many;
+    cache_pass(&mut g, r, set.cache_frames, many_bounces);
     trace_passes(&mut g, r);
     traced_gbuffer_passes(&mut g, r);
     lighting_pass(&mut g, r);

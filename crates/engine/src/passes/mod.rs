@@ -1,6 +1,7 @@
 //! One file per pass; each pass is a struct of its pipelines and a plain function that
 //! records or runs it.
 
+pub mod cache_bounce;
 pub mod display;
 pub mod lighting;
 pub mod lpv;

@@ -9,7 +9,10 @@
 //! 2. `radiance_cache::view_points` traces `Settings::cache_points` camera rays through the
 //!    scene's kd-tree, and `RadianceCache::refresh` allocates the caches those points need
 //!    and lights the `budget` oldest with shadow rays through the same tree (alpha-tested
-//!    holes let light through);
+//!    holes let light through); with `radiance_cache::Bounces::Many`,
+//!    `RadianceCache::refresh_bounces` also traces each lit cache's bounce rays through the
+//!    tree and shades their hits with [`super::cache_bounce::SceneHitShading`] (sky, point
+//!    lights, and the caches' previous light: one bounce more per update);
 //! 3. its `gpu::ResidentCache` uploads them (counted in the frame's uploads), bound to the
 //!    lighting pass's per-pixel queries and bounce buffer;
 //! 4. the lighting pass records that lookup every frame.
@@ -17,6 +20,7 @@
 //! The frame graph runs steps 1-3 for `Settings::cache_frames` frames after the camera or the
 //! sun moved (an amortised pass); traced hits look the CPU copy up directly.
 
+use super::cache_bounce::SceneHitShading;
 use super::sun_rsm::{Region, SunRsm};
 use crate::gpu::{Gpu, SceneBuffers};
 use crate::trace::TraceScene;
@@ -100,7 +104,11 @@ impl CacheState {
     }
 
     /// Steps 1-3 for the view of `camera`; `(queries, output, count)` are the lighting
-    /// pass's per-pixel query and bounce buffers the lookup is bound to.
+    /// pass's per-pixel query and bounce buffers the lookup is bound to. With `shading`
+    /// (`radiance_cache::Bounces::Many`) the lit caches also gather the light their rays'
+    /// hits reflect (`RadianceCache::refresh_bounces`); without, one bounce
+    /// (`RadianceCache::refresh`).
+    #[allow(clippy::too_many_arguments)]
     pub fn update(
         &mut self,
         gpu: &Gpu,
@@ -109,11 +117,16 @@ impl CacheState {
         camera: &scene::Camera,
         sun: &vocab::Sun,
         (queries, output, count): (&wgpu::Buffer, &wgpu::Buffer, u32),
+        shading: Option<&SceneHitShading>,
     ) -> Result<(), EngineError> {
         self.refresh_vpls(gpu, scene, camera.position, sun)?;
         let normal = |h: &kdtree_tracer::Hit| trace.geometric_normal(h);
         let points = view_points(trace, normal, &camera.pinhole(), camera.far, self.points);
-        let summary = self.cache.refresh(camera.position, &points, &self.vpls, trace);
+        let (eye, vpls) = (camera.position, &self.vpls);
+        let summary = match shading {
+            Some(shading) => self.cache.refresh_bounces(eye, &points, vpls, trace, shading),
+            None => self.cache.refresh(eye, &points, vpls, trace),
+        };
         let written = self.resident.write(&gpu.device, &gpu.queue, &self.cache);
         gpu.transfers.uploaded(written.bytes);
         self.resident.bind(&gpu.device, queries, output, count);
