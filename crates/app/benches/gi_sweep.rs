@@ -3,7 +3,8 @@
 //! view, and a fly-through like the thesis's third test (Table 7.3).
 //!
 //! Headline entries (technique `engine`):
-//! - `engine/{city,cornell_window}_320x180_{low,default,high}`: time = mean wall-clock ms of
+//! - `engine/{city,cornell_window,pbr_gallery}_320x180_{low,default,high}` (the gallery of
+//!   materials at 320x180 only): time = mean wall-clock ms of
 //!   steady frames. Warm-up: `sky_volume_frames() + 1` frames, so the amortised sky volume is
 //!   complete; then frames are timed with the camera nudged 1 mm sideways every frame, so every
 //!   view-dependent pass really reruns instead of being reused (the time of a frame where
@@ -25,7 +26,7 @@
 //!   city's central crossing at eye height, 300 frames after the warm-up; time = mean frame
 //!   ms; settings: standard deviation, min, max, the worst frame's index, the share of frames
 //!   that ray traced, and the thesis's Table 7.3 figures beside ours.
-//! - `engine/components_{city,cornell_window,two_rooms}_320x180_{low,default,high}_<component>`:
+//! - `engine/components_{city,cornell_window,two_rooms,pbr_gallery}_320x180_{low,default,high}_<component>`:
 //!   the component ledger (`app::ledger`), one entry per lighting component of
 //!   `engine::components::COMPONENTS`: time = ms of the passes that produce the component in
 //!   a frame where every per-frame pass ran (camera nudged 1 mm after the warm-up); error =
@@ -879,13 +880,18 @@ fn main() {
     let sizes = if sweep.quick() { QUICK } else { FULL };
     for size in sizes {
         let (w, h) = (size.width, size.height);
-        for which in [Generated::City, Generated::CornellWindow] {
+        // The gallery of materials (issue 53's engine-vs-reference check of the surface
+        // model) at the small size only.
+        let gallery = (w == 320).then_some(Generated::PbrGallery);
+        for which in [Generated::City, Generated::CornellWindow].into_iter().chain(gallery) {
             let view = View::new(&mut sweep, which, w, h, size.reference_spp);
             for preset in Preset::ALL {
                 preset_entry(&mut sweep, &view, preset, size.timed_frames);
             }
-            option_entries(&mut sweep, &view);
-            if w == 320 {
+            if which != Generated::PbrGallery {
+                option_entries(&mut sweep, &view);
+            }
+            if w == 320 && which != Generated::PbrGallery {
                 supersampled_entries(&mut sweep, &view, size.timed_frames);
             }
             if which == Generated::City {
@@ -894,10 +900,11 @@ fn main() {
         }
         if w == 320 {
             let spp = if sweep.quick() { 16 } else { 64 };
-            for which in [Generated::City, Generated::CornellWindow, Generated::TwoRooms] {
+            let scenes = [Generated::City, Generated::CornellWindow, Generated::TwoRooms];
+            for which in scenes.into_iter().chain([Generated::PbrGallery]) {
                 let refs = components(&mut sweep, which, w, h, spp);
                 let bounce = COMPONENTS.iter().position(|&c| c == Component::SunIndirectDiffuse);
-                if let Some(k) = bounce {
+                if let (Some(k), true) = (bounce, which != Generated::PbrGallery) {
                     indirect_race(&mut sweep, which, (w, h), &refs[k]);
                 }
                 let reflections = COMPONENTS.iter().position(|&c| c == Component::Reflections);
