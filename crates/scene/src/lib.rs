@@ -98,7 +98,7 @@ pub use occluders::{DeriveSettings, derive_occlusion_quads};
 pub use scene::{Scene, SceneStats, SceneTriangles};
 pub use surface::{SurfacePoint, TextureLookup, perturbed_normal};
 pub use texture::{
-    ColorSpace, MAX_TEXTURE_SIZE, Texture, TextureId, TextureLevel, Wrap, linear_to_srgb,
+    ColorSpace, Filter, MAX_TEXTURE_SIZE, Texture, TextureId, TextureLevel, Wrap, linear_to_srgb,
     srgb_to_linear,
 };
 pub use vocab::OcclusionQuad;

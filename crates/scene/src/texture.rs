@@ -37,6 +37,20 @@ pub enum Wrap {
     #[default]
     Repeat,
     Clamp,
+    /// Repeats, every other copy mirrored (glTF's `MIRRORED_REPEAT`).
+    Mirror,
+}
+
+/// How a texture is read when a texel covers more than a pixel (magnification; minification
+/// is always trilinear).
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
+)]
+pub enum Filter {
+    #[default]
+    Linear,
+    /// The nearest texel (pixel art, glTF's `magFilter: NEAREST`).
+    Nearest,
 }
 
 /// One level of the mip chain.
@@ -54,10 +68,38 @@ pub struct Texture {
     pub name: String,
     /// The colour space the source bytes were in (the texels are always linear).
     pub source_space: ColorSpace,
-    pub wrap: Wrap,
+    /// Outside `[0, 1]`, along u and along v.
+    pub wrap: [Wrap; 2],
+    pub magnify: Filter,
     /// Level 0 is full resolution; each next level halves each side (rounded down, at least 1)
     /// down to 1x1.
     pub levels: Vec<TextureLevel>,
+}
+
+/// Integer coordinate `i` on an axis of `n` texels under `wrap` (the division of
+/// `rem_euclid` only where `i` is outside, as for one neighbour of a bilinear sample).
+#[inline]
+fn wrapped(wrap: Wrap, i: i64, n: i64) -> i64 {
+    if (0..n).contains(&i) {
+        return i;
+    }
+    match wrap {
+        Wrap::Repeat => i.rem_euclid(n),
+        Wrap::Clamp => i.clamp(0, n - 1),
+        Wrap::Mirror if i.div_euclid(n) % 2 == 0 => i.rem_euclid(n),
+        Wrap::Mirror => n - 1 - i.rem_euclid(n),
+    }
+}
+
+/// A texture coordinate brought into `[0, 1]` (`[0, 2)` for a mirror, whose second copy is
+/// mirrored texel by texel) under `wrap`, so that f32 -> i64 stays exact.
+#[inline]
+fn reduced(wrap: Wrap, t: f32) -> f32 {
+    match wrap {
+        Wrap::Repeat => t - t.floor(),
+        Wrap::Clamp => t.clamp(0.0, 1.0),
+        Wrap::Mirror => t - 2.0 * (t * 0.5).floor(),
+    }
 }
 
 /// Largest side accepted (protects against absurd allocations from corrupt headers).
@@ -148,7 +190,13 @@ impl Texture {
             let next = downsample(last);
             levels.push(next);
         }
-        Ok(Self { name, source_space: ColorSpace::Linear, wrap: Wrap::Repeat, levels })
+        Ok(Self {
+            name,
+            source_space: ColorSpace::Linear,
+            wrap: [Wrap::Repeat; 2],
+            magnify: Filter::Linear,
+            levels,
+        })
     }
 
     /// A 1x1 texture of one colour.
@@ -178,18 +226,7 @@ impl Texture {
     pub fn texel(&self, level: usize, x: i64, y: i64) -> Vec4 {
         let l = &self.levels[level.min(self.levels.len() - 1)];
         let (w, h) = (l.width as i64, l.height as i64);
-        l.texels[(self.wrapped(y, h) * w + self.wrapped(x, w)) as usize]
-    }
-
-    /// Integer coordinate `i` on an axis of `n` texels under the wrap mode (the division of
-    /// `rem_euclid` only where `i` is outside, as for one neighbour of a bilinear sample).
-    #[inline]
-    fn wrapped(&self, i: i64, n: i64) -> i64 {
-        match self.wrap {
-            Wrap::Repeat if (0..n).contains(&i) => i,
-            Wrap::Repeat => i.rem_euclid(n),
-            Wrap::Clamp => i.clamp(0, n - 1),
-        }
+        l.texels[(wrapped(self.wrap[1], y, h) * w + wrapped(self.wrap[0], x, w)) as usize]
     }
 
     /// Bilinear sample of one mip level at `uv` (`(0,0)` top-left corner of the image).
@@ -199,10 +236,11 @@ impl Texture {
         let l = &self.levels[level];
         let uv = if uv.is_finite() { uv } else { Vec2::ZERO };
         // Keep the coordinates in a range where f32 -> i64 is exact enough.
-        let uv = match self.wrap {
-            Wrap::Repeat => uv - uv.floor(),
-            Wrap::Clamp => uv.clamp(Vec2::ZERO, Vec2::ONE),
-        };
+        let uv = Vec2::new(reduced(self.wrap[0], uv.x), reduced(self.wrap[1], uv.y));
+        if self.magnify == Filter::Nearest && level == 0 {
+            let (x, y) = ((uv.x * l.width as f32).floor(), (uv.y * l.height as f32).floor());
+            return self.texel(0, x as i64, y as i64);
+        }
         let x = uv.x * l.width as f32 - 0.5;
         let y = uv.y * l.height as f32 - 0.5;
         let (x0, y0) = (x.floor(), y.floor());
@@ -214,7 +252,8 @@ impl Texture {
     }
 
     /// Trilinear sample: bilinear in the two levels around `lod` (clamped to the chain),
-    /// blended linearly. `lod` 0 is full resolution.
+    /// blended linearly. `lod` 0 is full resolution; at or below it the magnification filter
+    /// reads level 0.
     pub fn sample_trilinear(&self, uv: Vec2, lod: f32) -> Vec4 {
         let max = (self.levels.len() - 1) as f32;
         let lod = if lod.is_finite() { lod.clamp(0.0, max) } else { 0.0 };

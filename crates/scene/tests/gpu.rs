@@ -401,3 +401,65 @@ fn wgsl_perturbed_normal_equals_the_cpu_one() {
         assert!((g - *cpu).length() < 1e-5, "case {i}: GPU {g} vs CPU {cpu}");
     }
 }
+
+/// The G-buffer reads a texture with its own wrap modes and magnification filter, as the CPU
+/// reads it (`Texture::sample_bilinear`): a 4 x 2 texture of distinct colours, mirrored along
+/// u, clamped along v and magnified with the nearest texel, on a quad whose coordinates run
+/// from -1 to 2; checked at texel centres of every copy. With the default sampler (repeat,
+/// linear) the mirrored copies would read the texels in the wrong order.
+#[test]
+fn gbuffer_reads_textures_with_their_wrap_modes_and_filter() {
+    let Some(ctx) = gpu_test_context() else { return };
+    let colours: Vec<Vec4> =
+        (0..8).map(|i| Vec4::new((i % 4) as f32 / 3.0, (i / 4) as f32, 0.5, 1.0)).collect();
+    let mut tex = Texture::from_linear("tiles", 4, 2, colours).expect("a 4x2 texture");
+    tex.wrap = [scene::Wrap::Mirror, scene::Wrap::Clamp];
+    tex.magnify = scene::Filter::Nearest;
+    let mut scene = Scene::new("wrapped quad");
+    let id = scene.add_texture(tex.clone());
+    scene.add_material(Material {
+        albedo_texture: Some(id),
+        ..Material::diffuse("tiles", Vec3::ONE)
+    });
+    // World [-1, 1]^2 at z = 0; u = 1.5 x + 0.5 runs -1..2 left to right, v likewise top down.
+    let positions = vec![
+        Vec3::new(-1.0, -1.0, 0.0),
+        Vec3::new(1.0, -1.0, 0.0),
+        Vec3::new(1.0, 1.0, 0.0),
+        Vec3::new(-1.0, 1.0, 0.0),
+    ];
+    let uv_of = |p: Vec3| Vec2::new(1.5 * p.x + 0.5, 0.5 - 1.5 * p.y);
+    let uvs = positions.iter().map(|&p| uv_of(p)).collect();
+    let data = MeshData {
+        positions,
+        normals: Some(vec![Vec3::Z; 4]),
+        uvs: Some(uvs),
+        indices: vec![0, 1, 2, 0, 2, 3],
+    };
+    scene.meshes.push(Mesh::build("quad", data, MaterialId(0)).expect("a quad").0);
+    scene.camera = Camera::look_at(Vec3::new(0.0, 0.0, 2.5), Vec3::ZERO, 60.0, 1.0);
+    scene.validate().expect("a valid scene");
+    let cam = scene.camera;
+    let gpu = GpuScene::new(&ctx.device, &ctx.queue, &scene);
+    let gbuffer = GBuffer::new(&ctx.device, 64, 64);
+    let pass = GBufferPass::new(&ctx.device, &gpu).expect("the G-buffer pipelines");
+    let camera = GBufferCamera::new(cam.view_projection(), cam.position, cam.forward, 1.0);
+    let mut encoder = ctx.device.create_command_encoder(&Default::default());
+    pass.record(&ctx.queue, &mut encoder, &gbuffer, &gpu, &camera);
+    ctx.queue.submit([encoder.finish()]);
+    let t = Targets::read(&ctx, &gbuffer);
+    // Texel centres in u of the copies before, at and after [0, 1] (u in -1..2), and in v
+    // inside and below the clamped range.
+    for u in [-0.875, -0.375, 0.125, 0.625, 1.125, 1.625] {
+        for v in [0.25, 0.75, 1.5] {
+            let p = Vec3::new((u - 0.5) / 1.5, (0.5 - v) / 1.5, 0.0);
+            let [base, ..] = t.at(&cam, p);
+            let want = tex.sample_bilinear(Vec2::new(u, v), 0);
+            let tol = 1.0 / 255.0 + 2e-3;
+            assert!(
+                near(base.with_w(0.0), want.with_w(0.0), tol),
+                "uv ({u}, {v}): GPU {base} vs CPU {want}"
+            );
+        }
+    }
+}

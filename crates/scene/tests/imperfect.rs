@@ -210,7 +210,7 @@ fn a_required_extension_that_is_not_supported_is_named() {
 fn each_unsupported_gltf_feature_is_one_warning_naming_it() {
     let json = String::from_utf8(textured_gltf()).unwrap();
     // Base colour through TEXCOORD_1 but the normal map through TEXCOORD_0 (one mapping per
-    // material is honoured), a clamping sampler, COLOR_0, a clear coat, an unknown
+    // material is honoured), a clamping sampler (honoured: no warning), COLOR_0, a clear coat, an unknown
     // extension, and two materials using the same unsupported thing (one warning for both).
     let json = json
         .replace(
@@ -246,16 +246,14 @@ fn each_unsupported_gltf_feature_is_one_warning_naming_it() {
                     "all its textures are read with its base-colour texture's (or first texture's)"
                 )
             ),
-            (
-                "sampler 0 \"\"",
-                &unsupported("sampler wrap modes other than REPEAT", "textures repeat")
-            ),
             ("extensionsUsed", &unsupported("KHR_materials_clearcoat", "no clear-coat layer")),
             ("extensionsUsed", &LoadWarningKind::UnknownExtension("EXT_made_up".into())),
         ]
     );
+    // The clamping sampler is honoured, not warned about.
+    assert_eq!(s.textures[0].wrap, [scene::Wrap::Clamp, scene::Wrap::Repeat]);
     assert_eq!(
-        s.warnings[3].to_string(),
+        s.warnings[2].to_string(),
         "f.gltf: extensionsUsed: KHR_materials_clearcoat not supported (no clear-coat layer)"
     );
     // Strict: the first is the error.

@@ -57,12 +57,33 @@ fn bilinear_interpolates_between_texel_centres_and_clamp_mode_holds_edges() {
     assert!((t.sample_bilinear(Vec2::new(0.25, 0.5), 0).x).abs() < 1e-6);
     // Repeat wraps: u = 0 is halfway between the last and the first texel.
     assert!((t.sample_bilinear(Vec2::new(0.0, 0.5), 0).x - 0.5).abs() < 1e-6);
-    t.wrap = Wrap::Clamp;
+    t.wrap = [Wrap::Clamp; 2];
     assert!(t.sample_bilinear(Vec2::new(0.0, 0.5), 0).x.abs() < 1e-6);
     // Trilinear halfway between level 0 (at u = 0.75: 1.0) and level 1 (the mean, 0.5).
     assert!((t.sample_trilinear(Vec2::new(0.75, 0.5), 0.5).x - 0.75).abs() < 1e-6);
     // The LOD rule: a footprint of 2 texels is level 1.
     assert!((t.lod(Vec2::new(1.0, 0.0), Vec2::ZERO) - 1.0).abs() < 1e-6);
+}
+
+/// Mirrored repeat reads the texture backwards in every other copy; nearest magnification
+/// reads the texel under the point, with no blend: on a 4-texel ramp 0, 1/3, 2/3, 1.
+#[test]
+fn mirror_wrap_and_nearest_magnification_read_the_texels_they_name() {
+    let ramp: Vec<Vec4> = (0..4).map(|i| Vec4::splat(i as f32 / 3.0)).collect();
+    let mut t = Texture::from_linear("ramp", 4, 1, ramp).unwrap();
+    t.wrap = [Wrap::Mirror, Wrap::Clamp];
+    t.magnify = scene::Filter::Nearest;
+    let at = |u: f32| t.sample_bilinear(Vec2::new(u, 0.5), 0).x;
+    // Texel 1 at u = 0.3; the mirrored copy puts texel 1 at u = 1.7 and texel 3 at 1.1;
+    // the copy before it (u < 0) is mirrored too: u = -0.3 is texel 1.
+    for (u, want) in [(0.3, 1.0 / 3.0), (1.7, 1.0 / 3.0), (1.1, 1.0), (-0.3, 1.0 / 3.0)] {
+        assert!((at(u) - want).abs() < 1e-6, "u {u}: {} against {want}", at(u));
+    }
+    // Linear magnification blends across the mirror's seam at u = 1: texel 3 twice.
+    t.magnify = scene::Filter::Linear;
+    assert!((t.sample_bilinear(Vec2::new(1.0, 0.5), 0).x - 1.0).abs() < 1e-6);
+    // Between texels 0 and 1 at u = 0.25.
+    assert!((t.sample_bilinear(Vec2::new(0.25, 0.5), 0).x - 1.0 / 6.0).abs() < 1e-6);
 }
 
 proptest! {

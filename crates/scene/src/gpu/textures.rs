@@ -1,7 +1,7 @@
 //! The scene's textures on the GPU: linear RGBA16F with their mip chains, the white texture
 //! that stands in for a missing one, one sampler, and a bind group per material.
 
-use crate::{Scene, Texture, TextureId};
+use crate::{Filter, Scene, Texture, TextureId, Wrap};
 
 /// The layout of a material's textures (albedo, alpha mask, sampler, normal map,
 /// metallic-roughness), visible to fragment shaders: [`super::GpuScene::material_layout`].
@@ -38,24 +38,33 @@ pub(super) fn material_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
 pub struct GpuTextures {
     views: Vec<wgpu::TextureView>,
     white: wgpu::TextureView,
-    sampler: wgpu::Sampler,
+    sampler: std::sync::Arc<wgpu::Sampler>,
+    /// Per texture: its wrap modes and magnification filter as a sampler (`sampler` for the
+    /// default's), shared between textures that read alike.
+    samplers: Vec<std::sync::Arc<wgpu::Sampler>>,
 }
 
 impl GpuTextures {
     pub(super) fn new(device: &wgpu::Device, queue: &wgpu::Queue, scene: &Scene) -> Self {
         let views = scene.textures.iter().map(|t| upload_texture(device, queue, t)).collect();
         let solid = Texture::solid("white", glam::Vec4::ONE).expect("a solid texture is valid");
-        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("material sampler"),
-            address_mode_u: wgpu::AddressMode::Repeat,
-            address_mode_v: wgpu::AddressMode::Repeat,
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            mipmap_filter: wgpu::MipmapFilterMode::Linear,
-            anisotropy_clamp: 4,
-            ..Default::default()
-        });
-        Self { views, white: upload_texture(device, queue, &solid), sampler }
+        let mut made: Vec<(Reading, std::sync::Arc<wgpu::Sampler>)> = Vec::new();
+        let mut sampler_for = |key: Reading| {
+            if let Some((_, s)) = made.iter().find(|(k, _)| *k == key) {
+                return s.clone();
+            }
+            let s = std::sync::Arc::new(material_sampler(device, key.0, key.1));
+            made.push((key, s.clone()));
+            s
+        };
+        let sampler = sampler_for(([Wrap::Repeat; 2], Filter::Linear));
+        let samplers = scene.textures.iter().map(|t| sampler_for((t.wrap, t.magnify))).collect();
+        Self { views, white: upload_texture(device, queue, &solid), sampler, samplers }
+    }
+
+    /// The sampler texture `id` is read with (the default one for `None`).
+    pub fn sampler_of(&self, id: Option<TextureId>) -> &wgpu::Sampler {
+        id.and_then(|t| self.samplers.get(t.index())).unwrap_or(&self.sampler)
     }
 
     /// Texture `id` (white for `None` or an id the scene does not have).
@@ -63,8 +72,7 @@ impl GpuTextures {
         id.and_then(|t| self.views.get(t.index())).unwrap_or(&self.white)
     }
 
-    /// The sampler every material's textures are read with (trilinear, repeat, 4x
-    /// anisotropic).
+    /// The default sampler (trilinear, repeat, 4x anisotropic).
     pub fn sampler(&self) -> &wgpu::Sampler {
         &self.sampler
     }
@@ -82,10 +90,13 @@ impl GpuTextures {
             .materials
             .iter()
             .map(|m| {
+                // One sampler per material: its base-colour texture's (else its first
+                // texture's); the loaders warn where a material's textures differ.
+                let first = m.albedo_texture.or(m.metallic_roughness_texture).or(m.normal_texture);
                 let entries = [
                     (0, R::TextureView(self.view(m.albedo_texture))),
                     (1, R::TextureView(self.view(m.alpha_mask.map(|a| a.texture)))),
-                    (2, R::Sampler(&self.sampler)),
+                    (2, R::Sampler(self.sampler_of(first))),
                     (3, R::TextureView(self.view(m.normal_texture))),
                     (4, R::TextureView(self.view(m.metallic_roughness_texture))),
                 ];
@@ -93,6 +104,31 @@ impl GpuTextures {
             })
             .collect()
     }
+}
+
+/// How a texture is read: its wrap modes (u, v) and magnification filter.
+type Reading = ([Wrap; 2], Filter);
+
+/// Trilinear minification with 4x anisotropy, the texture's wrap modes and magnification
+/// filter (as `Texture::sample_trilinear` reads on the CPU).
+fn material_sampler(device: &wgpu::Device, wrap: [Wrap; 2], magnify: Filter) -> wgpu::Sampler {
+    let address = |w| match w {
+        Wrap::Repeat => wgpu::AddressMode::Repeat,
+        Wrap::Clamp => wgpu::AddressMode::ClampToEdge,
+        Wrap::Mirror => wgpu::AddressMode::MirrorRepeat,
+    };
+    let nearest = magnify == Filter::Nearest;
+    device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some("material sampler"),
+        address_mode_u: address(wrap[0]),
+        address_mode_v: address(wrap[1]),
+        mag_filter: if nearest { wgpu::FilterMode::Nearest } else { wgpu::FilterMode::Linear },
+        min_filter: wgpu::FilterMode::Linear,
+        mipmap_filter: wgpu::MipmapFilterMode::Linear,
+        // wgpu allows anisotropy only with linear filters throughout.
+        anisotropy_clamp: if nearest { 1 } else { 4 },
+        ..Default::default()
+    })
 }
 
 fn upload_texture(device: &wgpu::Device, queue: &wgpu::Queue, t: &Texture) -> wgpu::TextureView {

@@ -32,8 +32,8 @@ use super::context::{Ctx, LoadOptions};
 use super::image::{decode, stand_in};
 use super::uri::read_uri;
 use crate::{
-    AlphaMask, Camera, ColorSpace, LoadError, LoadErrorKind, Material, MaterialId, Mesh, MeshData,
-    Scene, SceneError, Texture, TextureId,
+    AlphaMask, Camera, ColorSpace, Filter, LoadError, LoadErrorKind, Material, MaterialId, Mesh,
+    MeshData, Scene, SceneError, Texture, TextureId, Wrap,
 };
 use glam::{Affine3A, Mat4, Vec2, Vec3, Vec4};
 use gltf::accessor::{DataType, Dimensions};
@@ -327,7 +327,8 @@ struct Loader<'a> {
     base_dir: Option<&'a Path>,
     buffers: &'a [Vec<u8>],
     scene: Scene,
-    images: HashMap<(usize, bool), TextureId>,
+    /// Per (image, sRGB, how its sampler reads it): the texture made of it.
+    images: HashMap<ImageKey, TextureId>,
     /// The stand-in of each colour space, made on first use.
     stand_ins: HashMap<bool, TextureId>,
     ctx: &'a mut Ctx,
@@ -345,7 +346,8 @@ impl Loader<'_> {
         user: &str,
     ) -> Result<TextureId, SceneError> {
         let img = tex.source();
-        let key = (img.index(), space == ColorSpace::Srgb);
+        let reading = sampling(&tex.sampler());
+        let key = (img.index(), space == ColorSpace::Srgb, reading);
         if let Some(&id) = self.images.get(&key) {
             return Ok(id);
         }
@@ -386,6 +388,7 @@ impl Loader<'_> {
             }
             Err(k) => return Err(self.err(el, k)),
         };
+        let t = Texture { wrap: reading.0, magnify: reading.1, ..t };
         let id = self.scene.add_texture(t);
         self.images.insert(key, id);
         Ok(id)
@@ -395,7 +398,7 @@ impl Loader<'_> {
     /// stand-in of its colour space in for it.
     fn stand_in(
         &mut self,
-        key: (usize, bool),
+        key: ImageKey,
         path: &str,
         element: String,
         cause: LoadErrorKind,
@@ -540,6 +543,23 @@ impl Loader<'_> {
         };
         Ok((MeshData { positions, normals, uvs, indices }, tangents))
     }
+}
+
+/// An image as a texture reads it: its index, whether it is sRGB, and its sampler's wrap
+/// modes and magnification filter.
+type ImageKey = (usize, bool, ([Wrap; 2], Filter));
+
+/// A glTF sampler's wrap modes (u, v) and magnification filter; its minification filter is
+/// read as trilinear whatever it says.
+fn sampling(s: &gltf::texture::Sampler) -> ([Wrap; 2], Filter) {
+    use gltf::texture::{MagFilter, WrappingMode};
+    let wrap = |w| match w {
+        WrappingMode::ClampToEdge => Wrap::Clamp,
+        WrappingMode::MirroredRepeat => Wrap::Mirror,
+        WrappingMode::Repeat => Wrap::Repeat,
+    };
+    let nearest = s.mag_filter() == Some(MagFilter::Nearest);
+    ([wrap(s.wrap_s()), wrap(s.wrap_t())], if nearest { Filter::Nearest } else { Filter::Linear })
 }
 
 /// How a material's textures map onto its primitives: the texture coordinate set they read

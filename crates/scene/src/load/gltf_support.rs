@@ -63,8 +63,6 @@ const NOT_HONOURED: &[NotHonoured] = &[
     ),
     core("occlusion textures", "no baked ambient occlusion", occlusion_textures),
     core("emissive textures", "the emissive factor alone, uniform over the surface", emissive),
-    core("sampler wrap modes other than REPEAT", "textures repeat", wrap_modes),
-    core("nearest-neighbour sampler filters", "textures are filtered linearly", filters),
     ext("KHR_materials_clearcoat", "no clear-coat layer"),
     ext("KHR_materials_sheen", "no sheen"),
     ext("KHR_materials_volume", "transmissive materials are thin-walled (no absorption)"),
@@ -192,34 +190,6 @@ fn occlusion_textures(r: &json::Root) -> Option<String> {
 
 fn emissive(r: &json::Root) -> Option<String> {
     material(r, |m| m.emissive_texture.is_some())
-}
-
-/// The first sampler (that a texture uses) for which `f` holds, as `sampler i "name"`.
-fn sampler(r: &json::Root, f: impl Fn(&json::texture::Sampler) -> bool) -> Option<String> {
-    r.textures.iter().filter_map(|t| t.sampler).map(|s| s.value()).find_map(|i| {
-        let s = r.samplers.get(i)?;
-        f(s).then(|| named("sampler", i, &s.name))
-    })
-}
-
-fn wrap_modes(r: &json::Root) -> Option<String> {
-    use json::texture::WrappingMode::Repeat;
-    sampler(r, |s| s.wrap_s != Checked::Valid(Repeat) || s.wrap_t != Checked::Valid(Repeat))
-}
-
-fn filters(r: &json::Root) -> Option<String> {
-    use json::texture::{MagFilter, MinFilter};
-    sampler(r, |s| {
-        s.mag_filter == Some(Checked::Valid(MagFilter::Nearest))
-            || matches!(
-                s.min_filter,
-                Some(Checked::Valid(
-                    MinFilter::Nearest
-                        | MinFilter::NearestMipmapNearest
-                        | MinFilter::NearestMipmapLinear
-                ))
-            )
-    })
 }
 
 #[cfg(test)]
