@@ -48,7 +48,7 @@ var<private> frame: Frame;
 @group(0) @binding(16) var<uniform> sky_lookup_uniform: SkyVolumeLookup;
 // The sky map (the background's draw alone reads it).
 @group(0) @binding(19) var<storage, read> skymap: array<vec4<f32>>;
-// The specular lobe's directional albedo table (scene::gpu::specular_albedo_texture) and its
+// The specular lobe's directional albedo table (scene::gpu::SpecularAlbedoTexture) and its
 // bilinear sampler.
 @group(0) @binding(17) var specular_albedo_t: texture_2d<f32>;
 @group(0) @binding(18) var table_sampler: sampler;

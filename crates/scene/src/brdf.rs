@@ -127,7 +127,7 @@ pub const SPECULAR_ALBEDO_SIZE: usize = 16;
 /// fastest, at grazing views) and read bilinearly. Renderers that light a rough lobe by
 /// irradiance alone (sky and bounce light: its radiance over the lobe taken as uniform,
 /// `E / pi`) reflect `E / pi` times it; the GPU reads the same table as a texture
-/// (`scene::gpu::specular_albedo_texture`), whose filtering is the same bilinear.
+/// (`scene::gpu::SpecularAlbedoTexture`), whose filtering is the same bilinear.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SpecularAlbedo {
     /// `(A, B)` per node, cosine fastest.
