@@ -10,6 +10,15 @@ use scene::gpu::{
 };
 use scene::{AlphaMask, Camera, Material, MaterialId, Mesh, MeshData, Scene, Texture};
 
+/// A GPU context for one test at a time: the G-buffer test counts the bind groups the
+/// process creates across a frame (`gpu_harness::bind_groups_created`, a process-wide
+/// count), which the other tests here would add to if they ran beside it.
+fn serial_gpu() -> (std::sync::MutexGuard<'static, ()>, Option<gpu_harness::GpuContext>) {
+    static SERIAL: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    let guard = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    (guard, gpu_test_context())
+}
+
 #[test]
 fn material_struct_has_the_size_of_its_wgsl_twin() {
     let size = gpu_harness::wgsl_struct_size(MATERIAL_INC_WGSL, "Material");
@@ -26,7 +35,7 @@ fn materials(ctx: &gpu_harness::GpuContext, gpu: &GpuScene) -> Vec<GpuMaterial> 
 
 #[test]
 fn uploaded_buffers_hold_the_scene_and_each_material_gets_one_group() {
-    let Some(ctx) = gpu_test_context() else { return };
+    let (_serial, Some(ctx)) = serial_gpu() else { return };
     let city = scene::Generated::City.build(1);
     let groups_before = gpu_harness::bind_groups_created();
     let gpu = GpuScene::new(&ctx.device, &ctx.queue, &city);
@@ -42,7 +51,7 @@ fn uploaded_buffers_hold_the_scene_and_each_material_gets_one_group() {
 
 #[test]
 fn an_empty_scene_binds_one_zeroed_material() {
-    let Some(ctx) = gpu_test_context() else { return };
+    let (_serial, Some(ctx)) = serial_gpu() else { return };
     let gpu = GpuScene::new(&ctx.device, &ctx.queue, &scene::Scene::new("empty"));
     assert_eq!(materials(&ctx, &gpu), vec![GpuMaterial::default()]);
     assert!(gpu.draws.is_empty() && gpu.triangle_count == 0);
@@ -113,6 +122,19 @@ struct Targets {
 }
 
 impl Targets {
+    /// One frame of `scene` from its camera into a `size` x `size` G-buffer, read back.
+    fn render(ctx: &gpu_harness::GpuContext, scene: &Scene, size: u32) -> Self {
+        let cam = scene.camera;
+        let gpu = GpuScene::new(&ctx.device, &ctx.queue, scene);
+        let gbuffer = GBuffer::new(&ctx.device, size, size);
+        let pass = GBufferPass::new(&ctx.device, &gpu).expect("the G-buffer pipelines");
+        let camera = GBufferCamera::new(cam.view_projection(), cam.position, cam.forward, 1.0);
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        pass.record(&ctx.queue, &mut encoder, &gbuffer, &gpu, &camera);
+        ctx.queue.submit([encoder.finish()]);
+        Self::read(ctx, &gbuffer)
+    }
+
     fn read(ctx: &gpu_harness::GpuContext, g: &GBuffer) -> Self {
         let read = |t: usize, bytes| {
             let aspect = wgpu::TextureAspect::All;
@@ -148,7 +170,7 @@ fn near(a: Vec4, b: Vec4, tol: f32) -> bool {
 
 #[test]
 fn gbuffer_pass_draws_depth_normals_materials_and_alpha_cut_outs() {
-    let Some(ctx) = gpu_test_context() else { return };
+    let (_serial, Some(ctx)) = serial_gpu() else { return };
     let scene = three_quads();
     let cam = scene.camera;
     let gpu = GpuScene::new(&ctx.device, &ctx.queue, &scene);
@@ -227,7 +249,7 @@ fn wgsl_brdf_equals_the_cpu_brdf() {
     use rand::{Rng, SeedableRng};
     use scene::gpu::BRDF_INC_WGSL;
     gpu_harness::validate_wgsl(BRDF_INC_WGSL).unwrap_or_else(|e| panic!("brdf: {e}"));
-    let Some(ctx) = gpu_test_context() else { return };
+    let (_serial, Some(ctx)) = serial_gpu() else { return };
     let mut rng = rand_pcg::Pcg64::seed_from_u64(5353);
     let dir = |rng: &mut rand_pcg::Pcg64, up: f32| {
         let z: f32 = rng.random_range(up..1.0);
@@ -311,7 +333,7 @@ fn wgsl_brdf_equals_the_cpu_brdf() {
 /// the maps both normals would be +z and the factors unchanged.
 #[test]
 fn gbuffer_applies_normal_maps_and_metallic_roughness_textures() {
-    let Some(ctx) = gpu_test_context() else { return };
+    let (_serial, Some(ctx)) = serial_gpu() else { return };
     let s = std::f32::consts::FRAC_1_SQRT_2;
     let mut scene = Scene::new("mapped quads");
     let mut one = |name: &str, v: Vec4| {
@@ -333,14 +355,7 @@ fn gbuffer_applies_normal_maps_and_metallic_roughness_textures() {
     scene.camera = Camera::look_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, 60.0, 1.0);
     scene.validate().expect("a valid scene");
     let cam = scene.camera;
-    let gpu = GpuScene::new(&ctx.device, &ctx.queue, &scene);
-    let gbuffer = GBuffer::new(&ctx.device, 32, 32);
-    let pass = GBufferPass::new(&ctx.device, &gpu).expect("the G-buffer pipelines");
-    let camera = GBufferCamera::new(cam.view_projection(), cam.position, cam.forward, 1.0);
-    let mut encoder = ctx.device.create_command_encoder(&Default::default());
-    pass.record(&ctx.queue, &mut encoder, &gbuffer, &gpu, &camera);
-    ctx.queue.submit([encoder.finish()]);
-    let t = Targets::read(&ctx, &gbuffer);
+    let t = Targets::render(&ctx, &scene, 32);
     // Half floats and an RGBA8 metallic: 2e-3 and one step of 1/255.
     let [_, normal, _, _] = t.at(&cam, Vec3::new(-0.5, 0.0, 0.0));
     assert!(near(normal, Vec4::new(s, 0.0, s, 0.6), 2e-3), "along +U: {normal}");
@@ -354,7 +369,7 @@ fn gbuffer_applies_normal_maps_and_metallic_roughness_textures() {
 #[test]
 fn wgsl_perturbed_normal_equals_the_cpu_one() {
     use rand::{Rng, SeedableRng};
-    let Some(ctx) = gpu_test_context() else { return };
+    let (_serial, Some(ctx)) = serial_gpu() else { return };
     let mut rng = rand_pcg::Pcg64::seed_from_u64(5354);
     let count = 512usize;
     let mut inputs: Vec<[f32; 4]> = Vec::new();
@@ -409,7 +424,7 @@ fn wgsl_perturbed_normal_equals_the_cpu_one() {
 /// linear) the mirrored copies would read the texels in the wrong order.
 #[test]
 fn gbuffer_reads_textures_with_their_wrap_modes_and_filter() {
-    let Some(ctx) = gpu_test_context() else { return };
+    let (_serial, Some(ctx)) = serial_gpu() else { return };
     let colours: Vec<Vec4> =
         (0..8).map(|i| Vec4::new((i % 4) as f32 / 3.0, (i / 4) as f32, 0.5, 1.0)).collect();
     let mut tex = Texture::from_linear("tiles", 4, 2, colours).expect("a 4x2 texture");
@@ -440,14 +455,7 @@ fn gbuffer_reads_textures_with_their_wrap_modes_and_filter() {
     scene.camera = Camera::look_at(Vec3::new(0.0, 0.0, 2.5), Vec3::ZERO, 60.0, 1.0);
     scene.validate().expect("a valid scene");
     let cam = scene.camera;
-    let gpu = GpuScene::new(&ctx.device, &ctx.queue, &scene);
-    let gbuffer = GBuffer::new(&ctx.device, 64, 64);
-    let pass = GBufferPass::new(&ctx.device, &gpu).expect("the G-buffer pipelines");
-    let camera = GBufferCamera::new(cam.view_projection(), cam.position, cam.forward, 1.0);
-    let mut encoder = ctx.device.create_command_encoder(&Default::default());
-    pass.record(&ctx.queue, &mut encoder, &gbuffer, &gpu, &camera);
-    ctx.queue.submit([encoder.finish()]);
-    let t = Targets::read(&ctx, &gbuffer);
+    let t = Targets::render(&ctx, &scene, 64);
     // Texel centres in u of the copies before, at and after [0, 1] (u in -1..2), and in v
     // inside and below the clamped range.
     for u in [-0.875, -0.375, 0.125, 0.625, 1.125, 1.625] {
