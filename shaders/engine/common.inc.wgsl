@@ -59,6 +59,7 @@ const COMPONENT_REFLECTIONS: u32 = 4u;
 const COMPONENT_POINT_LIGHTS: u32 = 5u;
 const COMPONENT_EMISSION: u32 = 6u;
 const COMPONENT_SKY_DIFFUSE: u32 = 7u;
+const COMPONENT_AREA_LIGHTS: u32 = 8u;
 // G-buffer channel views (engine::views::Channel): CHANNEL_BASE + the channel's index in
 // Channel::ALL (base colour, metallic, shading normal, geometry normal, depth, AO,
 // roughness).

@@ -13,7 +13,8 @@
 // include: engine/shading.inc.wgsl
 // include: engine/mirrored_sun.inc.wgsl
 // Deferred lighting of the main view (thesis 3.3, 4.2, 5.3.6-5.3.8): the sun with
-// stabilised-CSM PCSS shadows, point lights, sky light from the sky volume
+// stabilised-CSM PCSS shadows, point lights and the emissive surfaces' stand-ins (scene's
+// emitter_lights), sky light from the sky volume
 // and one diffuse bounce of sunlight (the LPV's lookup or the RSM gather, per pixel by the
 // crates' own kernels into `bounce`, irradiance; the sky volume's lookup here, by its crate's
 // snippet), SSAO on the indirect light only, emission, and the sky map where no geometry was
@@ -272,7 +273,8 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     var c: vec3<f32>;
     switch component {
         case COMPONENT_SUN_DIRECT: { c = base * sun; }
-        case COMPONENT_POINT_LIGHTS: { c = base * points; }
+        case COMPONENT_POINT_LIGHTS: { c = base * points.punctual; }
+        case COMPONENT_AREA_LIGHTS: { c = base * points.emitters; }
         // Irradiance at the surface, as the reference's SkyIrradiance image.
         case COMPONENT_SKY_IRRADIANCE: { c = sky_e * ao; }
         // The sky light the diffuse albedo reflects, as the reference's SkyDiffuse image.
@@ -283,7 +285,7 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
         case COMPONENT_REFLECTIONS: { c = glint; }
         default: {
             let ambient = (ambient_diffuse + ambient_specular) / PI * sky_e + diffuse / PI * bounce_e + glossy_l;
-            c = base * (sun + points + mirrored) + ambient * ao + m.emission.rgb + glint;
+            c = base * (sun + points.punctual + points.emitters + mirrored) + ambient * ao + m.emission.rgb + glint;
         }
     }
     return vec4<f32>(max(c, vec3<f32>(0.0)), 1.0);

@@ -128,7 +128,8 @@ fn traced_lighting(@builtin(global_invocation_id) id: vec3<u32>) {
         let roughness = h.base_color.w;
         let s = Surface(h.base_color.rgb, h.geometric.w, roughness, roughness < BRDF_TRACED_ROUGHNESS);
         let v = -h.dir.xyz;
-        var light = point_lights(s, n, v, p, gn);
+        let sums = point_lights(s, n, v, p, gn);
+        var light = sums.punctual + sums.emitters;
         if frame.sun_dir.w > 0.0 {
             let f = surface_brdf_cos(s, n, frame.sun_dir.xyz, v);
             if any(f > vec3<f32>(0.0)) {

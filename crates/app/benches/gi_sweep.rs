@@ -26,13 +26,17 @@
 //!   city's central crossing at eye height, 300 frames after the warm-up; time = mean frame
 //!   ms; settings: standard deviation, min, max, the worst frame's index, the share of frames
 //!   that ray traced, and the thesis's Table 7.3 figures beside ours.
-//! - `engine/components_{city,cornell_window,two_rooms,pbr_gallery}_320x180_{low,default,high}_<component>`:
+//! - `engine/components_{city,cornell_window,two_rooms,pbr_gallery,cornell_area}_320x180_{low,default,high}_<component>`:
 //!   the component ledger (`app::ledger`), one entry per lighting component of
 //!   `engine::components::COMPONENTS`: time = ms of the passes that produce the component in
 //!   a frame where every per-frame pass ran (camera nudged 1 mm after the warm-up); error =
 //!   the component image's relative RMS against the reference's same component
 //!   (`engine/reference_<scene>_320x180_<spp>spp_<component>`, 16 spp quick, 64 full);
 //!   settings: luminance ratio and the reference's own noise.
+//! - `engine/emitter_lights_{pbr_gallery,cornell_area}_320x180_{1,2,4,8,16}`: the emissive
+//!   surfaces' stand-ins by budget (`engine::Settings::emitter_lights`, default preset): error
+//!   = the `area_lights` component's rel RMS against the reference's, time = the passes that
+//!   make it; settings: the stand-ins made, the share of the emitters' power left out.
 //! - `engine/beyond_one_bounce_{city,cornell_window,two_rooms}_320x180_{low,default,high}`:
 //!   the reference's light of more than one bounce (`app::beyond`): error = its rel RMS
 //!   against the full reference, the floor of an engine that computes one bounce; settings:
@@ -520,6 +524,56 @@ fn traced_shading_race(
     }
 }
 
+/// The emitters' stand-ins by budget (`Settings::emitter_lights`) at the default preset:
+/// the `area_lights` component against the reference's.
+fn emitter_lights_race(
+    sweep: &mut Sweep,
+    which: Generated,
+    (w, h): (u32, u32),
+    (reference, rname): &(ReferenceRender, String),
+) {
+    let name = which.name();
+    let scene = which.build(1);
+    let mut camera = scene.camera;
+    camera.aspect = w as f32 / h as f32;
+    for budget in [1u32, 2, 4, 8, 16] {
+        let tag = format!("{name}_{w}x{h}_{budget}");
+        sweep.stage(&format!("emitter lights {tag}"));
+        let settings =
+            Settings { emitter_lights: budget, ..Settings::preset(Preset::Default, w, h) };
+        let mut r = renderer(&scene, settings);
+        r.set_camera(camera).expect("camera");
+        let lights = r.lights().iter().filter(|l| l.emitter.is_some()).count();
+        let left_out = r.emitter_power_left_out();
+        warm_up(&mut r);
+        r.set_component(Some(Component::AreaLights));
+        r.set_camera(nudged(&camera, 1)).expect("camera");
+        let frame = render(&mut r);
+        let image = app::image_of(&frame.hdr);
+        let f = app::ledger::figures("all", &image, reference, 0..image.pixels.len(), 1.0);
+        let software = r.is_software();
+        sweep.entry(
+            Entry::new(
+                format!("engine/emitter_lights_{tag}"),
+                format!("emitter lights {name}"),
+                passes_ms(&frame.report, Component::AreaLights),
+            )
+            .setting("scene", name)
+            .setting("budget", budget)
+            .setting("stand_ins", lights)
+            .setting("power_left_out", left_out)
+            .setting("luminance_ratio", f.luminance_ratio)
+            .setting("software_adapter", software)
+            .error("rel_rms", f.rel_rms, rname)
+            .threads(rayon::current_num_threads())
+            .note(timing_note(
+                software,
+                "the passes that make the area_lights component (the cube maps rendered once, reused after)",
+            )),
+        );
+    }
+}
+
 fn timing_note(software: bool, what: &str) -> String {
     if software {
         format!(
@@ -901,11 +955,16 @@ fn main() {
         if w == 320 {
             let spp = if sweep.quick() { 16 } else { 64 };
             let scenes = [Generated::City, Generated::CornellWindow, Generated::TwoRooms];
-            for which in scenes.into_iter().chain([Generated::PbrGallery]) {
+            let lit_by_emitters = [Generated::PbrGallery, Generated::CornellArea];
+            for which in scenes.into_iter().chain(lit_by_emitters) {
                 let refs = components(&mut sweep, which, w, h, spp);
                 let bounce = COMPONENTS.iter().position(|&c| c == Component::SunIndirectDiffuse);
-                if let (Some(k), true) = (bounce, which != Generated::PbrGallery) {
+                if let (Some(k), true) = (bounce, scenes.contains(&which)) {
                     indirect_race(&mut sweep, which, (w, h), &refs[k]);
+                }
+                let area = COMPONENTS.iter().position(|&c| c == Component::AreaLights);
+                if let (Some(k), true) = (area, lit_by_emitters.contains(&which)) {
+                    emitter_lights_race(&mut sweep, which, (w, h), &refs[k]);
                 }
                 let reflections = COMPONENTS.iter().position(|&c| c == Component::Reflections);
                 // Only the city has mirrors and glass in view.

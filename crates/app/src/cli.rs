@@ -45,6 +45,9 @@ pub struct RenderJob {
     pub mirrored_sun: bool,
     /// Sky-bounce VPLs across the view for the LPV (`engine::Settings::sky_bounce`; 0 off).
     pub sky_bounce: u32,
+    /// Point lights standing for the emissive surfaces (`engine::Settings::emitter_lights`;
+    /// `None`: the preset's).
+    pub emitter_lights: Option<u32>,
     /// The LPV's glossy lookup, cells marched (`engine::Settings::lpv_glossy`; 0 off).
     pub lpv_glossy: u32,
     /// Where the traced rays' surfaces are lit (`engine::Settings::traced_shading`).
@@ -95,6 +98,7 @@ impl Default for RenderJob {
             sun_glints: false,
             mirrored_sun: true,
             sky_bounce: 0,
+            emitter_lights: None,
             lpv_glossy: 0,
             traced_shading: engine::TracedShading::Cpu,
             frames: 24,
@@ -405,11 +409,21 @@ pub fn run(job: &RenderJob) -> Result<RunInfo, EngineError> {
         sun_glints: job.sun_glints,
         mirrored_sun: job.mirrored_sun,
         sky_bounce: job.sky_bounce,
+        emitter_lights: job.emitter_lights.unwrap_or(preset.emitter_lights),
         lpv_glossy: job.lpv_glossy,
         traced_shading: job.traced_shading,
         ..preset
     };
     let mut renderer = Renderer::new(scene, settings)?;
+    let left_out = renderer.emitter_power_left_out();
+    if left_out > 0.0 {
+        eprintln!(
+            "warning: {:.1}% of the emissive surfaces' power lights nothing in the engine: \
+             more emitters than --emitter-lights {} stand-ins (the reference has all of it)",
+            100.0 * left_out,
+            renderer.settings().emitter_lights
+        );
+    }
     std::fs::create_dir_all(&job.out).map_err(|e| crate::io_err(&job.out, e))?;
     let bar = progress_bar(job.progress, job.frames as u64, "frames");
     let (mut frame_ms, mut transfers) = (Vec::new(), Vec::new());

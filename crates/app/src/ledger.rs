@@ -365,7 +365,7 @@ impl Ledger {
                 s,
                 "\n### beyond one bounce\n\nThe reference's full image less the sum of its \
                  one-bounce components (sun, one bounce of sun, sky reflected diffusely, \
-                 reflections, point lights, emission) over the {} pixels where a surface is \
+                 reflections, point lights, area lights, emission) over the {} pixels where a surface is \
                  seen: the light of more than one bounce, which the engine does not compute. \
                  Luminance share {:.3}; rel RMS against the full image {:.3} (the references' \
                  own noise alone: {:.3}), the error an engine exact in every one-bounce \

@@ -11,6 +11,7 @@
 //! | `sky_diffuse` | `(1 - g) albedo / pi E_sky ao`: the sky light the full frame reflects | `rho_d / pi` times the occluded sky irradiance |
 //! | `reflections` | what the combine pass adds (traced mirror + glass radiance with Fresnel weights), and with `Settings::sun_glints` the sun's glint in those parts | light through the first surface's delta part, full GI after it |
 //! | `point_lights` | `w_b f_base cos I / d² V_cube` | the same with one shadow ray per light |
+//! | `area_lights` | the same over the emissive surfaces' stand-ins (`scene::emitter_lights`: `I = L A cos`, `1 / (d² + A / pi)`) | emitter samples over the emissive triangles, one shadow ray each |
 //! | `emission` | the first surface's emission | the same |
 //! | `full` | the frame | the path-traced frame |
 //!
@@ -30,12 +31,13 @@ use frame_scheduler::{FrameReport, Outcome, PassRecord};
 pub use vocab::Component;
 
 /// The components the engine can show, in the order of the ledger's rows.
-pub const COMPONENTS: [Component; 7] = [
+pub const COMPONENTS: [Component; 8] = [
     Component::SunDirect,
     Component::SkyIrradiance,
     Component::SunIndirectDiffuse,
     Component::Reflections,
     Component::PointLights,
+    Component::AreaLights,
     Component::Emission,
     Component::Full,
 ];
@@ -51,6 +53,7 @@ pub fn code(component: Option<Component>) -> u32 {
         Some(Component::PointLights) => 5,
         Some(Component::Emission) => 6,
         Some(Component::SkyDiffuse) => 7,
+        Some(Component::AreaLights) => 8,
     }
 }
 
@@ -73,7 +76,9 @@ pub fn passes(component: Component) -> &'static [&'static str] {
             pass::TRACED_LIGHTING,
             pass::COMBINE,
         ],
-        Component::PointLights => &[pass::POINT_SHADOWS, pass::GBUFFER, pass::LIGHTING],
+        Component::PointLights | Component::AreaLights => {
+            &[pass::POINT_SHADOWS, pass::GBUFFER, pass::LIGHTING]
+        }
         Component::Emission => &[pass::GBUFFER, pass::LIGHTING],
         Component::Full => &[
             pass::SKY_MAP,

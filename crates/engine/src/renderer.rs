@@ -231,6 +231,18 @@ impl Renderer {
         &self.scene
     }
 
+    /// The point lights the frame is lit with: the scene's, then the stand-ins for its
+    /// emissive surfaces (`Settings::emitter_lights`, [`scene::emitter_lights`]).
+    pub fn lights(&self) -> &[scene::PointLight] {
+        &self.state.point_lights
+    }
+
+    /// The share of the emissive surfaces' power that no stand-in carries, because
+    /// `Settings::emitter_lights` held fewer lights than the emitters made (0: all of it).
+    pub fn emitter_power_left_out(&self) -> f32 {
+        self.state.emitter_power_left_out
+    }
+
     pub fn camera(&self) -> &scene::Camera {
         &self.camera
     }
@@ -387,7 +399,8 @@ impl Renderer {
         let t0 = Instant::now();
         // What moved between frames (uploads at creation, a sun change) is not this frame's.
         self.state.gpu.transfers.take();
-        let mut needs = scene::SceneNeeds::of(&self.scene, &self.camera);
+        let lights = &self.state.point_lights;
+        let mut needs = scene::SceneNeeds::with_lights(&self.scene, &self.camera, lights);
         self.effects.apply(&mut needs);
         let dt = self
             .fixed_dt

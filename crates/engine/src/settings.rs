@@ -160,6 +160,10 @@ pub struct Settings {
     pub pcss_pcf_taps: u32,
     /// Point-light shadows (cube maps) are rendered when a light is in range.
     pub point_shadow_resolution: u32,
+    /// At most this many point lights stand for the scene's emissive surfaces
+    /// ([`scene::emitter_lights`]), each shadowed by its cube like a point light; 0: emissive
+    /// surfaces light nothing (only the reference sees their light).
+    pub emitter_lights: u32,
     /// Sky volume: hemisphere samples per point and layers filled per frame (thesis 5.3.5:
     /// one layer per frame).
     pub sky_samples: usize,
@@ -283,6 +287,7 @@ impl Settings {
             pcss_blocker_taps: 16,
             pcss_pcf_taps: 16,
             point_shadow_resolution: 256,
+            emitter_lights: 8,
             sky_samples: 100,
             sky_layers_per_frame: 4,
             sky_map_size: 256,
@@ -330,6 +335,7 @@ impl Settings {
             pcss_blocker_taps: 8,
             pcss_pcf_taps: 8,
             point_shadow_resolution: 128,
+            emitter_lights: 4,
             sky_samples: 64,
             sky_layers_per_frame: 16,
             sky_map_size: 128,
@@ -363,6 +369,7 @@ impl Settings {
             pcss_blocker_taps: 32,
             pcss_pcf_taps: 32,
             point_shadow_resolution: 512,
+            emitter_lights: 16,
             sky_samples: 256,
             lpv: lpv::LpvSettings {
                 lookup_offset_cells: ENGINE_LPV_LOOKUP_OFFSET,
@@ -419,6 +426,9 @@ impl Settings {
         }
         if self.lpv_glossy > 16 {
             return bad(format!("{} glossy LPV steps (0..16)", self.lpv_glossy));
+        }
+        if self.emitter_lights > 64 {
+            return bad(format!("{} emitter lights (0..64)", self.emitter_lights));
         }
         if self.sky_bounce > 1024 {
             return bad(format!("{} sky-bounce VPL columns (0..1024)", self.sky_bounce));

@@ -6,7 +6,7 @@ use crate::passes::{
     display::{accumulate_pass, tone_map_pass},
     lighting::LightingPass,
     lpv::LpvState,
-    point_shadows::{PointShadowPass, gpu_lights},
+    point_shadows::{PointShadowPass, gpu_lights, scene_lights},
     radiance_cache::CacheState,
     rsm_gather::RsmGatherState,
     shadow::ShadowPass,
@@ -43,7 +43,11 @@ pub struct State {
     pub frame: wgpu::Buffer,
     pub lights: wgpu::Buffer,
     pub point_shadow: PointShadowPass,
+    /// The scene's point and spot lights, then the stand-ins for its emissive surfaces
+    /// (`Settings::emitter_lights`).
     pub point_lights: Vec<scene::PointLight>,
+    /// The share of the emissive surfaces' power no stand-in carries (over budget).
+    pub emitter_power_left_out: f32,
     /// The scene's planar reflectors (`crate::mirrored_sun`), for the traced rays' shading.
     pub reflectors: Vec<crate::mirrored_sun::Reflector>,
 }
@@ -138,7 +142,8 @@ impl State {
         let targets = GBufferTargets::new(device, settings.width, settings.height);
         let sky = if scene.sky { Some(SkySetup::new(scene)?) } else { None };
         let cube_size = settings.point_shadow_resolution;
-        let mut lights = gpu_lights(&scene.point_lights, cube_size);
+        let (point_lights, emitter_power_left_out) = scene_lights(scene, settings.emitter_lights);
+        let mut lights = gpu_lights(&point_lights, cube_size);
         if lights.is_empty() {
             // Bindings need one element; the frame uniform's light count stays 0.
             lights.push(bytemuck::Zeroable::zeroed());
@@ -160,10 +165,11 @@ impl State {
             trace: TraceScene::new(scene)?,
             frame,
             lights: storage_buffer(device, "point lights", bytemuck::cast_slice(&lights)),
-            point_shadow: PointShadowPass::new(device, &scene.point_lights, cube_size)?,
+            point_shadow: PointShadowPass::new(device, &point_lights, cube_size)?,
             sky,
             bounds: scene.bounds(),
-            point_lights: scene.point_lights.clone(),
+            point_lights,
+            emitter_power_left_out,
             reflectors,
             scene: buffers,
             targets,

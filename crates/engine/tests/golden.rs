@@ -31,9 +31,8 @@
 //! whose source exists but cannot reach the view, with the reason, and asserts them exactly
 //! zero too.
 //!
-//! `cornell_area` has none: it is lit only by an emissive area light, which the engine does
-//! not model (its frame is black); it is the reference path tracer's validation scene
-//! (`crates/reference/tests/scene.rs`), not the engine's.
+//! `cornell_area` is lit only by its ceiling emitter, which the engine lights with through
+//! its stand-ins (`scene::emitter_lights`): its `area_lights` golden holds that light.
 //!
 //! **Blessing**: `SEREIN_BLESS=1 cargo test -p serein-engine --test golden` rewrites every
 //! golden of the scenes it renders (the `.exr`s, removes those of components that must be
@@ -224,7 +223,9 @@ fn black_by_content(scene: &Scene, component: Component) -> Option<&'static str>
         Component::PointLights if scene.point_lights.is_empty() => {
             Some("the scene has no point lights")
         }
-        Component::Emission if !scene.materials.iter().any(|m| m.is_emissive()) => {
+        Component::Emission | Component::AreaLights
+            if !scene.materials.iter().any(|m| m.is_emissive()) =>
+        {
             Some("no material emits")
         }
         Component::Reflections
@@ -237,7 +238,8 @@ fn black_by_content(scene: &Scene, component: Component) -> Option<&'static str>
 }
 
 /// Components whose source exists but cannot reach the view, with why: exactly black too.
-const BLACK_IN_VIEW: &[(&str, Component, &str)] = &[];
+const BLACK_IN_VIEW: &[(&str, Component, &str)] =
+    &[("cornell_area", Component::Emission, "its ceiling emitter is above the view")];
 
 /// Why the image `name` (of `g`'s `component`) must be exactly black, if it must.
 fn must_be_black(g: Generated, scene: &Scene, component: Component) -> Option<&'static str> {
@@ -430,6 +432,11 @@ fn golden_two_rooms() {
 #[test]
 fn golden_plane_box() {
     check(Generated::PlaneBox);
+}
+
+#[test]
+fn golden_cornell_area() {
+    check(Generated::CornellArea);
 }
 
 #[test]

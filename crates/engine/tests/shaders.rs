@@ -27,6 +27,7 @@ fn view_codes_match_the_shaders() {
         ("COMPONENT_POINT_LIGHTS", View::Component(Component::PointLights)),
         ("COMPONENT_EMISSION", View::Component(Component::Emission)),
         ("COMPONENT_SKY_DIFFUSE", View::Component(Component::SkyDiffuse)),
+        ("COMPONENT_AREA_LIGHTS", View::Component(Component::AreaLights)),
         ("CHANNEL_BASE", View::Channel(Channel::ALL[0])),
     ];
     for (name, view) in pairs {

@@ -162,6 +162,21 @@ fn emitters_direct(
     fv * s.radiance * (cos / s.pdf * balance(s.pdf, bsdf_pdf(s.wi)))
 }
 
+/// Emitter light reflected at a surface point by `f`, from emitter samples alone (no MIS:
+/// every emitter with an area is found by them), whatever `settings.emitter_sampling` says:
+/// the [`Component::AreaLights`] estimate.
+fn emitters_alone(
+    world: &World,
+    p: Vec3,
+    n: Vec3,
+    settings: &PathSettings,
+    rng: &mut Rng,
+    f: impl Fn(Vec3) -> Vec3,
+) -> Vec3 {
+    let settings = PathSettings { emitter_sampling: true, ..*settings };
+    emitters_direct(world, p, n, &settings, rng, f, |_| 0.0)
+}
+
 /// The vertex a path segment left from, for weighting the emission it finds: its position
 /// and the solid-angle density its direction was sampled with (`None`: a delta bounce or
 /// the eye, where no emitter sample was taken, so emission counts fully).
@@ -349,6 +364,9 @@ pub(crate) fn irradiance(
             }
         }
         Component::PointLights => point_lights(world, p, n, |_| Vec3::ONE),
+        Component::AreaLights => {
+            PI * emitters_alone(world, p, n, settings, rng, |_| Vec3::ONE / PI)
+        }
         Component::Emission => {
             let wi = cosine_hemisphere(n, rng.next_2d());
             let o = world.offset(p, n, wi);
@@ -410,6 +428,9 @@ pub(crate) fn radiance(
                 * irradiance(world, Component::SkyIrradiance, h.position, n, settings, None, rng)
         }
         Component::PointLights => point_lights(world, h.position, n, |wi| m.eval(n, wo, wi)),
+        Component::AreaLights => {
+            emitters_alone(world, h.position, n, settings, rng, |wi| m.eval(n, wo, wi))
+        }
         Component::Emission => m.emission,
         Component::Reflections => {
             if settings.max_bounces == 0 {

@@ -46,7 +46,8 @@
 //! - **components** that match one technique each ([`Component`]): direct sun with area
 //!   shadows (CSM/PCSS), one-bounce diffuse from the sun (LPV), occluded sky irradiance
 //!   (sky volume), mirror reflections and refractions (ray-traced reflections), shadowed
-//!   point lights, emission seen directly, full image;
+//!   point lights, direct light of emissive surfaces (area lights, by emitter samples alone),
+//!   emission seen directly, full image;
 //! - **point queries** ([`irradiance`], [`radiance`]): positions and normals (or rays) in,
 //!   an [`Estimate`] with its standard error out;
 //! - **progressive images** ([`Renderer`]): 16x16 tiles on rayon, one seeded random stream

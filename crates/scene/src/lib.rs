@@ -9,7 +9,8 @@
 //! engine, 3.3.2 and Table 3.1, whose parameters the constructors convert; smooth surfaces'
 //! reflections traced as the thesis's were; see [`Material`]) with transmission, normal maps
 //! and alpha testing, the sun (a direction, or a date, time and place through
-//! [`atmosphere::solar_position`]), point and spot lights, occlusion quads (thesis 5.3.3, with the
+//! [`atmosphere::solar_position`]), point and spot lights (and emissive surfaces as a few
+//! point lights for renderers that light with them, [`emitter_lights`]), occlusion quads (thesis 5.3.3, with the
 //! opacity and tint its future work proposes; derived from the geometry for scenes that
 //! author none, [`Scene::sky_occluders`]), and where the sky volume and LPV cascades go.
 //!
@@ -43,6 +44,7 @@ pub mod brdf;
 mod camera;
 mod change;
 mod defaults;
+mod emitters;
 mod error;
 #[cfg(feature = "generate")]
 mod generate;
@@ -70,6 +72,7 @@ pub use defaults::{
     DEFAULT_SUN_DATE, DEFAULT_SUN_LATITUDE_DEG, DEFAULT_SUN_LONGITUDE_DEG, DEFAULT_SUN_UTC_HOURS,
     default_sun, sun_time_phrase,
 };
+pub use emitters::{EmitterLights, SPLIT_FRACTION, emitter_lights};
 pub use error::{Cause, LoadError, LoadErrorKind, SceneError};
 #[cfg(feature = "generate")]
 pub use generate::{
@@ -80,8 +83,8 @@ pub use generate::{
     pbr_gallery_sphere_center, plane_box, two_rooms,
 };
 pub use light::{
-    PointLight, SOLAR_ILLUMINANCE_LUX, SUN_ANGULAR_RADIUS, SpotCone, Sun, SunPosition,
-    from_photometric,
+    EmitterShape, PointLight, SOLAR_ILLUMINANCE_LUX, SUN_ANGULAR_RADIUS, SpotCone, Sun,
+    SunPosition, from_photometric,
 };
 #[cfg(feature = "load")]
 pub use load::gltf::{load_gltf, load_gltf_slice};

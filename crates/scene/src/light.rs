@@ -114,6 +114,22 @@ pub struct PointLight {
     pub casts_shadows: bool,
     /// `Some`: a spot light, lighting only within its cone.
     pub spot: Option<SpotCone>,
+    /// `Some`: the light stands for a patch of emissive surface (`crate::emitter_lights`):
+    /// [`PointLight::color`] is its intensity along the patch's normal, sent along a cosine
+    /// lobe with a softened inverse square. A renderer's stand-in, never part of a scene's
+    /// own lights ([`crate::Scene::validate`] refuses it there).
+    pub emitter: Option<EmitterShape>,
+}
+
+/// The patch of emissive surface a point light stands for ([`PointLight::emitter`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EmitterShape {
+    /// Unit normal of the emitting side.
+    pub normal: Vec3,
+    /// The area the patch shows along its normal, m².
+    pub area: f32,
+    /// Both sides emit (a double-sided material).
+    pub two_sided: bool,
 }
 
 /// A spot light's cone, as glTF's `KHR_lights_punctual` describes it: full intensity within
@@ -166,7 +182,20 @@ impl SpotCone {
 
 impl PointLight {
     pub fn new(name: impl Into<String>, position: Vec3, color: Vec3, radius: f32) -> Self {
-        Self { name: name.into(), position, color, radius, casts_shadows: true, spot: None }
+        let name = name.into();
+        Self { name, position, color, radius, casts_shadows: true, spot: None, emitter: None }
+    }
+
+    /// The stand-in at `position` for a patch of emissive surface of emitted radiance
+    /// `radiance` (its intensity along the normal is `radiance * shape.area`).
+    pub fn emitter(
+        name: impl Into<String>,
+        position: Vec3,
+        radiance: Vec3,
+        shape: EmitterShape,
+        radius: f32,
+    ) -> Self {
+        Self { emitter: Some(shape), ..Self::new(name, position, radiance * shape.area, radius) }
     }
 
     /// A spot light at `position` pointing along `direction` (normalised here), with the
@@ -188,9 +217,27 @@ impl PointLight {
     }
 
     /// The factor of the intensity sent in unit direction `dir` from the light: 1 for an
-    /// omnidirectional light, the cone's [`SpotCone::falloff`] for a spot.
+    /// omnidirectional light, the cone's [`SpotCone::falloff`] for a spot, the cosine to the
+    /// normal (its absolute value when two-sided, else clamped at 0) for an emitter's stand-in.
     pub fn falloff(&self, dir: Vec3) -> f32 {
-        self.spot.map_or(1.0, |c| c.falloff(dir))
+        match (&self.emitter, &self.spot) {
+            (Some(e), _) if e.two_sided => e.normal.dot(dir).abs(),
+            (Some(e), _) => e.normal.dot(dir).max(0.0),
+            (None, Some(c)) => c.falloff(dir),
+            (None, None) => 1.0,
+        }
+    }
+
+    /// The inverse square law at squared distance `d2`: `1 / d2`, softened for an emitter's
+    /// stand-in to `1 / (d2 + area / pi)` (exact on the axis of a disk of that area).
+    pub fn inverse_square(&self, d2: f32) -> f32 {
+        1.0 / (d2 + self.softening())
+    }
+
+    /// What [`PointLight::inverse_square`] adds to the squared distance: an emitter's
+    /// `area / pi`, else 0.
+    pub fn softening(&self) -> f32 {
+        self.emitter.map_or(0.0, |e| e.area / std::f32::consts::PI)
     }
 
     pub fn validate(&self) -> Result<(), SceneError> {
@@ -206,6 +253,15 @@ impl PointLight {
         }
         if let Some(c) = &self.spot {
             c.validate().map_err(|r| SceneError::invalid(el(), r))?;
+        }
+        if let Some(e) = &self.emitter {
+            if !e.normal.is_finite() || (e.normal.length() - 1.0).abs() > 1e-3 {
+                let reason = format!("emitter normal {} is not a unit vector", e.normal);
+                return Err(SceneError::invalid(el(), reason));
+            }
+            if !(e.area > 0.0 && e.area.is_finite()) {
+                return Err(SceneError::invalid(el(), format!("emitter area {}", e.area)));
+            }
         }
         Ok(())
     }

@@ -105,6 +105,13 @@ fn plural(n: usize, one: &str, many: &str) -> String {
 impl SceneNeeds {
     /// Decides every effect for `scene` seen from `camera`.
     pub fn of(scene: &Scene, camera: &Camera) -> Self {
+        Self::with_lights(scene, camera, &scene.point_lights)
+    }
+
+    /// [`SceneNeeds::of`] for a renderer that lights `scene` with `lights` in place of its
+    /// own point lights (the engine adds stand-ins for the emissive surfaces,
+    /// [`crate::emitter_lights`]).
+    pub fn with_lights(scene: &Scene, camera: &Camera, lights: &[crate::PointLight]) -> Self {
         let s = survey(scene, camera);
         let sun =
             scene.sun.as_ref().map(|sun| (sun.elevation_deg(), sun.angular_radius.to_degrees()));
@@ -184,8 +191,7 @@ impl SceneNeeds {
             rt("refractions", "transparent", material_use(scene, &s, Material::is_transparent));
 
         let frustum = camera.frustum();
-        let casters: Vec<_> = scene
-            .point_lights
+        let casters: Vec<_> = lights
             .iter()
             .filter(|l| l.casts_shadows && l.color.max_element() > 0.0 && l.radius > 0.0)
             .collect();
@@ -199,12 +205,12 @@ impl SceneNeeds {
                     })
             })
             .count();
-        let point_light_shadows = if scene.point_lights.is_empty() {
+        let point_light_shadows = if lights.is_empty() {
             Need::no("no point lights".into())
         } else if casters.is_empty() {
             Need::no(format!(
                 "{}, none casts shadows",
-                plural(scene.point_lights.len(), "point light", "point lights")
+                plural(lights.len(), "point light", "point lights")
             ))
         } else if affecting == 0 {
             Need::no(format!(
@@ -212,8 +218,14 @@ impl SceneNeeds {
                 plural(casters.len(), "shadow-casting point light", "shadow-casting point lights")
             ))
         } else {
+            let stand_ins = casters.iter().filter(|l| l.emitter.is_some()).count();
+            let of_which = if stand_ins > 0 {
+                format!(" ({stand_ins} standing for emissive surfaces)")
+            } else {
+                String::new()
+            };
             Need::yes(format!(
-                "cube shadows: {}, {affecting} reach geometry in view",
+                "cube shadows: {}{of_which}, {affecting} reach geometry in view",
                 plural(casters.len(), "shadow-casting point light", "shadow-casting point lights")
             ))
         };

@@ -319,6 +319,11 @@ impl Scene {
         }
         for l in &self.point_lights {
             l.validate()?;
+            if l.emitter.is_some() {
+                let reason = "an emitter's stand-in is derived from emissive surfaces \
+                              (scene::emitter_lights), not a scene's own light";
+                return Err(SceneError::invalid(format!("point light \"{}\"", l.name), reason));
+            }
         }
         for (i, q) in self.occlusion_quads.iter().enumerate() {
             q.validate()

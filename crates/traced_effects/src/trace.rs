@@ -530,7 +530,7 @@ impl Tracer<'_> {
                 } else {
                     1.0
                 };
-                add(l, finite(light.color) * (through * falloff / d2));
+                add(l, finite(light.color) * (through * falloff * light.inverse_square(d2)));
             }
         }
         reflected

@@ -31,11 +31,14 @@ pub enum Component {
     /// sky irradiance (what a real-time engine makes of its sky volume's lookup). Images:
     /// reflected radiance; points: the occluded sky irradiance, as [`Self::SkyIrradiance`].
     SkyDiffuse,
+    /// Direct light of emissive surfaces (area lights), shadowed: the truth for emitters
+    /// lighting a real-time frame. Images: reflected radiance; points: irradiance.
+    AreaLights,
 }
 
 impl Component {
     /// Every component.
-    pub const ALL: [Self; 8] = [
+    pub const ALL: [Self; 9] = [
         Self::SunDirect,
         Self::SunIndirectDiffuse,
         Self::SkyIrradiance,
@@ -44,6 +47,7 @@ impl Component {
         Self::PointLights,
         Self::Emission,
         Self::SkyDiffuse,
+        Self::AreaLights,
     ];
 
     /// The components a one-bounce engine computes, in radiance: their sum over the pixels
@@ -52,12 +56,13 @@ impl Component {
     /// through mirrors onto diffuse surfaces, light of emitters and point lights after a
     /// bounce). Every path through the first surface's mirror or glass part is in
     /// [`Self::Reflections`].
-    pub const ONE_BOUNCE: [Self; 6] = [
+    pub const ONE_BOUNCE: [Self; 7] = [
         Self::SunDirect,
         Self::SunIndirectDiffuse,
         Self::SkyDiffuse,
         Self::Reflections,
         Self::PointLights,
+        Self::AreaLights,
         Self::Emission,
     ];
 
@@ -72,6 +77,7 @@ impl Component {
             Self::PointLights => "point_lights",
             Self::Emission => "emission",
             Self::SkyDiffuse => "sky_diffuse",
+            Self::AreaLights => "area_lights",
         }
     }
 

@@ -29,7 +29,7 @@ struct Args {
     #[arg(long)]
     reference: Option<u32>,
     /// With --reference: also the component ledger: per lighting component (sun direct, sky
-    /// irradiance, LPV bounce, reflections, point lights, emission, full) and per named
+    /// irradiance, LPV bounce, reflections, point lights, area lights, emission, full) and per named
     /// region, the engine against the reference; writes `engine_/reference_/difference_<c>.exr`,
     /// components.png (contact sheet) and a ledger section in report.md / report.json.
     #[arg(long, requires = "reference")]
@@ -57,6 +57,11 @@ struct Args {
     /// `engine::Settings::sky_bounce`); 0: off, as in the presets.
     #[arg(long, default_value_t = 0)]
     sky_bounce: u32,
+    /// Point lights that stand for the scene's emissive surfaces, shadowed by cube maps
+    /// (`engine::Settings::emitter_lights`, `scene::emitter_lights`); 0: emitters light
+    /// nothing. Default: the preset's (low 4, default 8, high 16).
+    #[arg(long)]
+    emitter_lights: Option<u32>,
     /// The LPV's glossy lookup, cells marched (`--indirect lpv`; see
     /// `engine::Settings::lpv_glossy`); 0: off, as in the presets.
     #[arg(long, default_value_t = 0)]
@@ -98,6 +103,7 @@ fn main() -> anyhow::Result<()> {
         sun_glints: a.sun_glints,
         mirrored_sun: !a.no_mirrored_sun,
         sky_bounce: a.sky_bounce,
+        emitter_lights: a.emitter_lights,
         lpv_glossy: a.lpv_glossy,
         traced_shading: a.traced_shading,
         frames: a.frames,

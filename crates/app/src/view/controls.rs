@@ -179,7 +179,7 @@ mod tests {
     #[test]
     fn views_and_presets_cycle_through_all_and_back() {
         let all = views();
-        assert_eq!(all.len(), 1 + 6 + Channel::ALL.len());
+        assert_eq!(all.len(), 1 + 7 + Channel::ALL.len());
         let mut v = View::Frame;
         for expected in all.iter().skip(1).chain([&View::Frame]) {
             v = next_view(v);

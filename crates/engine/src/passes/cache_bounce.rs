@@ -87,7 +87,7 @@ impl SceneHitShading<'_> {
                 let lit = cos > 0.0 && falloff > 0.0;
                 let blocked = || self.trace.occluded(&Ray::new(origin, l), d - eps);
                 (lit && !(light.casts_shadows && blocked()))
-                    .then(|| light.color * (falloff * cos / d2))
+                    .then(|| light.color * (falloff * cos * light.inverse_square(d2)))
             })
             .sum()
     }

@@ -24,8 +24,31 @@ pub struct GpuPointLight {
     /// falloff's scale, w its offset, so that the falloff in unit direction `dir` from the
     /// light is `saturate(dot(xyz, dir) + w)²`; `(0, 0, 0, 1)` for a point light.
     pub cone: [f32; 4],
+    /// An emitter's stand-in ([`scene::PointLight::emitter`]): x [`scene::PointLight::softening`],
+    /// y the lobe (`LOBE_*` in `shading.inc.wgsl`: 0 the cone, 1 a one-sided cosine about the
+    /// normal in `cone.xyz`, 2 two-sided); zero for a point or spot light.
+    pub emitter: [f32; 4],
 }
-const _: () = assert!(std::mem::size_of::<GpuPointLight>() == 64);
+const _: () = assert!(std::mem::size_of::<GpuPointLight>() == 80);
+
+/// How far in front of a one-sided emissive patch its stand-in sits (metres): clear of the
+/// patch in its own cube, and a small change of the distance to what it lights.
+pub const EMITTER_OFFSET: f32 = 0.01;
+
+/// The lights the engine lights `scene` with: its point and spot lights, then at most
+/// `budget` stand-ins for its emissive surfaces ([`scene::emitter_lights`], placed
+/// [`EMITTER_OFFSET`] in front of their patches), with the share of the emitters' power the
+/// budget left out.
+pub fn scene_lights(scene: &scene::Scene, budget: u32) -> (Vec<scene::PointLight>, f32) {
+    let mut lights = scene.point_lights.clone();
+    if !scene.materials.iter().any(scene::Material::is_emissive) {
+        return (lights, 0.0);
+    }
+    let emitters =
+        scene::emitter_lights(scene, &scene.triangles(), budget as usize, EMITTER_OFFSET);
+    lights.extend(emitters.lights);
+    (lights, emitters.power_left_out)
+}
 
 /// Whether a light gets a cube: it casts shadows and its range is longer than the near plane.
 fn casts(l: &scene::PointLight) -> bool {
@@ -49,9 +72,17 @@ pub fn gpu_lights(lights: &[scene::PointLight], size: u32) -> Vec<GpuPointLight>
                 position: l.position.extend(l.radius).to_array(),
                 color: l.color.extend(index).to_array(),
                 shadow: [CUBE_NEAR, l.radius, size as f32, 0.0],
-                cone: l.spot.map_or([0.0, 0.0, 0.0, 1.0], |c| {
-                    let (scale, offset) = c.scale_offset();
-                    (c.direction * scale).extend(offset).to_array()
+                cone: match (&l.emitter, &l.spot) {
+                    (Some(e), _) => e.normal.extend(0.0).to_array(),
+                    (None, Some(c)) => {
+                        let (scale, offset) = c.scale_offset();
+                        (c.direction * scale).extend(offset).to_array()
+                    }
+                    (None, None) => [0.0, 0.0, 0.0, 1.0],
+                },
+                emitter: l.emitter.map_or([0.0; 4], |e| {
+                    let lobe = if e.two_sided { 2.0 } else { 1.0 };
+                    [l.softening(), lobe, 0.0, 0.0]
                 }),
             }
         })
