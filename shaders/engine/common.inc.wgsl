@@ -103,24 +103,30 @@ struct Surface {
     roughness: f32,
     // the material's specular lobe is the ray tracer's (material_is_smooth)
     traced_lobe: bool,
+    // how alike the normals the pixel's normal map level averaged are (scene::brdf::
+    // normal_coherence; 1 without a map): the G-buffer normal's length
+    coherence: f32,
 }
 
-fn gbuffer_surface(m: Material, base_metallic: vec4<f32>, roughness: f32) -> Surface {
-    return Surface(base_metallic.rgb, base_metallic.w, roughness, material_is_smooth(m));
+// The surface of a G-buffer pixel: its base colour + metallic and its stored normal (the
+// length the normal map's coherence) + roughness.
+fn gbuffer_surface(m: Material, base_metallic: vec4<f32>, normal_roughness: vec4<f32>) -> Surface {
+    let coherence = min(length(normal_roughness.xyz), 1.0);
+    return Surface(base_metallic.rgb, base_metallic.w, normal_roughness.w, material_is_smooth(m), coherence);
 }
 
 // The BRDF times the cosine for light from `l` seen from `v` (scene::brdf): its diffuse lobe
-// alone on a smooth surface, whose specular lobe is traced.
+// alone on a smooth surface, whose specular lobe is traced. The diffuse lobe's cosine is
+// averaged over the normals the pixel's normal map level stands for
+// (scene::Brdf::eval_diffuse_cos_filtered), so light can reach it from a little below the
+// mean normal's horizon.
 fn surface_brdf_cos(s: Surface, n: vec3<f32>, l: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
+    var f = brdf_diffuse_cos_filtered(s.base, s.metallic, n, v, l, s.coherence);
     let c = dot(n, l);
-    if c <= 0.0 {
-        return vec3<f32>(0.0);
+    if !s.traced_lobe && c > 0.0 {
+        f += brdf_eval_specular(s.base, s.metallic, s.roughness, n, v, l) * c;
     }
-    var f = brdf_eval_diffuse(s.base, s.metallic, n, v, l);
-    if !s.traced_lobe {
-        f += brdf_eval_specular(s.base, s.metallic, s.roughness, n, v, l);
-    }
-    return f * c;
+    return f;
 }
 
 // What a surface reflects of irradiance whose radiance is taken as uniform over its lobes

@@ -215,7 +215,7 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
         return vec4<f32>(channel_view(component - CHANNEL_BASE, px, a, ns.w, n, gn, p, depth), 1.0);
     }
     let v = normalize(frame.camera_pos.xyz - p);
-    let surface = gbuffer_surface(m, a, ns.w);
+    let surface = gbuffer_surface(m, a, ns);
     // The BRDF's share (1 - transparency).
     let base = max(1.0 - m.params.y, 0.0);
     var sun = vec3<f32>(0.0);

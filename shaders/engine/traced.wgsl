@@ -126,7 +126,7 @@ fn traced_lighting(@builtin(global_invocation_id) id: vec3<u32>) {
         let n = h.normal.xyz;
         let gn = h.geometric.xyz;
         let roughness = h.base_color.w;
-        let s = Surface(h.base_color.rgb, h.geometric.w, roughness, roughness < BRDF_TRACED_ROUGHNESS);
+        let s = Surface(h.base_color.rgb, h.geometric.w, roughness, roughness < BRDF_TRACED_ROUGHNESS, 1.0);
         let v = -h.dir.xyz;
         let sums = point_lights(s, n, v, p, gn);
         var light = sums.punctual + sums.emitters;

@@ -90,6 +90,53 @@ fn brdf_eval_diffuse(base_color: vec3<f32>, metallic: f32, n: vec3<f32>, wo: vec
     return base_color * (1.0 - metallic) * (k / BRDF_PI);
 }
 
+// scene::brdf::standard_normal_cdf: Phi(x) through Abramowitz and Stegun's 7.1.26 erf.
+fn brdf_standard_normal_cdf(x: f32) -> f32 {
+    let z = abs(x) / sqrt(2.0);
+    let t = 1.0 / (1.0 + 0.3275911 * z);
+    let poly = t * (0.2548296 + t * (-0.28449674 + t * (1.4214137 + t * (-1.453152 + t * 1.0614054))));
+    let erf = 1.0 - poly * exp(-z * z);
+    return 0.5 * (1.0 + select(erf, -erf, x < 0.0));
+}
+
+// scene::brdf::filtered_cosine: max(n.l, 0) averaged over normals spread about the mean
+// normal with mean resultant length `coherence`.
+fn brdf_filtered_cosine(cos_theta: f32, coherence: f32) -> f32 {
+    let r = clamp(coherence, 0.0, 1.0);
+    let c = clamp(cos_theta, -1.0, 1.0);
+    let mean = r * c;
+    let second = ((1.0 - r * r) + 2.0 * r * r * c * c) / (3.0 - r * r);
+    let variance = max(second - mean * mean, 0.0);
+    if variance < 1e-12 {
+        return max(mean, 0.0);
+    }
+    let sigma = sqrt(variance);
+    let z = mean / sigma;
+    let pdf = exp(-0.5 * z * z) / sqrt(2.0 * BRDF_PI);
+    return max(mean * brdf_standard_normal_cdf(z) + sigma * pdf, 0.0);
+}
+
+// scene::brdf::QUANTIZED_UNIT_LENGTH.
+const BRDF_QUANTIZED_UNIT_LENGTH: f32 = 0.99;
+
+// scene::brdf::normal_coherence: the length of a normal map texel's decoded normal over
+// BRDF_QUANTIZED_UNIT_LENGTH, at most 1.
+fn brdf_normal_coherence(texel: vec3<f32>) -> f32 {
+    return min(length(texel * 2.0 - 1.0) / BRDF_QUANTIZED_UNIT_LENGTH, 1.0);
+}
+
+// scene::Brdf::eval_diffuse_cos_filtered: the diffuse lobe times brdf_filtered_cosine, its
+// coating complement at that mean cosine.
+fn brdf_diffuse_cos_filtered(base_color: vec3<f32>, metallic: f32, n: vec3<f32>, wo: vec3<f32>, wi: vec3<f32>, coherence: f32) -> vec3<f32> {
+    let nv = dot(n, wo);
+    let c = brdf_filtered_cosine(dot(n, wi), coherence);
+    if nv <= 0.0 || c <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    let k = brdf_coating_complement(nv) * brdf_coating_complement(c) / (1.0 - BRDF_DIELECTRIC_MEAN_FRESNEL);
+    return base_color * (1.0 - metallic) * (k / BRDF_PI * c);
+}
+
 // The specular lobe F D V (no cosine).
 fn brdf_eval_specular(base_color: vec3<f32>, metallic: f32, roughness: f32, n: vec3<f32>, wo: vec3<f32>, wi: vec3<f32>) -> vec3<f32> {
     let nv = dot(n, wo);

@@ -1,7 +1,8 @@
 // include: scene/material.inc.wgsl
 // include: scene/brdf.inc.wgsl
 // G-buffer (thesis Table 3.1's targets, formats for wgpu; `scene::gpu::gbuffer` documents the
-// layout): base colour + metallic (RGBA8), shading normal + roughness widened for specular
+// layout): base colour + metallic (RGBA8), shading normal (its length the normal map's
+// coherence, 1 without one) + roughness widened for specular
 // anti-aliasing (RGBA16F), geometry normal + material id (RGBA16F), linear view-axis depth
 // (R32F, 0 where nothing is drawn).
 // Alpha-tested materials (their own pipeline, `fs_alpha_tested`) discard below their cutoff;
@@ -18,7 +19,8 @@ struct GBufferCamera {
     // xyz unit forward (the depth target's axis), w unused
     forward: vec4<f32>,
     // x: the share of a pixel's normal variance the specular lobes are widened by (1; less
-    // for the jittered samples of a view averaged over several frames), yzw unused
+    // for the jittered samples of a view averaged over several frames), y: the bias of the
+    // textures' level of detail (0; negative for those samples), zw unused
     footprint: vec4<f32>,
 }
 
@@ -103,16 +105,25 @@ fn mapped_normal(v: VOut, interpolated: vec3<f32>, texel: vec3<f32>) -> vec3<f32
     return material_perturbed_normal(interpolated, vec4<f32>(normalize(t), sign), texel, v.params.z);
 }
 
+// The shortest normal the G-buffer stores (readers normalise it).
+const MIN_COHERENCE: f32 = 0.05;
+
 fn gbuffer(v: VOut) -> GBuffer {
     // Every texture is sampled (a white one stands in for a missing one) and the flags pick:
     // sampling needs uniform control flow.
-    let tex = textureSample(albedo_tex, material_sampler, v.uv);
-    let normal_texel = textureSample(normal_tex, material_sampler, v.uv).rgb;
-    let mr = textureSample(metallic_roughness_tex, material_sampler, v.uv);
+    // A jittered sample of an averaged view reads finer levels: its share of the pixel.
+    let bias = camera.footprint.y;
+    let tex = textureSampleBias(albedo_tex, material_sampler, v.uv, bias);
+    let normal_texel = textureSampleBias(normal_tex, material_sampler, v.uv, bias).rgb;
+    let mr = textureSampleBias(metallic_roughness_tex, material_sampler, v.uv, bias);
     let interpolated = normalize(v.normal);
     var mapped = interpolated;
+    // How alike the normals the map's mip level averaged are (1 without a map): the stored
+    // normal's length, which the lighting's diffuse term reads (scene::brdf::filtered_cosine).
+    var coherence = 1.0;
     if v.flags.z != 0u {
         mapped = mapped_normal(v, interpolated, normal_texel);
+        coherence = max(brdf_normal_coherence(normal_texel), MIN_COHERENCE);
     }
     let dx = dpdx(v.world);
     let dy = dpdy(v.world);
@@ -144,7 +155,7 @@ fn gbuffer(v: VOut) -> GBuffer {
     let mr_factors = select(vec2<f32>(1.0), mr.bg, v.flags.w != 0u);
     var o: GBuffer;
     o.base = vec4<f32>(base, v.base.w * mr_factors.x);
-    o.normal = vec4<f32>(n, brdf_filtered_roughness(v.params.x * mr_factors.y, s2));
+    o.normal = vec4<f32>(n * coherence, brdf_filtered_roughness(v.params.x * mr_factors.y, s2));
     o.geometry = vec4<f32>(g, f32(v.material));
     o.depth = dot(v.world - camera.position.xyz, camera.forward.xyz);
     return o;

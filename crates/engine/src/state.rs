@@ -113,11 +113,24 @@ impl FrameCtx {
         }
     }
 
+    /// The bias of the G-buffer's texture levels of detail this frame: 0 for a first sample,
+    /// and for the `n` jittered samples of a still view `-0.5 log2 n`, each reading the
+    /// level of its share of the pixel (`scene::gpu::GBufferCamera::with_texture_bias`), so
+    /// that their average integrates the textures over the pixel, normal maps included (the
+    /// reference integrates each pixel over the full-resolution maps).
+    pub fn texture_bias(&self) -> f32 {
+        match self.still_sample {
+            0 => 0.0,
+            _ => -0.5 * (self.state.settings.still_samples.max(1) as f32).log2(),
+        }
+    }
+
     /// The camera the G-buffer is drawn from: the jittered view-projection, the camera's
     /// position and forward axis (as the frame uniform has them) and [`FrameCtx::footprint`].
     pub fn gbuffer_camera(&self) -> scene::gpu::GBufferCamera {
         let (camera, vp) = (&self.camera, self.view_projection());
         scene::gpu::GBufferCamera::new(vp, camera.position, camera.forward, self.footprint())
+            .with_texture_bias(self.texture_bias())
     }
 
     /// The camera's view-projection moved by this frame's sub-pixel jitter: what the

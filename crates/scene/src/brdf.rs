@@ -206,6 +206,62 @@ pub fn filtered_roughness(roughness: f32, normal_variance: f32) -> f32 {
     (a2 + widen).min(1.0).sqrt().sqrt()
 }
 
+/// The clamped cosine `max(n.l, 0)` averaged over a spread of normals `n` about a mean
+/// direction: what a pixel that sees a normal map through a mip level (whose texels average
+/// the normals of several) reflects of a light at cosine `cos_theta` from the mean normal,
+/// for normals whose average has length `coherence` (1: all alike, then `max(cos_theta, 0)`
+/// exactly; [`normal_coherence`]). Averaging tilted normals and then normalising reads a
+/// bumpy surface as flat: under grazing light the tilts towards the light gain more than the
+/// tilts away lose (they stop at 0), so the flat reading is darker than the bumps, and lit
+/// head-on it is brighter (the average of the cosines is `coherence` times the flat one).
+///
+/// The normals are taken as a von Mises-Fisher distribution of mean resultant length
+/// `coherence` (its concentration from Banerjee et al. 2005, "Clustering on the unit
+/// hypersphere using von Mises-Fisher distributions", `kappa = r (3 - r²) / (1 - r²)`), so
+/// that `n.l` has mean `r cos` and second moment `((1 - r²) + 2 r² cos²) / (3 - r²)`, and
+/// `n.l` is taken as normal with those moments: `E[max(t, 0)] = mu Phi(mu / sigma) + sigma
+/// phi(mu / sigma)`. Against the vMF's exact mean over sampled normals (`tests/brdf.rs`) it
+/// reads low by at most 0.02 at `coherence` 0.5, 0.014 at 0.7, 0.004 at 0.9 and 0.001 at 0.97.
+pub fn filtered_cosine(cos_theta: f32, coherence: f32) -> f32 {
+    let r = coherence.clamp(0.0, 1.0);
+    let c = cos_theta.clamp(-1.0, 1.0);
+    let mean = r * c;
+    let second = ((1.0 - r * r) + 2.0 * r * r * c * c) / (3.0 - r * r);
+    let variance = (second - mean * mean).max(0.0);
+    if variance < 1e-12 {
+        return mean.max(0.0);
+    }
+    let sigma = variance.sqrt();
+    let z = mean / sigma;
+    let pdf = (-0.5 * z * z).exp() / (2.0 * PI).sqrt();
+    (mean * standard_normal_cdf(z) + sigma * pdf).max(0.0)
+}
+
+/// The standard normal distribution function, through the error function's rational
+/// approximation 7.1.26 of Abramowitz and Stegun (absolute error under 1.5e-7).
+fn standard_normal_cdf(x: f32) -> f32 {
+    let z = x.abs() / std::f32::consts::SQRT_2;
+    let t = 1.0 / (1.0 + 0.327_591_1 * z);
+    let poly = t
+        * (0.254_829_6
+            + t * (-0.284_496_74 + t * (1.421_413_7 + t * (-1.453_152 + t * 1.061_405_4))));
+    let erf = 1.0 - poly * (-z * z).exp();
+    0.5 * (1.0 + erf.copysign(x))
+}
+
+/// How alike the normals a normal map's texel stands for are: the length of its decoded
+/// normal `2 texel - 1` (a mip level's texel averages the texels under it, so the length
+/// falls below 1 where they differ) over [`QUANTIZED_UNIT_LENGTH`], at most 1.
+/// [`filtered_cosine`] reads it.
+pub fn normal_coherence(texel: Vec3) -> f32 {
+    let len = (texel * 2.0 - Vec3::ONE).length() / QUANTIZED_UNIT_LENGTH;
+    if len.is_finite() { len.min(1.0) } else { 1.0 }
+}
+
+/// The shortest a full-resolution texel's decoded normal can be: 8 bits per channel leave
+/// its length within 0.01 of 1, which [`normal_coherence`] reads as no spread.
+pub const QUANTIZED_UNIT_LENGTH: f32 = 0.99;
+
 /// Samples a visible normal of the GGX distribution of `alpha` seen from `v` (local frame,
 /// normal +Z, `v.z > 0`), from two uniform numbers in [0, 1) (Heitz 2018, section 3).
 pub fn sample_vndf(alpha: f32, v: Vec3, u: Vec2) -> Vec3 {
@@ -287,6 +343,20 @@ impl Brdf {
         }
         let k = coating_complement(nv) * coating_complement(nl) / (1.0 - DIELECTRIC_MEAN_FRESNEL);
         self.diffuse_color() * (k / PI)
+    }
+
+    /// The diffuse lobe times the cosine for a pixel whose normals spread about `n` with
+    /// [`normal_coherence`] `coherence`: the cosine is [`filtered_cosine`], and the coating's
+    /// Fresnel complement is taken at that mean cosine. With `coherence` 1 it is
+    /// `eval_diffuse(n, wo, wi) * max(n.wi, 0)`.
+    pub fn eval_diffuse_cos_filtered(&self, n: Vec3, wo: Vec3, wi: Vec3, coherence: f32) -> Vec3 {
+        let nv = n.dot(wo);
+        let cos = filtered_cosine(n.dot(wi), coherence);
+        if nv <= 0.0 || cos <= 0.0 {
+            return Vec3::ZERO;
+        }
+        let k = coating_complement(nv) * coating_complement(cos) / (1.0 - DIELECTRIC_MEAN_FRESNEL);
+        self.diffuse_color() * (k / PI * cos)
     }
 
     /// The specular lobe `F D V`; zero unless both directions are above the surface.

@@ -251,3 +251,85 @@ fn specular_albedo_table_matches_brute_force_quadrature() {
     }
     eprintln!("worst difference table vs quadrature: {worst}");
 }
+
+/// The vMF concentration whose mean resultant length `coth k - 1/k` is `r`, by bisection (an
+/// oracle independent of `filtered_cosine`'s closed-form estimate of it).
+fn vmf_kappa(r: f64) -> f64 {
+    let a = |k: f64| 1.0 / k.tanh() - 1.0 / k;
+    let (mut lo, mut hi) = (1e-6f64, 1e4f64);
+    for _ in 0..200 {
+        let mid = (lo * hi).sqrt();
+        if a(mid) < r { lo = mid } else { hi = mid }
+    }
+    (lo * hi).sqrt()
+}
+
+/// `E[max(n.l, 0)]` over normals of a vMF distribution about +Z with mean resultant length
+/// `r`, for `l` at cosine `c` from +Z: stratified samples of Wood's (1994) inversion.
+fn vmf_clamped_cosine(r: f64, c: f64, k: usize) -> f64 {
+    let kappa = vmf_kappa(r);
+    let l = (((1.0 - c * c).max(0.0)).sqrt(), 0.0, c);
+    let mut sum = 0.0;
+    for i in 0..k {
+        for j in 0..k {
+            let (u, v) = ((i as f64 + 0.5) / k as f64, (j as f64 + 0.5) / k as f64);
+            // w = cos of the normal to the mean: 1 + ln(u + (1 - u) e^(-2 kappa)) / kappa.
+            let w = 1.0 + (u + (1.0 - u) * (-2.0 * kappa).exp()).ln() / kappa;
+            let s = (1.0 - w * w).max(0.0).sqrt();
+            let phi = 2.0 * PI * v;
+            let d = s * phi.cos() * l.0 + w * l.2;
+            sum += d.max(0.0);
+        }
+    }
+    sum / (k * k) as f64
+}
+
+/// The filtered cosine (`scene::brdf::filtered_cosine`) against the vMF's exact mean over
+/// sampled normals: within 0.025 wherever the normals are at least half alike (a pixel whose
+/// mip level averages a normal map's bumps; 0.02 measured at 0.5), 0.005 from 0.9 (0.004
+/// measured), exactly the clamped cosine with no spread, and
+/// never below the mean normal's `max(r cos, 0)` (Jensen: the clamp is convex).
+#[test]
+fn the_filtered_cosine_is_the_clamped_cosine_over_spread_normals() {
+    use scene::brdf::filtered_cosine;
+    for c in [-1.0f32, -0.5, -0.1, 0.0, 0.3, 1.0] {
+        assert_eq!(filtered_cosine(c, 1.0), c.max(0.0), "no spread at cos {c}");
+    }
+    for r in [0.5f64, 0.7, 0.9, 0.97, 0.995] {
+        for c in [-0.5f64, -0.2, 0.0, 0.17, 0.4, 0.7, 1.0] {
+            let exact = vmf_clamped_cosine(r, c, 400);
+            let got = f64::from(filtered_cosine(c as f32, r as f32));
+            let tol = if r >= 0.9 { 0.005 } else { 0.025 };
+            assert!((got - exact).abs() < tol, "r {r} cos {c}: {got} against the vMF's {exact}");
+            assert!(got >= (r * c).max(0.0) - 1e-6, "r {r} cos {c}: {got} below the mean's");
+        }
+    }
+    // Under a grazing light (10 degrees over the mean normal's horizon) bumps whose average is
+    // 0.9 long reflect a fifth more than the averaged normal, normalised, would.
+    let grazing = 10f32.to_radians().sin();
+    assert!(filtered_cosine(grazing, 0.9) > 1.15 * grazing);
+}
+
+/// The diffuse lobe with a filtered cosine is the plain lobe times the cosine when the
+/// normals are alike, and a texel's coherence is its decoded normal's length (1 at full
+/// resolution, 8-bit quantisation included).
+#[test]
+fn the_filtered_diffuse_lobe_reduces_to_the_plain_one() {
+    let b = Brdf::new(Vec3::new(0.8, 0.5, 0.2), 0.3, 0.6);
+    let n = Vec3::Z;
+    for (wo, wi) in [(view(0.3), view(-1.0)), (view(1.2), view(0.2)), (view(0.0), view(1.6))] {
+        let plain = b.eval_diffuse(n, wo, wi) * n.dot(wi).max(0.0);
+        let filtered = b.eval_diffuse_cos_filtered(n, wo, wi, 1.0);
+        assert!((plain - filtered).length() < 1e-6, "{plain} vs {filtered}");
+    }
+    use scene::brdf::normal_coherence;
+    // (0.1, 0.2, 0.97) quantised to 8 bits: as long as 1.
+    let q = |x: f32| ((x * 0.5 + 0.5) * 255.0).round() / 255.0;
+    let m = Vec3::new(0.1, 0.2, 0.97).normalize();
+    assert_eq!(normal_coherence(Vec3::new(q(m.x), q(m.y), q(m.z))), 1.0);
+    // Two texels tilted 40 degrees either way, averaged: cos 40 long.
+    let t = |s: f32| Vec3::new(s * 40f32.to_radians().sin(), 0.0, 40f32.to_radians().cos());
+    let avg = (t(1.0) + t(-1.0)) * 0.25 + Vec3::splat(0.5);
+    let want = 40f32.to_radians().cos() / scene::brdf::QUANTIZED_UNIT_LENGTH;
+    assert!((normal_coherence(avg) - want).abs() < 1e-5);
+}

@@ -417,6 +417,100 @@ fn wgsl_perturbed_normal_equals_the_cpu_one() {
     }
 }
 
+/// The filtered diffuse cosine's WGSL twins (`brdf_filtered_cosine`, `brdf_normal_coherence`,
+/// `brdf_diffuse_cos_filtered`) equal `scene::brdf`'s on seeded random cosines, coherences
+/// (some 1, some tiny), texels and directions (some below the horizon).
+#[test]
+fn wgsl_filtered_diffuse_equals_the_cpu_one() {
+    use rand::{Rng, SeedableRng};
+    use scene::brdf::{filtered_cosine, normal_coherence};
+    use scene::gpu::BRDF_INC_WGSL;
+    let (_serial, Some(ctx)) = serial_gpu() else { return };
+    let mut rng = rand_pcg::Pcg64::seed_from_u64(5355);
+    let count = 512usize;
+    let mut inputs: Vec<[f32; 4]> = Vec::new();
+    let mut cases = Vec::new();
+    for i in 0..count {
+        let c: f32 = rng.random_range(-1.0..1.0);
+        let r: f32 = match i % 7 {
+            0 => 1.0,
+            1 => 0.01,
+            _ => rng.random(),
+        };
+        let texel = Vec3::new(rng.random(), rng.random(), rng.random());
+        let b = scene::Brdf::new(
+            Vec3::new(rng.random(), rng.random(), rng.random()),
+            rng.random(),
+            0.5,
+        );
+        let n = Vec3::Z;
+        let wo = Vec3::new(
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-0.2..1.0),
+        )
+        .normalize_or(Vec3::Z);
+        let wi = Vec3::new(
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-0.5..1.0),
+        )
+        .normalize_or(Vec3::Z);
+        inputs.extend(
+            [
+                Vec4::new(c, r, 0.0, 0.0),
+                texel.extend(0.0),
+                b.base_color.extend(b.metallic),
+                wo.extend(0.0),
+                wi.extend(0.0),
+            ]
+            .map(|v| v.to_array()),
+        );
+        let lobe = b.eval_diffuse_cos_filtered(n, wo, wi, r);
+        cases.push((filtered_cosine(c, r), normal_coherence(texel), lobe));
+    }
+    let kernel = format!(
+        "{BRDF_INC_WGSL}
+        @group(0) @binding(0) var<storage, read> cases: array<vec4<f32>>;
+        @group(0) @binding(1) var<storage, read_write> out: array<vec4<f32>>;
+        @compute @workgroup_size(64) fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
+            let i = id.x;
+            if i >= arrayLength(&cases) / 5u {{ return; }}
+            let a = cases[5u * i];
+            let m = cases[5u * i + 2u];
+            out[2u * i] = vec4<f32>(brdf_filtered_cosine(a.x, a.y),
+                brdf_normal_coherence(cases[5u * i + 1u].xyz), 0.0, 0.0);
+            out[2u * i + 1u] = vec4<f32>(brdf_diffuse_cos_filtered(m.xyz, m.w, vec3<f32>(0.0, 0.0, 1.0),
+                cases[5u * i + 3u].xyz, cases[5u * i + 4u].xyz, a.y), 0.0);
+        }}"
+    );
+    let out = ctx
+        .run_compute(
+            &kernel,
+            "main",
+            &[
+                gpu_harness::Binding::Read(bytemuck::cast_slice(&inputs)),
+                gpu_harness::Binding::Output((count * 32) as u64),
+            ],
+            [count.div_ceil(64) as u32, 1, 1],
+        )
+        .expect("dispatch");
+    let gpu: Vec<[f32; 4]> = gpu_harness::cast_vec(&out[1]);
+    for (i, (cos, coherence, lobe)) in cases.iter().enumerate() {
+        let (a, l) = (gpu[2 * i], Vec4::from_array(gpu[2 * i + 1]).truncate());
+        assert!((a[0] - cos).abs() < 1e-5, "case {i}: cosine GPU {} vs CPU {cos}", a[0]);
+        assert!(
+            (a[1] - coherence).abs() < 1e-5,
+            "case {i}: coherence GPU {} vs CPU {coherence}",
+            a[1]
+        );
+        assert!(
+            (l - *lobe).length() < 1e-5 * (1.0 + lobe.length()),
+            "case {i}: lobe GPU {l} vs CPU {lobe}"
+        );
+    }
+}
+
 /// The G-buffer reads a texture with its own wrap modes and magnification filter, as the CPU
 /// reads it (`Texture::sample_bilinear`): a 4 x 2 texture of distinct colours, mirrored along
 /// u, clamped along v and magnified with the nearest texel, on a quad whose coordinates run

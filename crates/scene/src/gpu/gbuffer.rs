@@ -115,7 +115,8 @@ pub struct GBufferCamera {
     /// Unit forward axis (the linear depth's), `w` unused.
     pub forward: [f32; 4],
     /// The footprint scale in `x`: the share of a pixel's normal variance the specular power
-    /// is widened by (1 for a frame shown alone); `yzw` unused.
+    /// is widened by (1 for a frame shown alone); in `y` the bias added to the textures'
+    /// level of detail ([`GBufferCamera::with_texture_bias`]; 0 by default); `zw` unused.
     pub footprint: [f32; 4],
 }
 const _: () = assert!(std::mem::size_of::<GBufferCamera>() == 112);
@@ -131,6 +132,15 @@ impl GBufferCamera {
             forward: forward.normalize_or(Vec3::NEG_Z).extend(0.0).to_array(),
             footprint: [footprint, 0.0, 0.0, 0.0],
         }
+    }
+
+    /// The camera reading its textures `bias` levels of detail finer (negative) or coarser:
+    /// a jittered sample of a view averaged over `n` samples covers `1 / n` of its pixel and
+    /// reads the level of that share, `-0.5 log2 n`, so that the average integrates the
+    /// texture over the pixel as a single sample's level cannot.
+    pub fn with_texture_bias(mut self, bias: f32) -> Self {
+        self.footprint[1] = if bias.is_finite() { bias } else { 0.0 };
+        self
     }
 }
 
