@@ -242,7 +242,10 @@ impl Mesh {
         if !(self.colors.is_empty() || self.colors.len() == n) {
             return Err(SceneError::invalid(el(), "colours differ in length from the vertices"));
         }
-        if self.colors.iter().any(|c| !c.is_finite() || c.min_element() < 0.0 || c.max_element() > 1.0)
+        if self
+            .colors
+            .iter()
+            .any(|c| !c.is_finite() || c.min_element() < 0.0 || c.max_element() > 1.0)
         {
             return Err(SceneError::invalid(el(), "vertex colour outside [0, 1]"));
         }

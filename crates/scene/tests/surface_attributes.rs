@@ -46,7 +46,9 @@ fn the_file_loads_without_warnings_with_its_colours_and_textures() {
     assert_eq!(s.meshes.len(), 3);
     let coloured = s.meshes.iter().find(|m| m.name.starts_with("coloured")).expect("coloured");
     assert_eq!(coloured.colors, vec![Vec3::X; 4], "COLOR_0 read (unsigned bytes, normalised)");
-    assert!(s.meshes.iter().filter(|m| !m.name.starts_with("coloured")).all(|m| m.colors.is_empty()));
+    assert!(
+        s.meshes.iter().filter(|m| !m.name.starts_with("coloured")).all(|m| m.colors.is_empty())
+    );
     let occluded = &s.materials[s.material_by_name("occluded").expect("occluded").index()];
     assert!(occluded.occlusion_texture.is_some() && occluded.occlusion_strength == 0.5);
     let glowing = &s.materials[s.material_by_name("glowing").expect("glowing").index()];

@@ -466,7 +466,8 @@ impl Loader<'_> {
         };
         let (occlusion_texture, occlusion_strength) = match m.occlusion_texture() {
             Some(o) => {
-                let strength = if o.strength().is_finite() { o.strength().clamp(0.0, 1.0) } else { 1.0 };
+                let strength =
+                    if o.strength().is_finite() { o.strength().clamp(0.0, 1.0) } else { 1.0 };
                 (Some(self.texture(o.texture(), ColorSpace::Linear, &user)?), strength)
             }
             None => (None, 1.0),

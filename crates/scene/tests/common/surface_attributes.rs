@@ -17,8 +17,7 @@ use super::cube::base64;
 use serde_json::json;
 
 /// Where the committed file lives.
-pub const PATH: &str =
-    concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/surface_attributes.gltf");
+pub const PATH: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/surface_attributes.gltf");
 
 /// Each quad's x range; they span z -1..1 (the ground plane, y = 0).
 pub const COLOURED: (f32, f32) = (-3.0, -1.0);
@@ -57,12 +56,8 @@ pub fn gltf() -> String {
     let plain = json!({"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2});
     let mut coloured = plain.clone();
     coloured["COLOR_0"] = json!(3);
-    let node = |name: &str, mesh: usize, x: f32| {
-        json!({"name": name, "mesh": mesh, "translation": [x, 0.0, 1.0], "scale": [2.0, 2.0, 2.0]})
-    };
-    let pbr = |grey: f32| {
-        json!({"baseColorFactor": [grey, grey, grey, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0})
-    };
+    let node = |name: &str, mesh: usize, x: f32| json!({"name": name, "mesh": mesh, "translation": [x, 0.0, 1.0], "scale": [2.0, 2.0, 2.0]});
+    let pbr = |grey: f32| json!({"baseColorFactor": [grey, grey, grey, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0});
     let doc = json!({
         "asset": {"version": "2.0", "generator": "serein-scene tests (common/surface_attributes.rs)"},
         "extensionsUsed": ["KHR_materials_emissive_strength"],
