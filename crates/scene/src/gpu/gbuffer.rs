@@ -18,9 +18,11 @@
 //!   (white, no occlusion) for a material without those textures;
 //! - `zbuffer` (`Depth32Float`, depth test `Less`, cleared to 1).
 //!
-//! The colour targets cost 32 bytes a pixel in WebGPU's accounting (RGBA8 8, RGBA16F 8 + 8,
-//! R32F 4, R32Uint 4), the limit of the downlevel defaults the workspace asks for
-//! (`max_color_attachment_bytes_per_sample`): the `surface` target is packed to fit it.
+//! Five colour targets, one more than WebGPU's downlevel defaults allow (the workspace's
+//! devices ask for the adapter's count, up to 8: `gpu_harness::device_descriptor`); they
+//! cost 32 bytes a pixel in WebGPU's accounting (RGBA8 8, RGBA16F 8 + 8, R32F 4, R32Uint
+//! 4), the limit `max_color_attachment_bytes_per_sample` of the defaults: the `surface`
+//! target is packed to fit it.
 //!
 //! Surfaces are two-sided. Specular anti-aliasing: across a pixel the shading normal turns by
 //! its screen derivatives, so the pixel sees the highlights of a range of normals; the stored
