@@ -92,3 +92,42 @@ fn the_emissive_texture_multiplies_the_emission() {
     assert_eq!(l.emission, Vec3::ZERO, "{l:?}");
     assert!((r.emission - file::right_emission()).length() < 1e-4, "{r:?}");
 }
+
+/// `file` with `edit` applied to its JSON, loaded from memory.
+fn load_edited(
+    text: &str,
+    edit: impl FnOnce(&mut serde_json::Value),
+) -> Result<Scene, scene::SceneError> {
+    let mut doc: serde_json::Value = serde_json::from_str(text).expect("JSON");
+    edit(&mut doc);
+    let bytes = serde_json::to_vec(&doc).expect("JSON");
+    scene::load_gltf_slice(&bytes, None, "edited.gltf")
+}
+
+/// Vertex alpha below 1 on a blended material is one warning (alpha is per material here);
+/// on an opaque material it is no concern. A `COLOR_0` of another count than the
+/// positions', or of a type glTF does not allow, is a typed error naming the primitive.
+#[test]
+fn vertex_alpha_warns_and_bad_colours_are_typed_errors() {
+    let half = file::gltf_with_alpha(128);
+    let opaque = load_edited(&half, |_| {}).expect("loads");
+    assert!(opaque.warnings.is_empty(), "{:?}", opaque.warnings);
+    let blended =
+        load_edited(&half, |d| d["materials"][0]["alphaMode"] = "BLEND".into()).expect("loads");
+    let kinds: Vec<_> = blended.warnings.iter().map(|w| &w.kind).collect();
+    assert!(
+        matches!(kinds[..], [scene::LoadWarningKind::Unsupported { feature, .. }] if feature.contains("COLOR_0")),
+        "{:?}",
+        blended.warnings
+    );
+    let inconsistent = |r: Result<Scene, scene::SceneError>| match r {
+        Err(scene::SceneError::Load(e)) => {
+            assert!(e.element.contains("coloured"), "{e}");
+            matches!(e.kind, scene::LoadErrorKind::Inconsistent(_))
+        }
+        other => panic!("{other:?}"),
+    };
+    let text = file::gltf();
+    assert!(inconsistent(load_edited(&text, |d| d["accessors"][3]["count"] = 3.into())));
+    assert!(inconsistent(load_edited(&text, |d| d["accessors"][3]["normalized"] = false.into())));
+}

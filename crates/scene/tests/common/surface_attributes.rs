@@ -33,6 +33,11 @@ pub fn right_emission() -> glam::Vec3 {
 
 /// The file's text.
 pub fn gltf() -> String {
+    gltf_with_alpha(255)
+}
+
+/// The file's text with the coloured quad's vertex alpha `alpha` (255 in the file).
+pub fn gltf_with_alpha(alpha: u8) -> String {
     let mut buffer = Vec::new();
     let mut views = Vec::new();
     let mut view = |bytes: Vec<u8>| {
@@ -47,7 +52,7 @@ pub fn gltf() -> String {
     view(floats(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0, -1.0, 0.0, 0.0, -1.0]));
     view(floats(&[0.0, 1.0, 0.0].repeat(4)));
     view(floats(&[0.0, 1.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0]));
-    view([255u8, 0, 0, 255].repeat(4));
+    view([255u8, 0, 0, alpha].repeat(4));
     view([0u16, 1, 2, 0, 2, 3].iter().flat_map(|i| i.to_le_bytes()).collect());
     let png = |texels: [[u8; 4]; 2]| {
         let bytes = super::png(2, 1, |x, _| texels[x as usize]);
