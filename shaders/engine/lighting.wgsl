@@ -17,7 +17,9 @@
 // emitter_lights), sky light from the sky volume
 // and one diffuse bounce of sunlight (the LPV's lookup or the RSM gather, per pixel by the
 // crates' own kernels into `bounce`, irradiance; the sky volume's lookup here, by its crate's
-// snippet), SSAO on the indirect light only, emission, and the sky map where no geometry was
+// snippet), SSAO and the material's occlusion texture on the indirect light only (sky,
+// bounce, glossy lookup; never the sun, the point and spot lights or emission), emission
+// (the material's times its emissive texture), and the sky map where no geometry was
 // drawn. The surface model is the reference's (scene::Material): the share 1 - t (t the
 // transparency) reflected by glTF's metallic-roughness BRDF (scene/brdf.inc.wgsl), its
 // diffuse lobe alone on a smooth surface; the smooth surfaces' mirror rays and the glass part
@@ -48,7 +50,10 @@ var<private> frame: Frame;
 // The sky volume's lookup uniform (no points: no sky volume bound).
 @group(0) @binding(16) var<uniform> sky_lookup_uniform: SkyVolumeLookup;
 // The sky map (the background's draw alone reads it).
-@group(0) @binding(19) var<storage, read> skymap: array<vec4<f32>>;
+@group(0) @binding(20) var<storage, read> skymap: array<vec4<f32>>;
+// The G-buffer's `surface` target (scene::gpu::gbuffer): the emissive texture's value (square
+// roots) and the occlusion texture's share of the ambient light, pack4x8unorm.
+@group(0) @binding(19) var surface_t: texture_2d<u32>;
 // The specular lobe's directional albedo table (scene::gpu::SpecularAlbedoTexture) and its
 // bilinear sampler.
 @group(0) @binding(17) var specular_albedo_t: texture_2d<f32>;
@@ -258,7 +263,10 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
         let spec = brdf_specular_reflectance(brdf_f0(a.rgb, a.w), dot(n, v));
         glossy_l = base * spec * glossy[i].xyz;
     }
-    let ao = ambient_occlusion(vec2<u32>(px), p, gn);
+    // Screen-space ambient occlusion times the occlusion texture's share (scene::material).
+    let surface_px = unpack4x8unorm(textureLoad(surface_t, px, 0).x);
+    let ao = ambient_occlusion(vec2<u32>(px), p, gn) * surface_px.w;
+    let emission = m.emission.rgb * surface_px.rgb * surface_px.rgb;
     let diffuse = material_diffuse_albedo(m, a);
     // What the full frame reflects of the sky's irradiance (surface_ambient): a rough metal
     // under the sky alone is lit through its specular lobe. The bounce keeps its
@@ -280,12 +288,12 @@ fn fs_lighting(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
         // The sky light the diffuse albedo reflects, as the reference's SkyDiffuse image.
         case COMPONENT_SKY_DIFFUSE: { c = diffuse / PI * sky_e * ao; }
         case COMPONENT_SUN_INDIRECT: { c = diffuse / PI * bounce_e * ao; }
-        case COMPONENT_EMISSION: { c = m.emission.rgb; }
+        case COMPONENT_EMISSION: { c = emission; }
         // The sun seen in the mirror and glass parts; the combine pass adds the traced rays.
         case COMPONENT_REFLECTIONS: { c = glint; }
         default: {
             let ambient = (ambient_diffuse + ambient_specular) / PI * sky_e + diffuse / PI * bounce_e + glossy_l;
-            c = base * (sun + points.punctual + points.emitters + mirrored) + ambient * ao + m.emission.rgb + glint;
+            c = base * (sun + points.punctual + points.emitters + mirrored) + ambient * ao + emission + glint;
         }
     }
     return vec4<f32>(max(c, vec3<f32>(0.0)), 1.0);

@@ -31,7 +31,7 @@ struct TracedHit {
     base_color: vec4<f32>,
     // rgb light the CPU computed (emission, sky, mirror and glass parts)
     other: vec4<f32>,
-    // xyz unit ray direction
+    // xyz unit ray direction, w the occlusion texture's share of the ambient light
     dir: vec4<f32>,
 }
 
@@ -144,11 +144,13 @@ fn traced_lighting(@builtin(global_invocation_id) id: vec3<u32>) {
         let nv = clamp(dot(n, v), 0.0, 1.0);
         let ab = textureSampleLevel(specular_albedo_t, table_sampler, brdf_specular_albedo_uv(nv, roughness), 0.0).xy;
         let amb = surface_ambient(s, nv, ab);
+        // The occlusion texture scales the ambient light alone (scene::material).
+        let occlusion = h.dir.w;
         if (frame.size.w & FLAG_SKY_VOLUME) != 0u {
-            light += (amb.diffuse + amb.specular) / PI * sky_volume_irradiance(p, n);
+            light += occlusion * (amb.diffuse + amb.specular) / PI * sky_volume_irradiance(p, n);
         }
         if params.counts.z != 0u {
-            light += h.base_color.rgb * (1.0 - h.geometric.w) / PI * bounce[i].xyz;
+            light += occlusion * h.base_color.rgb * (1.0 - h.geometric.w) / PI * bounce[i].xyz;
         }
         c += base * light;
     }

@@ -4,7 +4,8 @@
 // layout): base colour + metallic (RGBA8), shading normal (its length the normal map's
 // coherence, 1 without one) + roughness widened for specular
 // anti-aliasing (RGBA16F), geometry normal + material id (RGBA16F), linear view-axis depth
-// (R32F, 0 where nothing is drawn).
+// (R32F, 0 where nothing is drawn), and `surface` (R32Uint, pack4x8unorm): the emissive
+// texture's rgb as square roots, the occlusion's share of the ambient light in w.
 // Alpha-tested materials (their own pipeline, `fs_alpha_tested`) discard below their cutoff;
 // the others (`fs_opaque`) cannot discard, which keeps the early depth test for them.
 // Surfaces are two-sided, both normals face the viewer.
@@ -31,6 +32,8 @@ struct GBufferCamera {
 @group(1) @binding(2) var material_sampler: sampler;
 @group(1) @binding(3) var normal_tex: texture_2d<f32>;
 @group(1) @binding(4) var metallic_roughness_tex: texture_2d<f32>;
+@group(1) @binding(5) var occlusion_tex: texture_2d<f32>;
+@group(1) @binding(6) var emissive_tex: texture_2d<f32>;
 
 struct VOut {
     // Invariant: the depth pre-pass and the shading draws (depth test Equal) must compute the
@@ -40,14 +43,16 @@ struct VOut {
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
     @location(3) @interpolate(flat) material: u32,
-    // The material's base colour + metallic, (roughness, alpha cutoff, normal-map scale) and
-    // its flags (albedo texture, alpha mask, normal map, metallic-roughness texture), read
-    // once a vertex rather than once a pixel (a storage read is a gather lane by lane on
-    // llvmpipe).
+    // The material's base colour + metallic, (roughness, alpha cutoff, normal-map scale,
+    // occlusion strength) and its flags (albedo texture, alpha mask, normal map,
+    // metallic-roughness texture), read once a vertex rather than once a pixel (a storage
+    // read is a gather lane by lane on llvmpipe).
     @location(4) @interpolate(flat) base: vec4<f32>,
-    @location(5) @interpolate(flat) params: vec3<f32>,
+    @location(5) @interpolate(flat) params: vec4<f32>,
     @location(6) @interpolate(flat) flags: vec4<u32>,
     @location(7) tangent: vec4<f32>,
+    // The vertex colour (linear; white for a mesh without colours).
+    @location(8) color: vec3<f32>,
 }
 
 @vertex
@@ -57,6 +62,7 @@ fn vs_main(
     @location(2) uv: vec2<f32>,
     @location(3) material: u32,
     @location(4) tangent: vec4<f32>,
+    @location(5) color: vec4<f32>,
 ) -> VOut {
     var o: VOut;
     o.clip = camera.view_proj * vec4<f32>(position, 1.0);
@@ -65,9 +71,10 @@ fn vs_main(
     o.uv = uv;
     o.material = material;
     o.tangent = tangent;
+    o.color = color.rgb;
     let m = materials[material];
     o.base = m.base;
-    o.params = vec3<f32>(m.params.x, m.emission.w, m.params.w);
+    o.params = vec4<f32>(m.params.x, m.emission.w, m.params.w, m.occlusion.x);
     o.flags = m.flags;
     return o;
 }
@@ -77,6 +84,7 @@ struct GBuffer {
     @location(1) normal: vec4<f32>,
     @location(2) geometry: vec4<f32>,
     @location(3) depth: f32,
+    @location(4) surface: u32,
 }
 
 @fragment
@@ -116,6 +124,8 @@ fn gbuffer(v: VOut) -> GBuffer {
     let tex = textureSampleBias(albedo_tex, material_sampler, v.uv, bias);
     let normal_texel = textureSampleBias(normal_tex, material_sampler, v.uv, bias).rgb;
     let mr = textureSampleBias(metallic_roughness_tex, material_sampler, v.uv, bias);
+    let ao = textureSampleBias(occlusion_tex, material_sampler, v.uv, bias);
+    let emissive = textureSampleBias(emissive_tex, material_sampler, v.uv, bias);
     let interpolated = normalize(v.normal);
     var mapped = interpolated;
     // How alike the normals the map's mip level averaged are (1 without a map): the stored
@@ -151,12 +161,19 @@ fn gbuffer(v: VOut) -> GBuffer {
     }
     // The side is the interpolated normal's (a mapped normal may lean past the surface).
     let n = select(mapped, -mapped, dot(interpolated, g) < 0.0);
-    let base = v.base.rgb * select(vec3<f32>(1.0), tex.rgb, v.flags.x != 0u);
-    let mr_factors = select(vec2<f32>(1.0), mr.bg, v.flags.w != 0u);
+    // The factors at the pixel (scene::Material::at's twin). The emission factor is left to
+    // the lighting (it may exceed 1): the target holds the emissive texture's value.
+    let f = material_surface_factors(
+        v.base, v.params.x, v.params.w, vec3<f32>(1.0), v.color,
+        select(vec4<f32>(1.0), tex, v.flags.x != 0u),
+        select(vec4<f32>(1.0), mr, v.flags.w != 0u),
+        ao, emissive,
+    );
     var o: GBuffer;
-    o.base = vec4<f32>(base, v.base.w * mr_factors.x);
-    o.normal = vec4<f32>(n * coherence, brdf_filtered_roughness(v.params.x * mr_factors.y, s2));
+    o.base = vec4<f32>(f.base_color, f.metallic);
+    o.normal = vec4<f32>(n * coherence, brdf_filtered_roughness(f.roughness, s2));
     o.geometry = vec4<f32>(g, f32(v.material));
     o.depth = dot(v.world - camera.position.xyz, camera.forward.xyz);
+    o.surface = pack4x8unorm(vec4<f32>(sqrt(f.emission), f.occlusion));
     return o;
 }

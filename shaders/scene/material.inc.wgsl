@@ -13,6 +13,8 @@ struct Material {
     // has an albedo (base-colour) texture, has an alpha mask, has a normal map, has a
     // metallic-roughness texture
     flags: vec4<u32>,
+    // x: the occlusion texture's strength (0 without one), yzw unused
+    occlusion: vec4<f32>,
 }
 
 // True when the material's specular lobe is the ray tracer's (scene::Brdf::is_smooth).
@@ -48,4 +50,33 @@ fn material_perturbed_normal(n: vec3<f32>, tangent: vec4<f32>, texel: vec3<f32>,
         return n;
     }
     return p * inverseSqrt(len2);
+}
+
+// A material's factors at a point (scene::SurfaceFactors).
+struct SurfaceFactors {
+    base_color: vec3<f32>,
+    metallic: f32,
+    roughness: f32,
+    occlusion: f32,
+    emission: vec3<f32>,
+}
+
+// scene::surface_factors: the factors times the vertex colour and the texels (white where a
+// texture is absent), each texel clamped to [0, 1]: base colour = base.rgb x colour x
+// base_texel.rgb; metallic = base.w x mr_texel.b; roughness x mr_texel.g; occlusion =
+// 1 + strength (ao_texel.r - 1); emission x emissive_texel.rgb. (The CPU twin also reads a
+// non-finite texel as white; GPU textures hold finite values.)
+fn material_surface_factors(base: vec4<f32>, roughness: f32, occlusion_strength: f32, emission: vec3<f32>, color: vec3<f32>, base_texel: vec4<f32>, mr_texel: vec4<f32>, occlusion_texel: vec4<f32>, emissive_texel: vec4<f32>) -> SurfaceFactors {
+    let b = clamp(base_texel, vec4<f32>(0.0), vec4<f32>(1.0));
+    let mr = clamp(mr_texel, vec4<f32>(0.0), vec4<f32>(1.0));
+    let ao = clamp(occlusion_texel.x, 0.0, 1.0);
+    let e = clamp(emissive_texel.rgb, vec3<f32>(0.0), vec3<f32>(1.0));
+    let c = clamp(color, vec3<f32>(0.0), vec3<f32>(1.0));
+    var f: SurfaceFactors;
+    f.base_color = clamp(base.rgb * c * b.rgb, vec3<f32>(0.0), vec3<f32>(1.0));
+    f.metallic = clamp(base.w * mr.b, 0.0, 1.0);
+    f.roughness = clamp(roughness * mr.g, 0.0, 1.0);
+    f.occlusion = clamp(1.0 + occlusion_strength * (ao - 1.0), 0.0, 1.0);
+    f.emission = emission * e;
+    return f;
 }

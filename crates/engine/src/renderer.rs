@@ -169,7 +169,8 @@ impl Renderer {
     /// The same on the caller's device (a window's, whose surface shows
     /// [`Self::display_texture`]); `adapter` describes where it lives. The device needs the
     /// limits of [`wgpu::Limits::downlevel_defaults`] with the adapter's texture sizes, 8
-    /// storage buffers per stage and cube-array textures.
+    /// storage buffers per stage, 5 colour attachments (the G-buffer's) and cube-array
+    /// textures (`gpu_harness::device_descriptor` asks for them).
     pub fn on_device(
         scene: scene::Scene,
         settings: Settings,

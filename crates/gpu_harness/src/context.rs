@@ -203,7 +203,8 @@ impl GpuContext {
 }
 
 /// What the workspace's GPU code asks of a device on `adapter`: WebGPU's downlevel limits
-/// with the adapter's texture sizes, buffer sizes and up to 8 storage buffers per stage, and
+/// with the adapter's texture sizes, buffer sizes, up to 8 storage buffers per stage and up
+/// to 8 colour attachments (the G-buffer draws 5: `scene::gpu::GBUFFER_FORMATS`), and
 /// timestamp queries where the adapter has them. An application that makes its own device
 /// (a window's, for its surface) asks for the same.
 pub fn device_descriptor(adapter: &wgpu::Adapter) -> wgpu::DeviceDescriptor<'static> {
@@ -215,6 +216,7 @@ pub fn device_descriptor(adapter: &wgpu::Adapter) -> wgpu::DeviceDescriptor<'sta
                 .limits()
                 .max_storage_buffers_per_shader_stage
                 .min(8),
+            max_color_attachments: adapter.limits().max_color_attachments.min(8),
             max_storage_buffer_binding_size: adapter.limits().max_storage_buffer_binding_size,
             max_buffer_size: adapter.limits().max_buffer_size,
             ..limits

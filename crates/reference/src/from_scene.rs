@@ -7,9 +7,12 @@
 //! - Materials: the metallic-roughness BRDF (`scene::Material::brdf`: base colour,
 //!   metallic, roughness), transparency + IOR, emission (one-sided unless the material is
 //!   `double_sided`) and the alpha mask (its texture's alpha, bilinear on level 0, at the
-//!   interpolated UV) map one to one; the textures (base colour, metallic-roughness and the
-//!   normal map in the mesh's tangent frame; `scene::Material::at`, bilinear on level 0)
-//!   apply at each hit.
+//!   interpolated UV) map one to one; the textures (base colour, metallic-roughness, the
+//!   normal map in the mesh's tangent frame, occlusion, emission; `scene::Material::at`,
+//!   bilinear on level 0) and the vertex colours (interpolated, multiplied into the base
+//!   colour) apply at each hit. A textured emitter's [`Material::emission`] (its bound) is
+//!   the factor times the emissive texture's largest level-0 texel, channel by channel,
+//!   which no bilinear read exceeds.
 //! - Sun: with `scene.sky` the irradiance is `sun.color * atmosphere::Sky::sun_colour` (the
 //!   Earth atmosphere's transmittance, in units of the solar irradiance at the top) and the
 //!   sky radiance comes from an `atmosphere::SkyMap`; without a sky the sun's colour is read
@@ -74,6 +77,13 @@ pub fn world_from_scene(scene: &scene::Scene, lighting: &SceneLighting) -> Resul
         Vec::new()
     };
     let tangents = Arc::new(tangents);
+    // Per-triangle vertex colours (empty: white everywhere).
+    let colors: Vec<[Vec3; 3]> = if tris.has_colors() {
+        (0..tris.indices.len()).map(|t| tris.corner_colors(t)).collect()
+    } else {
+        Vec::new()
+    };
+    let colors = Arc::new(colors);
     let textures = Arc::new(scene.textures.clone());
     for sm in &scene.materials {
         let alpha = sm.alpha_mask.and_then(|mask| {
@@ -86,9 +96,13 @@ pub fn world_from_scene(scene: &scene::Scene, lighting: &SceneLighting) -> Resul
             };
             Some(AlphaTest { coverage: Arc::new(coverage), cutoff: mask.cutoff })
         });
-        let surface_textures = sm.is_textured().then(|| {
-            let (uvs, tangents, textures) =
-                (Arc::clone(&uvs), Arc::clone(&tangents), Arc::clone(&textures));
+        let surface_textures = (sm.is_textured() || !colors.is_empty()).then(|| {
+            let (uvs, tangents, textures, colors) = (
+                Arc::clone(&uvs),
+                Arc::clone(&tangents),
+                Arc::clone(&textures),
+                Arc::clone(&colors),
+            );
             let material = sm.clone();
             let at = move |tri: u32, bary: Vec2, normal: Vec3| {
                 let w = Vec3::new(1.0 - bary.x - bary.y, bary.x, bary.y);
@@ -101,6 +115,9 @@ pub fn world_from_scene(scene: &scene::Scene, lighting: &SceneLighting) -> Resul
                     footprint: 0.0,
                     normal,
                     tangent: scene::orthonormal_tangent(tangent, normal),
+                    color: colors
+                        .get(tri as usize)
+                        .map_or(Vec3::ONE, |[ca, cb, cc]| *ca * w.x + *cb * w.y + *cc * w.z),
                 };
                 material.at(|id| textures.get(id.index()), &lookup)
             };
@@ -110,10 +127,11 @@ pub fn world_from_scene(scene: &scene::Scene, lighting: &SceneLighting) -> Resul
             brdf: sm.brdf(),
             transparency: sm.transparency,
             ior: sm.ior,
-            emission: sm.emission,
+            emission: sm.emission * emissive_bound(sm, &scene.textures),
             double_sided: sm.double_sided,
             alpha,
             textures: surface_textures,
+            occlusion: 1.0,
         });
     }
     b.shaded_triangles(&tris.positions, &tris.normals, &tris.indices, &tris.materials);
@@ -144,6 +162,17 @@ pub fn world_from_scene(scene: &scene::Scene, lighting: &SceneLighting) -> Resul
         });
     }
     b.build()
+}
+
+/// The largest level-0 texel of `m`'s emissive texture, channel by channel, clamped to
+/// `[0, 1]` (white without one): no bilinear or trilinear read exceeds it.
+fn emissive_bound(m: &scene::Material, textures: &[scene::Texture]) -> Vec3 {
+    let Some(t) = m.emissive_texture.and_then(|id| textures.get(id.index())) else {
+        return Vec3::ONE;
+    };
+    let texels = t.levels.first().map_or(&[][..], |l| &l.texels[..]);
+    let max = texels.iter().fold(Vec3::ZERO, |a, t| a.max(t.truncate()));
+    max.clamp(Vec3::ZERO, Vec3::ONE)
 }
 
 /// The scene's camera.

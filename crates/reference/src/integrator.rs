@@ -242,6 +242,9 @@ pub(crate) fn trace_path_from(
 ) -> Vec3 {
     let mut l = Vec3::ZERO;
     let mut depth = start_depth;
+    // The throughput without the last vertex's occlusion: what the emission found at the
+    // next vertex is weighted by (emitters are direct light, never occluded by the map).
+    let mut beta_emit = beta;
     // A base-BRDF vertex lies behind: the sun through delta bounces from here is a caustic,
     // which the photons carry when there is a photon map.
     let mut after_base = !specular;
@@ -264,7 +267,7 @@ pub(crate) fn trace_path_from(
         let (n, front) = facing(&h, wo);
         let le = m.emitted(front);
         if le != Vec3::ZERO {
-            l += beta * le * emission_weight(world, settings, prev, &h);
+            l += beta_emit * le * emission_weight(world, settings, prev, &h);
         }
         if depth >= settings.max_bounces {
             break;
@@ -283,7 +286,9 @@ pub(crate) fn trace_path_from(
                 && !sharp
             {
                 let budget = settings.max_bounces - depth - 1;
-                l += beta * map.estimate(h.position, n, budget, |wi| m.eval(n, wo, wi));
+                // Sunlight through mirrors and glass is indirect light: occluded by the map.
+                let caustic = map.estimate(h.position, n, budget, |wi| m.eval(n, wo, wi));
+                l += beta * m.occlusion * caustic;
             }
         }
         let u_lobe = rng.next_f32();
@@ -292,6 +297,12 @@ pub(crate) fn trace_path_from(
         let mis = !s.delta && settings.emitter_sampling && world.emitters().any();
         prev = PrevVertex { position: h.position, pdf: mis.then(|| m.sample_pdf(n, wo, s.dir)) };
         beta *= s.weight;
+        beta_emit = beta;
+        // What the path gathers after a non-delta bounce here is this vertex's ambient
+        // light: its occlusion scales it (the crate doc).
+        if !s.delta {
+            beta *= m.occlusion;
+        }
         specular = s.delta;
         after_base |= !s.delta && !sharp;
         origin = world.offset(h.position, h.normal, s.dir);
@@ -303,6 +314,7 @@ pub(crate) fn trace_path_from(
                 break;
             }
             beta /= q;
+            beta_emit /= q;
         }
     }
     l
@@ -416,15 +428,16 @@ pub(crate) fn radiance(
             Some((wi, e)) => m.eval(n, wo, wi) * e,
             None => Vec3::ZERO,
         },
+        // The ambient components are scaled by the surface's occlusion (the crate doc).
         Component::SunIndirectDiffuse => {
-            m.diffuse_reflectance() / PI
+            m.occlusion * m.diffuse_reflectance() / PI
                 * irradiance(world, component, h.position, n, settings, None, rng)
         }
         Component::SkyIrradiance => {
-            irradiance(world, component, h.position, n, settings, None, rng)
+            m.occlusion * irradiance(world, component, h.position, n, settings, None, rng)
         }
         Component::SkyDiffuse => {
-            m.diffuse_reflectance() / PI
+            m.occlusion * m.diffuse_reflectance() / PI
                 * irradiance(world, Component::SkyIrradiance, h.position, n, settings, None, rng)
         }
         Component::PointLights => point_lights(world, h.position, n, |wi| m.eval(n, wo, wi)),

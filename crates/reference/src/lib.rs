@@ -12,7 +12,24 @@
 //!   uniform in area), the latter combined with BRDF sampling by multiple importance
 //!   sampling (balance heuristic; [`PathSettings::emitter_sampling`] turns it off);
 //! - **emission as the scene says**: from the wound front side only, unless the material
-//!   is double-sided ([`Material::double_sided`]);
+//!   is double-sided ([`Material::double_sided`]); an emissive texture makes it vary over a
+//!   triangle (the emission seen and each emitter sample are read at their point, while
+//!   the emitter is chosen by its material's bound, [`Material::emission`]: every point that
+//!   emits keeps a positive density, so light sampling stays unbiased);
+//! - **the occlusion texture** (glTF's `occlusionTexture`, "areas that receive less
+//!   indirect lighting"), read as part of the material: at every surface vertex of a path,
+//!   what the path gathers after a non-delta bounce there (the sky, light bounced by other
+//!   surfaces, sunlight through mirrors and glass) is scaled by the vertex's
+//!   [`Material::occlusion`], `1 + strength (ao - 1)`; its next-event estimates (the sun,
+//!   point and spot lights, the emitters) and the emitters' light its bounce finds (the
+//!   other half of the emitters' multiple importance sampling) are not, nor is its own
+//!   emission or a mirror's or glass's delta bounce. The components follow: `SkyIrradiance`,
+//!   `SkyDiffuse` and `SunIndirectDiffuse` are scaled by the first surface's occlusion,
+//!   `SunDirect`, `PointLights`, `Emission` and `Reflections` are not. The engine scales
+//!   the same terms at the surfaces it sees and at its traced hits (its sky, bounce and
+//!   glossy lookups); the light its techniques bounce off further surfaces (reflective
+//!   shadow maps, the sky's VPLs) is not scaled, where the reference scales the sky light
+//!   those surfaces reflect: a difference of the second bounce;
 //! - **sky light** from any radiance function (`atmosphere`'s sky map, a constant),
 //!   importance-sampled with the BRDF (its visible-normal GGX sampling or the cosine);
 //! - **multiple importance sampling** of the BRDF's sampling (the GGX lobe's visible

@@ -8,6 +8,10 @@
 //! BRDF-sampled side of multiple importance sampling needs when a path hits an emitter.
 //! A point on the chosen triangle is then uniform in area, so the density of a point `y` on
 //! triangle `t` is `P(t) / A(t)`, and in solid angle at `x`: `P(t) / A(t) |x - y|^2 / |cos_y|`.
+//! A textured emitter's power is its material's emission, which bounds the textures'
+//! (`Material::emission`), and the radiance of a sampled point is the textures' there
+//! (`World::emitted_at`): every point that emits has a positive density, so the estimate
+//! stays unbiased; only its variance depends on how tight the bound is.
 
 use crate::rng::Rng;
 use crate::sampling::luminance;
@@ -157,8 +161,7 @@ pub(crate) fn sample_emitter(world: &World, p: Vec3, rng: &mut Rng) -> Option<Em
     let wi = d / dist;
     let ny = world.normal(t);
     let cos_y = -ny.dot(wi);
-    let m = world.material(world.triangle_material(t));
-    let radiance = m.emitted(cos_y > 0.0);
+    let radiance = world.emitted_at(t, bary, cos_y > 0.0);
     if cos_y == 0.0 || radiance == Vec3::ZERO || !world.passes_alpha(t, bary) {
         return None;
     }

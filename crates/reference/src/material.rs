@@ -26,6 +26,11 @@
 //! for a smooth one); each weight is divided by its part's probability, so the estimator
 //! stays unbiased. Radiance is not scaled by `eta^2` across refraction (paths that enter
 //! glass and leave it again are unaffected).
+//!
+//! Textures ([`SurfaceTextures`]) may change the material point by point: its BRDF's base
+//! colour (the vertex colour included), metallic and roughness, the shading normal, the
+//! emission (at most [`Material::emission`], which bounds it for the emitters' sampling) and
+//! the occlusion ([`Material::occlusion`]; the crate doc says what it scales).
 
 use crate::sampling::{cosine_hemisphere, fresnel_dielectric, luminance, reflect, refract};
 use glam::{Vec2, Vec3};
@@ -52,11 +57,12 @@ impl fmt::Debug for AlphaTest {
 }
 
 /// A material's surface at a point: `(triangle, barycentrics, unit interpolated shading
-/// normal) ->` its base colour, metallic, roughness and (normal-mapped) shading normal there.
+/// normal) ->` its base colour, metallic, roughness, (normal-mapped) shading normal,
+/// occlusion and emission there.
 pub type TextureFn = dyn Fn(u32, Vec2, Vec3) -> scene::SurfacePoint + Send + Sync;
 
-/// A material's textures (base colour, metallic-roughness, normal map; `scene::Material::at`
-/// reads a scene's), looked up at each hit.
+/// A material's textures (base colour and vertex colour, metallic-roughness, normal map,
+/// occlusion, emission; `scene::Material::at` reads a scene's), looked up at each hit.
 #[derive(Clone)]
 pub struct SurfaceTextures(pub Arc<TextureFn>);
 
@@ -76,7 +82,10 @@ pub struct Material {
     /// Index of refraction of the dielectric (>= 1).
     pub ior: f32,
     /// Emitted radiance, from the wound front side (`(p1 - p0) x (p2 - p0)`) only unless
-    /// `double_sided`.
+    /// `double_sided`. With textures, the emission at a point is theirs
+    /// (`scene::SurfacePoint::emission`), at most this: it bounds every point's emission, and
+    /// emitters are chosen in proportion to it (the estimator stays unbiased wherever a
+    /// point emits, and is efficient when the bound is tight).
     pub emission: Vec3,
     /// Emits from both sides (the scene material's `double_sided`); one-sided otherwise,
     /// as glTF means by default.
@@ -84,8 +93,12 @@ pub struct Material {
     /// Optional alpha test.
     pub alpha: Option<AlphaTest>,
     /// Optional textures: at each hit they give the BRDF's base colour, metallic and
-    /// roughness (clamped to `[0, 1]`) and the shading normal.
+    /// roughness (clamped to `[0, 1]`), the shading normal, the emission and the occlusion.
     pub textures: Option<SurfaceTextures>,
+    /// The share of the ambient light the surface receives, `[0, 1]` (glTF's occlusion
+    /// texture; 1: all of it): the light a path gathers after a non-delta bounce here, but
+    /// for the emitters' (crate doc). Set per hit by the textures.
+    pub occlusion: f32,
 }
 
 /// The parts of a material seen from one direction, with the luminance estimates that
@@ -116,6 +129,7 @@ impl Material {
             double_sided: false,
             alpha: None,
             textures: None,
+            occlusion: 1.0,
         }
     }
 
@@ -202,6 +216,9 @@ impl Material {
         }
         if !(self.emission.is_finite() && self.emission.min_element() >= 0.0) {
             return bad(format!("emission {}", self.emission));
+        }
+        if !(0.0..=1.0).contains(&self.occlusion) {
+            return bad(format!("occlusion {}", self.occlusion));
         }
         if !(self.ior >= 1.0 && self.ior.is_finite()) {
             return bad(format!("index of refraction {}", self.ior));

@@ -257,7 +257,28 @@ impl World {
         if p.normal.is_finite() && p.normal.is_normalized() {
             h.shading_normal = p.normal;
         }
+        owned.emission = Self::bounded_emission(p.emission, m.emission);
+        owned.occlusion = unit(p.occlusion, 1.0);
         std::borrow::Cow::Owned(owned)
+    }
+
+    /// A texture's emission held to the material's bound (non-finite: none).
+    fn bounded_emission(e: Vec3, bound: Vec3) -> Vec3 {
+        if e.is_finite() { e.clamp(Vec3::ZERO, bound) } else { Vec3::ZERO }
+    }
+
+    /// Radiance emitted at barycentrics `bary` of triangle `t` towards its front (`front`)
+    /// or back side: the material's emission, or its textures' there.
+    pub(crate) fn emitted_at(&self, t: u32, bary: Vec2, front: bool) -> Vec3 {
+        let m = &self.materials[self.surfaces.material(t) as usize];
+        let bound = m.emitted(front);
+        match &m.textures {
+            Some(tex) if bound != Vec3::ZERO => {
+                let p = (tex.0)(t, bary, self.surfaces.shading_normal(t, bary));
+                Self::bounded_emission(p.emission, bound)
+            }
+            _ => bound,
+        }
     }
 
     /// Number of emissive triangles (sampled by next-event estimation).

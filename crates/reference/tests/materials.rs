@@ -254,6 +254,8 @@ fn base_color_texture_multiplies_the_base_color() {
             metallic: 0.0,
             roughness: 1.0,
             normal,
+            occlusion: 1.0,
+            emission: Vec3::ZERO,
         },
     )));
     let m = b.material(m);

@@ -38,6 +38,7 @@ impl Scene {
             .map(|m| {
                 let mut h = std::collections::hash_map::DefaultHasher::new();
                 hash_f32s(&mut h, m.positions.iter().flat_map(|p| p.to_array()));
+                hash_f32s(&mut h, m.colors.iter().flat_map(|c| c.to_array()));
                 for t in &m.indices {
                     t.hash(&mut h);
                 }
@@ -50,11 +51,13 @@ impl Scene {
             hash_f32s(&mut h, [m.transparency, m.ior]);
             hash_f32s(&mut h, m.emission.to_array());
             hash_f32s(&mut h, m.base_color.extend(m.metallic).to_array());
-            hash_f32s(&mut h, [m.roughness, m.normal_scale]);
+            hash_f32s(&mut h, [m.roughness, m.normal_scale, m.occlusion_strength]);
             (
                 m.albedo_texture,
                 m.normal_texture,
                 m.metallic_roughness_texture,
+                m.occlusion_texture,
+                m.emissive_texture,
                 m.alpha_mask.map(|a| (a.texture, a.cutoff.to_bits())),
                 m.double_sided,
             )

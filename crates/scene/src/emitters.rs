@@ -4,7 +4,8 @@
 //! the inverse square softened by the patch's area ([`EmitterShape`]).
 //!
 //! The patches: the emissive triangles (front side by winding, as the reference path tracer
-//! reads them; both sides for a double-sided material) are grouped by material and by the
+//! reads them; both sides for a double-sided material; the emission times the emissive
+//! texture's mean over the triangle) are grouped by material and by the
 //! axis their normal is closest to (six groups per material, so that a closed emissive box
 //! or sphere does not average its normals to nothing); then, while there are fewer patches
 //! than the budget, the patch with the largest power times size whose bounding box is
@@ -115,6 +116,19 @@ impl Patch {
     }
 }
 
+/// The emissive texture's mean over a triangle of texture coordinates `uv` (white without
+/// one): a trilinear sample at its centre, at the level whose texel covers its area.
+fn emissive_texel(scene: &Scene, m: &crate::Material, uv: [glam::Vec2; 3]) -> Vec3 {
+    let Some(t) = m.emissive_texture.and_then(|id| scene.textures.get(id.index())) else {
+        return Vec3::ONE;
+    };
+    let uv_area = 0.5 * (uv[1] - uv[0]).perp_dot(uv[2] - uv[0]).abs();
+    let texels = uv_area * t.width() as f32 * t.height() as f32;
+    let lod = if texels > 1.0 { 0.5 * texels.log2() } else { 0.0 };
+    let texel = t.sample_trilinear((uv[0] + uv[1] + uv[2]) / 3.0, lod).truncate();
+    if texel.is_finite() { texel.max(Vec3::ZERO) } else { Vec3::ONE }
+}
+
 /// The six axis directions a normal is binned by.
 fn axis_bin(n: Vec3) -> usize {
     let a = n.abs();
@@ -150,7 +164,11 @@ pub fn emitter_lights(
             continue;
         }
         let corners = Aabb::from_points([a, b, c]);
-        let e = Emitter { centroid: (a + b + c) / 3.0, corners, area_normal, radiance: m.emission };
+        let radiance = m.emission * emissive_texel(scene, m, triangles.corner_uvs(t));
+        if radiance.max_element() <= 0.0 {
+            continue;
+        }
+        let e = Emitter { centroid: (a + b + c) / 3.0, corners, area_normal, radiance };
         let key = (material as usize, axis_bin(area_normal));
         match groups.iter_mut().find(|(k, _)| *k == key) {
             Some((_, p)) => p.emitters.push(e),

@@ -99,7 +99,7 @@ pub use mesh::{Cleanup, Mesh, MeshData, orthonormal_tangent};
 pub use needs::{Need, SKY_DARK_ELEVATION_DEG, SceneNeeds};
 pub use occluders::{DeriveSettings, derive_occlusion_quads};
 pub use scene::{Scene, SceneStats, SceneTriangles};
-pub use surface::{SurfacePoint, TextureLookup, perturbed_normal};
+pub use surface::{SurfaceFactors, SurfacePoint, TextureLookup, perturbed_normal, surface_factors};
 pub use texture::{
     ColorSpace, Filter, MAX_TEXTURE_SIZE, Texture, TextureId, TextureLevel, Wrap, linear_to_srgb,
     srgb_to_linear,

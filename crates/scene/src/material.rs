@@ -1,7 +1,17 @@
 //! A surface material in glTF 2.0's metallic-roughness model ([`crate::brdf`]: base colour,
 //! metallic, roughness), with what the ray tracer needs beyond it (transmission with an index
-//! of refraction), its textures (base colour, metallic-roughness, a tangent-space normal map;
-//! read at a surface point by [`crate::surface`]), an alpha-test mask and emission.
+//! of refraction), its textures (base colour, metallic-roughness, a tangent-space normal map,
+//! occlusion, emission; read at a surface point by [`crate::surface`]), an alpha-test mask
+//! and emission.
+//!
+//! # Occlusion
+//!
+//! glTF's occlusion texture marks "areas that receive less indirect lighting": every
+//! renderer scales the *ambient* light a surface point receives (the sky's light and the
+//! indirect bounces, where screen-space ambient occlusion applies too) by
+//! `1 + strength (ao - 1)` ([`crate::SurfacePoint::occlusion`]), never the direct light of
+//! the sun, the point and spot lights or the emitters, nor the surface's own emission. The
+//! reference's reading of it, for every vertex of a path, is in the `reference` crate's doc.
 //!
 //! # One surface model for every renderer
 //!
@@ -69,12 +79,21 @@ pub struct Material {
     pub normal_texture: Option<TextureId>,
     /// glTF's `normalTexture.scale`: multiplies the normal map's x and y (1: as stored).
     pub normal_scale: f32,
+    /// glTF's occlusion texture (linear): its red channel `ao` scales the ambient light the
+    /// surface receives by `1 + occlusion_strength (ao - 1)` (module doc).
+    pub occlusion_texture: Option<TextureId>,
+    /// glTF's `occlusionTexture.strength` in `[0, 1]` (1: as stored, 0: no occlusion).
+    pub occlusion_strength: f32,
+    /// glTF's emissive texture (sRGB, decoded to linear): multiplies `emission`.
+    pub emissive_texture: Option<TextureId>,
     /// Share of light transmitted through a smooth dielectric, [0, 1] (ray traced).
     pub transparency: f32,
     /// Index of refraction of the transmitting medium, >= 1.
     pub ior: f32,
     pub alpha_mask: Option<AlphaMask>,
-    /// Emitted radiance, linear RGB, >= 0.
+    /// Emitted radiance, linear RGB, >= 0 (glTF's emissive factor times its strength);
+    /// multiplied by `emissive_texture` where there is one, so it bounds the emission of
+    /// every point of the surface.
     pub emission: Vec3,
     /// Rendered from both sides (tree cards, thin panes).
     pub double_sided: bool,
@@ -158,6 +177,9 @@ impl Material {
             metallic_roughness_texture: None,
             normal_texture: None,
             normal_scale: 1.0,
+            occlusion_texture: None,
+            occlusion_strength: 1.0,
+            emissive_texture: None,
             transparency: 0.0,
             ior: 1.5,
             alpha_mask: None,
@@ -241,6 +263,9 @@ impl Material {
         tex(self.albedo_texture, "albedo")?;
         tex(self.normal_texture, "normal")?;
         tex(self.metallic_roughness_texture, "metallic-roughness")?;
+        tex(self.occlusion_texture, "occlusion")?;
+        tex(self.emissive_texture, "emissive")?;
+        unit(self.occlusion_strength, "occlusion strength")?;
         if !self.normal_scale.is_finite() {
             return Err(SceneError::invalid(el(), format!("normal scale {}", self.normal_scale)));
         }

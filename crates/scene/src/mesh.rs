@@ -15,6 +15,10 @@ pub struct Mesh {
     /// Unit tangents along +U with the bitangent sign in `w` (`B = w * N x T`).
     pub tangents: Vec<Vec4>,
     pub uvs: Vec<Vec2>,
+    /// Vertex colours (glTF's `COLOR_0`, linear RGB in `[0, 1]`), one per vertex, multiplied
+    /// into the material's base colour; empty when the mesh has none (white: nothing is
+    /// stored or multiplied).
+    pub colors: Vec<Vec3>,
     pub indices: Vec<[u32; 3]>,
     pub material: MaterialId,
     pub transform: Affine3A,
@@ -139,6 +143,7 @@ impl Mesh {
             normals,
             tangents,
             uvs,
+            colors: Vec::new(),
             indices: tris,
             material,
             transform: Affine3A::IDENTITY,
@@ -162,6 +167,23 @@ impl Mesh {
             .zip(&self.normals)
             .map(|(&t, &n)| orthonormal_tangent(Some(t), n))
             .collect();
+        Ok(self)
+    }
+
+    /// Vertex colours (linear RGB, clamped to `[0, 1]`) multiplied into the base colour; an
+    /// error when their count is not the vertex count or one is not finite.
+    pub fn with_colors(mut self, colors: Vec<Vec3>) -> Result<Self, LoadErrorKind> {
+        if colors.len() != self.positions.len() {
+            return Err(LoadErrorKind::Inconsistent(format!(
+                "{} colours for {} vertices",
+                colors.len(),
+                self.positions.len()
+            )));
+        }
+        if let Some(v) = colors.iter().position(|c| !c.is_finite()) {
+            return Err(LoadErrorKind::NonFinite { attribute: "colour", vertex: v });
+        }
+        self.colors = colors.into_iter().map(|c| c.clamp(Vec3::ZERO, Vec3::ONE)).collect();
         Ok(self)
     }
 
@@ -216,6 +238,16 @@ impl Mesh {
         if self.positions.iter().any(|p| !p.is_finite()) || self.uvs.iter().any(|u| !u.is_finite())
         {
             return Err(SceneError::invalid(el(), "non-finite position or UV"));
+        }
+        if !(self.colors.is_empty() || self.colors.len() == n) {
+            return Err(SceneError::invalid(el(), "colours differ in length from the vertices"));
+        }
+        if self
+            .colors
+            .iter()
+            .any(|c| !c.is_finite() || c.min_element() < 0.0 || c.max_element() > 1.0)
+        {
+            return Err(SceneError::invalid(el(), "vertex colour outside [0, 1]"));
         }
         if self.normals.iter().any(|m| !m.is_finite() || (m.length() - 1.0).abs() > 1e-3) {
             return Err(SceneError::invalid(el(), "normal not of unit length"));

@@ -46,6 +46,9 @@ pub struct SceneTriangles {
     /// (`B = w N x T`, turned with the transform's handedness), `(1, 0, 0, 1)` where the
     /// mesh has none.
     pub tangents: Vec<Vec4>,
+    /// Per vertex: the linear RGB colour multiplied into the base colour (a mesh's
+    /// [`Mesh::colors`], white where the mesh has none); empty when no mesh has colours.
+    pub colors: Vec<Vec3>,
     pub indices: Vec<[u32; 3]>,
     /// For each triangle, the index of its mesh in [`Scene::meshes`].
     pub mesh_ids: Vec<u32>,
@@ -72,6 +75,19 @@ impl SceneTriangles {
     /// The corners' tangents of triangle `t`.
     pub fn corner_tangents(&self, t: usize) -> [Vec4; 3] {
         self.indices[t].map(|i| self.tangents[i as usize])
+    }
+
+    /// The corners' colours of triangle `t` (white without any).
+    pub fn corner_colors(&self, t: usize) -> [Vec3; 3] {
+        if self.colors.is_empty() {
+            return [Vec3::ONE; 3];
+        }
+        self.indices[t].map(|i| self.colors[i as usize])
+    }
+
+    /// Whether any mesh has vertex colours (else [`Self::colors`] is empty).
+    pub fn has_colors(&self) -> bool {
+        !self.colors.is_empty()
     }
 
     /// The corners' texture coordinates of triangle `t`.
@@ -193,6 +209,8 @@ impl Scene {
             shift(&mut m.albedo_texture);
             shift(&mut m.normal_texture);
             shift(&mut m.metallic_roughness_texture);
+            shift(&mut m.occlusion_texture);
+            shift(&mut m.emissive_texture);
             if let Some(a) = &mut m.alpha_mask {
                 a.texture.0 += toff;
             }
@@ -275,7 +293,13 @@ impl Scene {
         out.indices.reserve(triangles);
         out.mesh_ids.reserve(triangles);
         out.materials.reserve(triangles);
+        let any_colors = self.meshes.iter().any(|m| !m.colors.is_empty());
         for (id, m) in self.meshes.iter().enumerate() {
+            if any_colors {
+                out.colors.extend(
+                    (0..m.vertex_count()).map(|v| m.colors.get(v).copied().unwrap_or(Vec3::ONE)),
+                );
+            }
             let base = out.positions.len() as u32;
             let nm = m.normal_matrix();
             out.positions.extend(m.positions.iter().map(|&p| m.transform.transform_point3(p)));

@@ -185,6 +185,22 @@ fn a_long_strip_is_cut_and_keeps_its_intensity() {
 }
 
 #[test]
+fn an_emissive_texture_scales_the_stand_ins_intensity() {
+    let mut s = scene_with(&[]);
+    let grey = scene::Texture::solid("grey", glam::Vec4::new(0.5, 0.25, 1.0, 1.0)).unwrap();
+    let id = s.add_texture(grey);
+    let m = Material {
+        emissive_texture: Some(id),
+        ..Material::emissive("textured", Vec3::ONE, Vec3::splat(2.0))
+    };
+    let m = s.add_material(m);
+    s.meshes.push(quad(Vec3::new(0.0, 2.0, 0.0), Vec3::X, Vec3::Z, m));
+    let e = lights(&s, 1);
+    let want = Vec3::new(1.0, 0.5, 2.0);
+    assert!((e.lights[0].color - want).length() < 1e-4, "{} vs {want}", e.lights[0].color);
+}
+
+#[test]
 fn a_scene_refuses_a_stand_in_among_its_own_lights() {
     let mut s = scene_with(&[(Vec3::ONE, Vec3::new(0.0, 2.0, 0.0), Vec3::X, Vec3::Z)]);
     let stand_in = lights(&s, 1).lights.remove(0);

@@ -3,6 +3,8 @@
 //! and WGSL, and the G-buffer pass draws what a small scene shows.
 #![cfg(feature = "gpu")]
 
+mod common;
+
 use glam::{Vec2, Vec3, Vec4};
 use gpu_harness::gpu_test_context;
 use scene::gpu::{
@@ -115,7 +117,7 @@ fn three_quads() -> Scene {
     scene
 }
 
-/// Texel `(x, y)` of G-buffer target `t` (0 albedo .. 3 depth) as four floats.
+/// Texel `(x, y)` of G-buffer target `t` (0 albedo .. 3 depth, 4 surface) as four floats.
 struct Targets {
     size: u32,
     texels: Vec<Vec<Vec4>>,
@@ -151,15 +153,33 @@ impl Targets {
         };
         let depth: Vec<f32> = gpu_harness::cast_vec(&read(3, 4));
         let depth = depth.into_iter().map(|d| Vec4::new(d, 0.0, 0.0, 0.0)).collect();
-        Self { size: g.width, texels: vec![unorm, half(1), half(2), depth] }
+        // The `surface` target: the emissive texel's square roots and the occlusion, packed.
+        let packed: Vec<u32> = gpu_harness::cast_vec(&read(5, 4));
+        let surface = packed
+            .into_iter()
+            .map(|p| {
+                let b = p.to_le_bytes().map(|c| c as f32 / 255.0);
+                Vec4::new(b[0] * b[0], b[1] * b[1], b[2] * b[2], b[3])
+            })
+            .collect();
+        Self { size: g.width, texels: vec![unorm, half(1), half(2), depth, surface] }
+    }
+
+    /// The emissive texture's value (rgb) and the occlusion (w) at the pixel of `p`.
+    fn surface_at(&self, camera: &Camera, p: Vec3) -> Vec4 {
+        self.texels[4][self.index(camera, p)]
+    }
+
+    fn index(&self, camera: &Camera, p: Vec3) -> usize {
+        let ndc = camera.view_projection().project_point3(p);
+        let px = ((ndc.x + 1.0) * 0.5 * self.size as f32) as usize;
+        let py = ((1.0 - ndc.y) * 0.5 * self.size as f32) as usize;
+        py * self.size as usize + px
     }
 
     /// The four targets at the pixel that world point `p` projects to.
     fn at(&self, camera: &Camera, p: Vec3) -> [Vec4; 4] {
-        let ndc = camera.view_projection().project_point3(p);
-        let px = ((ndc.x + 1.0) * 0.5 * self.size as f32) as usize;
-        let py = ((1.0 - ndc.y) * 0.5 * self.size as f32) as usize;
-        let i = py * self.size as usize + px;
+        let i = self.index(camera, p);
         std::array::from_fn(|t| self.texels[t][i])
     }
 }
@@ -563,5 +583,111 @@ fn gbuffer_reads_textures_with_their_wrap_modes_and_filter() {
                 "uv ({u}, {v}): GPU {base} vs CPU {want}"
             );
         }
+    }
+}
+
+/// `tests/data/surface_attributes.gltf` in the G-buffer, seen from above the front: the red
+/// vertices make the white quad's base colour red, the occlusion texture's right half holds
+/// 0.5 in the `surface` target (its left half 1), the emissive texture's left half 0 and its
+/// right half the decoded texel (the lighting multiplies the material's emission). Without
+/// the features: a white base colour, an occlusion of 1, a uniform (white) emissive value.
+#[test]
+fn gbuffer_applies_vertex_colours_occlusion_and_emissive_textures() {
+    use common::surface_attributes::{self as file, COLOURED, GLOWING, OCCLUDED};
+    let (_serial, Some(ctx)) = serial_gpu() else { return };
+    let mut scene = scene::load_gltf(file::PATH).expect("load surface_attributes.gltf");
+    scene.camera = Camera::look_at(Vec3::new(0.0, 5.0, 3.0), Vec3::ZERO, 60.0, 1.0);
+    let cam = scene.camera;
+    let t = Targets::render(&ctx, &scene, 128);
+    let tol = 1.5 / 255.0;
+    let mid = |r: (f32, f32)| (r.0 + r.1) * 0.5;
+    let [base, ..] = t.at(&cam, Vec3::new(mid(COLOURED), 0.0, 0.0));
+    assert!(near(base.with_w(0.0), Vec4::X, tol), "COLOR_0 red times white: {base}");
+    let untouched = t.surface_at(&cam, Vec3::new(mid(COLOURED), 0.0, 0.0));
+    assert!(near(untouched, Vec4::ONE, tol), "no textures: white, occlusion 1: {untouched}");
+    let (left, right) =
+        (Vec3::new(OCCLUDED.0 + 0.5, 0.0, 0.0), Vec3::new(OCCLUDED.1 - 0.5, 0.0, 0.0));
+    let (l, r) = (t.surface_at(&cam, left), t.surface_at(&cam, right));
+    assert!((l.w - 1.0).abs() <= tol, "ao 1 keeps the ambient light: {l}");
+    assert!((r.w - file::RIGHT_OCCLUSION).abs() <= tol, "ao 0 at strength 0.5: {r}");
+    let [lb, ..] = t.at(&cam, left);
+    let [rb, ..] = t.at(&cam, right);
+    assert!(near(lb, rb, tol) && (lb.x - 0.8).abs() <= tol, "occlusion leaves the base: {lb} {rb}");
+    let (left, right) =
+        (Vec3::new(GLOWING.0 + 0.5, 0.0, 0.0), Vec3::new(GLOWING.1 - 0.5, 0.0, 0.0));
+    let (l, r) = (t.surface_at(&cam, left), t.surface_at(&cam, right));
+    assert!(l.truncate().max_element() <= tol, "the black texel: {l}");
+    let want = file::right_emission() / 2.0; // the texel, without the factor x strength 2
+    assert!((r.truncate() - want).abs().max_element() < 4e-3, "{r} against {want}");
+}
+
+/// `material_surface_factors` (WGSL) equals `scene::surface_factors` on seeded random
+/// factors, vertex colours and texels.
+#[test]
+fn wgsl_surface_factors_equal_the_cpu_ones() {
+    use rand::{Rng, SeedableRng};
+    let (_serial, Some(ctx)) = serial_gpu() else { return };
+    let mut rng = rand_pcg::Pcg64::seed_from_u64(5355);
+    let count = 256usize;
+    let mut v4 =
+        |lo: f32, hi: f32| Vec4::from_array(std::array::from_fn(|_| rng.random_range(lo..hi)));
+    let mut inputs: Vec<[f32; 4]> = Vec::new();
+    let mut cases = Vec::new();
+    for _ in 0..count {
+        let (base, params, emission, color) =
+            (v4(0.0, 1.0), v4(0.0, 1.0), v4(0.0, 8.0), v4(0.0, 1.0));
+        // Texels a little outside [0, 1] too: both clamp.
+        let texels = [v4(-0.1, 1.1), v4(-0.1, 1.1), v4(-0.1, 1.1), v4(-0.1, 1.1)];
+        inputs.extend([base, params, emission, color].map(|v| v.to_array()));
+        inputs.extend(texels.map(|v| v.to_array()));
+        let [b, mr, ao, e] = texels;
+        cases.push(scene::surface_factors(
+            base,
+            params.x,
+            params.y,
+            emission.truncate(),
+            color.truncate(),
+            b,
+            mr,
+            ao,
+            e,
+        ));
+    }
+    let kernel = format!(
+        "{MATERIAL_INC_WGSL}
+        @group(0) @binding(0) var<storage, read> cases: array<vec4<f32>>;
+        @group(0) @binding(1) var<storage, read_write> out: array<vec4<f32>>;
+        @compute @workgroup_size(64) fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
+            let i = id.x;
+            if i >= arrayLength(&cases) / 8u {{ return; }}
+            let c = 8u * i;
+            let p = cases[c + 1u];
+            let f = material_surface_factors(cases[c], p.x, p.y, cases[c + 2u].xyz,
+                cases[c + 3u].xyz, cases[c + 4u], cases[c + 5u], cases[c + 6u], cases[c + 7u]);
+            out[3u * i] = vec4<f32>(f.base_color, f.metallic);
+            out[3u * i + 1u] = vec4<f32>(f.roughness, f.occlusion, 0.0, 0.0);
+            out[3u * i + 2u] = vec4<f32>(f.emission, 0.0);
+        }}"
+    );
+    let out = ctx
+        .run_compute(
+            &kernel,
+            "main",
+            &[
+                gpu_harness::Binding::Read(bytemuck::cast_slice(&inputs)),
+                gpu_harness::Binding::Output((count * 48) as u64),
+            ],
+            [count.div_ceil(64) as u32, 1, 1],
+        )
+        .expect("dispatch");
+    let gpu: Vec<[f32; 4]> = gpu_harness::cast_vec(&out[1]);
+    for (i, cpu) in cases.iter().enumerate() {
+        let [a, b, e] = [0, 1, 2].map(|k| Vec4::from_array(gpu[3 * i + k]));
+        let want_a = cpu.base_color.extend(cpu.metallic);
+        let want_b = Vec4::new(cpu.roughness, cpu.occlusion, 0.0, 0.0);
+        let ok = near(a, want_a, 1e-5)
+            && near(b, want_b, 1e-5)
+            && near(e.with_w(0.0), cpu.emission.extend(0.0), 1e-4);
+        assert!(ok, "case {i}: GPU {a} {b} {e} vs CPU {cpu:?}");
     }
 }

@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{closed_room, write_gltf};
+use common::{closed_room, surface_attributes, write_gltf};
 use glam::Vec3;
 use std::path::Path;
 
@@ -16,6 +16,17 @@ fn closed_room_file_is_what_its_generator_writes() {
     }
     let have = std::fs::read_to_string(closed_room::PATH).expect("tests/data/closed_room.gltf");
     assert!(have == want, "{} is stale: rerun with SEREIN_BLESS=1", closed_room::PATH);
+}
+
+#[test]
+fn surface_attributes_file_is_what_its_generator_writes() {
+    let want = surface_attributes::gltf();
+    if std::env::var_os("SEREIN_BLESS").is_some() {
+        std::fs::write(surface_attributes::PATH, &want).expect("write the test data");
+    }
+    let have = std::fs::read_to_string(surface_attributes::PATH)
+        .expect("tests/data/surface_attributes.gltf");
+    assert!(have == want, "{} is stale: rerun with SEREIN_BLESS=1", surface_attributes::PATH);
 }
 
 /// The room loads with no authored occlusion quads, and the quads derived from its walls

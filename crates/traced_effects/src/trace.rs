@@ -4,14 +4,17 @@
 //! (thesis 6.2.6); the CPU traces those rays through a SAH kd-tree over the whole scene in
 //! world space (6.2.2, [`kdtree_tracer::KdTree`]) and shades each hit (6.2.8, 6.3):
 //!
-//! - **Surface**: barycentric interpolation of the per-vertex world normals and UVs at the hit
-//!   (6.2.8); the material's textures (base colour, metallic-roughness, normal map:
-//!   [`scene::Material::at`]) are sampled trilinearly with a level of detail from the hit
+//! - **Surface**: barycentric interpolation of the per-vertex world normals, UVs and colours
+//!   at the hit (6.2.8); the material's textures (base colour, metallic-roughness, normal
+//!   map, occlusion, emission: [`scene::Material::at`], the vertex colour multiplied into
+//!   the base colour) are sampled trilinearly with a level of detail from the hit
 //!   distance and the triangle's texel density (a stand-in for the ray differentials of
 //!   6.2.9, whose per-pixel neighbours this flat ray list does not have). The normal is
 //!   flipped towards the ray.
 //! - **Light** (the deferred pass's model, 6.3, on [`scene::Material`]'s split): `emission +
-//!   (1 - t) (sum_lights f(v, l) E_l V_l cos + a(n.v) / pi E_ambient)`, with `t` the
+//!   (1 - t) (sum_lights f(v, l) E_l V_l cos + o a(n.v) / pi E_ambient)`, with `o` the
+//!   occlusion texture's share of the ambient light ([`scene::SurfacePoint::occlusion`]),
+//!   the emission the material's times its emissive texture, `t` the
 //!   transparency, `f` the material's BRDF ([`scene::Brdf::eval`]; its diffuse lobe alone
 //!   for a smooth surface, whose specular lobe is a traced mirror ray), `E_l` the sun's and
 //!   each point or spot light's irradiance and `a` the directional albedo the ambient light
@@ -65,6 +68,8 @@ pub struct TraceScene {
     surfaces: Surfaces,
     /// Per triangle: `sqrt(uv area / world area)` (UV units per metre), for mip selection.
     uv_density: Vec<f32>,
+    /// Per triangle: the corners' vertex colours (empty when the scene has none: white).
+    colors: Vec<[Vec3; 3]>,
     materials: Vec<Material>,
     /// Indexed by [`TextureId`]; only textures some material uses are kept.
     textures: Vec<Option<Texture>>,
@@ -114,9 +119,15 @@ impl TraceScene {
             .collect();
         let used = |id: usize| {
             scene.materials.iter().any(|m| {
-                [m.albedo_texture, m.metallic_roughness_texture, m.normal_texture]
-                    .iter()
-                    .any(|t| t.is_some_and(|t| t.index() == id))
+                [
+                    m.albedo_texture,
+                    m.metallic_roughness_texture,
+                    m.normal_texture,
+                    m.occlusion_texture,
+                    m.emissive_texture,
+                ]
+                .iter()
+                .any(|t| t.is_some_and(|t| t.index() == id))
                     || m.alpha_mask.is_some_and(|a| a.texture.index() == id)
             })
         };
@@ -142,9 +153,15 @@ impl TraceScene {
             .with_uvs((0..n).map(|t| tris.corner_uvs(t)).collect())?
             .with_tangents((0..n).map(|t| tris.corner_tangents(t)).collect())?
             .with_cutouts(cutouts);
+        let colors = if tris.has_colors() {
+            (0..n).map(|t| tris.corner_colors(t)).collect()
+        } else {
+            Vec::new()
+        };
         Ok(Self {
             surfaces,
             uv_density,
+            colors,
             any_glass: scene.materials.iter().any(Material::is_transparent),
             materials: scene.materials.clone(),
             textures,
@@ -313,7 +330,8 @@ pub struct TracedHit {
     /// The ray's light the GPU does not compute: emission, the sky for a miss, the mirror and
     /// glass parts followed on the CPU up to the settings' depth.
     pub other: [f32; 4],
-    /// Unit ray direction.
+    /// Unit ray direction; w: the share of the ambient light the surface receives (its
+    /// occlusion texture's, [`scene::SurfacePoint::occlusion`]).
     pub dir: [f32; 4],
 }
 const _: () = assert!(std::mem::size_of::<TracedHit>() == 96);
@@ -339,6 +357,7 @@ pub fn trace_surfaces(
             hit.normal = b.n.extend(b.weight).to_array();
             hit.geometric = b.ng.extend(b.surface.metallic).to_array();
             hit.base_color = b.surface.base_color.extend(b.surface.roughness).to_array();
+            hit.dir[3] = b.surface.occlusion;
         }
         hit
     })
@@ -429,7 +448,7 @@ impl Tracer<'_> {
         let n = if h.shading_normal.dot(dir) > 0.0 { -surface.normal } else { surface.normal };
         let weight = (1.0 - m.transparency).max(0.0);
         let base = (weight > 0.0).then_some(Base { weight, surface, p, ng, n, dir });
-        let mut l = finite(m.emission);
+        let mut l = finite(surface.emission);
         if depth <= 1 {
             return Found { other: l, base };
         }
@@ -472,7 +491,7 @@ impl Tracer<'_> {
     fn direct(&self, m: &SurfacePoint, p: Vec3, po: Vec3, n: Vec3, dir: Vec3) -> Vec3 {
         let s = self.scene;
         let brdf = scene::Brdf::new(m.base_color, m.metallic, m.roughness);
-        let ambient = finite((self.lighting.ambient)(p, n));
+        let ambient = finite((self.lighting.ambient)(p, n)) * m.occlusion.clamp(0.0, 1.0);
         // The ambient light's radiance taken as uniform over the lobes: the diffuse lobe's
         // directional albedo and a rough surface's specular lobe's (the GPU's
         // `surface_ambient` in shaders/engine/common.inc.wgsl).
@@ -536,18 +555,20 @@ impl Tracer<'_> {
         reflected
     }
 
-    /// The material at the hit with its textures applied ([`Material::at`]), trilinear at
-    /// the level of detail of the ray's footprint (`dist`: distance travelled).
+    /// The material at the hit with its textures and the vertex colour applied
+    /// ([`Material::at`]), trilinear at the level of detail of the ray's footprint (`dist`:
+    /// distance travelled).
     fn surface(&self, m: &Material, h: &SurfaceHit, dist: f32) -> SurfacePoint {
         let s = self.scene;
-        let untextured = SurfacePoint {
-            base_color: m.base_color,
-            metallic: m.metallic,
-            roughness: m.roughness,
-            normal: h.shading_normal,
+        let color = match s.colors.get(h.triangle as usize) {
+            Some([a, b, c]) => {
+                let w = h.barycentrics;
+                *a * (1.0 - w.x - w.y) + *b * w.x + *c * w.y
+            }
+            None => Vec3::ONE,
         };
-        if !m.is_textured() {
-            return untextured;
+        if !m.is_textured() && color == Vec3::ONE {
+            return m.untextured(h.shading_normal);
         }
         let lookup = TextureLookup {
             uv: h.uv,
@@ -557,6 +578,7 @@ impl Tracer<'_> {
                 s.surfaces.tangent(h.triangle, h.barycentrics),
                 h.shading_normal,
             ),
+            color,
         };
         let p = m.at(|id| s.texture(id), &lookup);
         SurfacePoint { base_color: finite(p.base_color).min(Vec3::ONE), ..p }

@@ -232,13 +232,14 @@ impl LightingPass {
                 sky_lookup.as_entire_binding(),
                 tv(&inputs.specular_albedo.view),
                 wgpu::BindingResource::Sampler(&inputs.specular_albedo.sampler),
+                tv(&targets.surface),
             ],
         );
         let sky_bg = self.sky_group.get(
             device,
             "sky",
             &self.sky.get_bind_group_layout(0),
-            &[(0, inputs.frame.as_entire_binding()), (19, skymap.as_entire_binding())],
+            &[(0, inputs.frame.as_entire_binding()), (20, skymap.as_entire_binding())],
         );
         let (black, z) = (wgpu::LoadOp::Clear(wgpu::Color::BLACK), Some(&targets.zbuffer));
         let mut pass = gpu_harness::depth_tested_pass(enc, "lighting", &targets.lit, black, z);

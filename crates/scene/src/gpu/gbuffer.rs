@@ -2,15 +2,27 @@
 //! rasterizes a [`GpuScene`] into it.
 //!
 //! What each pixel holds ([`GBUFFER_FORMATS`], in attachment order):
-//! - `base_color` (RGBA8): the material's base colour times its base-colour texture, metallic
-//!   in `w` ([`crate::brdf`]);
+//! - `base_color` (RGBA8): the material's base colour times the vertex colour and its
+//!   base-colour texture, metallic in `w` ([`crate::brdf`]);
 //! - `normal` (RGBA16F): the shading normal (the interpolated vertex normal), facing the viewer,
 //!   and in `w` the roughness, widened for specular anti-aliasing (below);
 //! - `geometry` (RGBA16F): the geometry normal (of the triangle, from the position's screen
 //!   derivatives), facing the viewer, and in `w` the material's index (a float);
 //! - `depth` (R32F): the linear depth along the camera's forward axis,
 //!   `dot(p - eye, forward)`; 0 where nothing is drawn;
+//! - `surface` (R32Uint, four 8-bit unsigned normalised values, `pack4x8unorm`): the
+//!   emissive texture's RGB at the point, each the square root of the linear value (a
+//!   gamma of 2, so dark emission keeps its steps; the lighting squares it and multiplies
+//!   the material's emission), and in the fourth byte the occlusion texture's share of the
+//!   ambient light `1 + strength (ao - 1)` ([`crate::SurfacePoint::occlusion`]); 1 and 1
+//!   (white, no occlusion) for a material without those textures;
 //! - `zbuffer` (`Depth32Float`, depth test `Less`, cleared to 1).
+//!
+//! Five colour targets, one more than WebGPU's downlevel defaults allow (the workspace's
+//! devices ask for the adapter's count, up to 8: `gpu_harness::device_descriptor`); they
+//! cost 32 bytes a pixel in WebGPU's accounting (RGBA8 8, RGBA16F 8 + 8, R32F 4, R32Uint
+//! 4), the limit `max_color_attachment_bytes_per_sample` of the defaults: the `surface`
+//! target is packed to fit it.
 //!
 //! Surfaces are two-sided. Specular anti-aliasing: across a pixel the shading normal turns by
 //! its screen derivatives, so the pixel sees the highlights of a range of normals; the stored
@@ -22,7 +34,8 @@
 //!
 //! Compared with the thesis's Table 3.1 (albedo + glossiness, normal + Phong power), the
 //! layout keeps its four targets and formats and changes what two channels mean: albedo
-//! became base colour, glossiness metallic, the Phong power the roughness. The roughness of a
+//! became base colour, glossiness metallic, the Phong power the roughness; the fifth target,
+//! `surface`, holds what glTF's emissive and occlusion textures say per pixel. The roughness of a
 //! smooth surface (below [`crate::TRACED_ROUGHNESS`]) tells the lighting that its specular
 //! lobe is the ray tracer's.
 //!
@@ -60,12 +73,13 @@ pub const GBUFFER_WGSL: &str = concat!(
     include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/shaders/gbuffer.wgsl"))
 );
 
-/// G-buffer formats in attachment order: base colour + metallic, shading normal + roughness, geometry normal + material id, linear depth (0: nothing drawn).
-pub const GBUFFER_FORMATS: [wgpu::TextureFormat; 4] = [
+/// G-buffer formats in attachment order: base colour + metallic, shading normal + roughness, geometry normal + material id, linear depth (0: nothing drawn), emissive texture + occlusion (packed).
+pub const GBUFFER_FORMATS: [wgpu::TextureFormat; 5] = [
     wgpu::TextureFormat::Rgba8Unorm,
     wgpu::TextureFormat::Rgba16Float,
     wgpu::TextureFormat::Rgba16Float,
     wgpu::TextureFormat::R32Float,
+    wgpu::TextureFormat::R32Uint,
 ];
 
 /// The z-buffer's format.
@@ -76,13 +90,16 @@ pub const ZBUFFER_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Floa
 pub struct GBuffer {
     pub width: u32,
     pub height: u32,
-    /// The textures behind the views: base colour, normal, geometry, depth, z-buffer.
-    pub textures: [wgpu::Texture; 5],
+    /// The textures behind the views: base colour, normal, geometry, depth, z-buffer,
+    /// surface (emissive texture + occlusion).
+    pub textures: [wgpu::Texture; 6],
     pub base_color: wgpu::TextureView,
     pub normal: wgpu::TextureView,
     pub geometry: wgpu::TextureView,
     pub depth: wgpu::TextureView,
     pub zbuffer: wgpu::TextureView,
+    /// The emissive texture's value and the occlusion, packed (module doc).
+    pub surface: wgpu::TextureView,
 }
 
 impl GBuffer {
@@ -97,10 +114,11 @@ impl GBuffer {
             target("geometry", GBUFFER_FORMATS[2]),
             target("linear depth", GBUFFER_FORMATS[3]),
             target("z-buffer", ZBUFFER_FORMAT),
+            target("surface", GBUFFER_FORMATS[4]),
         ];
-        let [base_color, normal, geometry, depth, zbuffer] =
+        let [base_color, normal, geometry, depth, zbuffer, surface] =
             textures.each_ref().map(|t| t.create_view(&Default::default()));
-        Self { width, height, textures, base_color, normal, geometry, depth, zbuffer }
+        Self { width, height, textures, base_color, normal, geometry, depth, zbuffer, surface }
     }
 }
 
@@ -270,6 +288,7 @@ impl GBufferPass {
                 clear(&gbuffer.normal),
                 clear(&gbuffer.geometry),
                 clear(&gbuffer.depth),
+                clear(&gbuffer.surface),
             ],
             depth_stencil_attachment: Some(gpu_harness::depth_attachment(
                 &gbuffer.zbuffer,

@@ -58,12 +58,26 @@ pub struct Vertex {
     pub material: u32,
     /// Unit tangent along +U, bitangent sign in `w` ([`crate::SceneTriangles::tangents`]).
     pub tangent: [f32; 4],
+    /// The vertex colour multiplied into the base colour, linear RGB as normalised 16-bit
+    /// integers (white where the mesh has none), `w` unused (`u16::MAX`).
+    pub color: [u16; 4],
 }
-const _: () = assert!(std::mem::size_of::<Vertex>() == 52);
+const _: () = assert!(std::mem::size_of::<Vertex>() == 60);
+
+/// A linear colour in `[0, 1]` as [`Vertex::color`] stores it.
+fn unorm16(c: Vec3) -> [u16; 4] {
+    let q = |v: f32| (v.clamp(0.0, 1.0) * 65535.0).round() as u16;
+    [q(c.x), q(c.y), q(c.z), u16::MAX]
+}
 
 /// The material bound when a scene has none.
-const ZERO_MATERIAL: GpuMaterial =
-    GpuMaterial { base: [0.0; 4], params: [0.0; 4], emission: [0.0; 4], flags: [0; 4] };
+const ZERO_MATERIAL: GpuMaterial = GpuMaterial {
+    base: [0.0; 4],
+    params: [0.0; 4],
+    emission: [0.0; 4],
+    flags: [0; 4],
+    occlusion: [0.0; 4],
+};
 
 /// A material as the shaders read it (`Material` in [`MATERIAL_INC_WGSL`]).
 #[repr(C)]
@@ -78,8 +92,12 @@ pub struct GpuMaterial {
     /// Has an albedo texture, has an alpha mask, has a normal map, has a metallic-roughness
     /// texture.
     pub flags: [u32; 4],
+    /// The occlusion texture's strength (0 without one: the white stand-in reads 1 anyway),
+    /// `yzw` unused. The emissive texture needs no flag: its white stand-in keeps the
+    /// emission.
+    pub occlusion: [f32; 4],
 }
-const _: () = assert!(std::mem::size_of::<GpuMaterial>() == 64);
+const _: () = assert!(std::mem::size_of::<GpuMaterial>() == 80);
 
 impl GpuMaterial {
     pub fn new(m: &Material) -> Self {
@@ -94,6 +112,12 @@ impl GpuMaterial {
                 m.metallic_roughness_texture.is_some(),
             ]
             .map(u32::from),
+            occlusion: [
+                if m.occlusion_texture.is_some() { m.occlusion_strength } else { 0.0 },
+                0.0,
+                0.0,
+                0.0,
+            ],
         }
     }
 }
@@ -124,7 +148,7 @@ pub struct GpuScene {
     /// centimetres) span many texture texels, so the mean is what a texel reflects.
     pub diffuse_albedo: Vec<Vec3>,
     /// One bind group per material (albedo texture, alpha texture, sampler, normal map,
-    /// metallic-roughness texture) of
+    /// metallic-roughness texture, occlusion texture, emissive texture) of
     /// [`GpuScene::material_layout`].
     pub material_groups: Vec<wgpu::BindGroup>,
     pub material_layout: wgpu::BindGroupLayout,
@@ -184,11 +208,12 @@ impl GpuScene {
     pub const NORMAL_OFFSET: u64 = 12;
     pub const UV_OFFSET: u64 = 24;
 
-    /// The vertex layout of [`Vertex`] at locations 0-4 (position, normal, uv, material,
-    /// tangent; only the position when `positions_only`).
+    /// The vertex layout of [`Vertex`] at locations 0-5 (position, normal, uv, material,
+    /// tangent, colour; only the position when `positions_only`).
     pub fn vertex_layout(positions_only: bool) -> wgpu::VertexBufferLayout<'static> {
-        const ALL: [wgpu::VertexAttribute; 5] = wgpu::vertex_attr_array![
-            0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Uint32, 4 => Float32x4
+        const ALL: [wgpu::VertexAttribute; 6] = wgpu::vertex_attr_array![
+            0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Uint32, 4 => Float32x4,
+            5 => Unorm16x4
         ];
         wgpu::VertexBufferLayout {
             array_stride: std::mem::size_of::<Vertex>() as u64,
@@ -214,6 +239,7 @@ fn flatten(scene: &Scene) -> (Vec<Vertex>, Vec<u32>, Vec<Draw>) {
             uv: tris.uvs[v].to_array(),
             material: material[v],
             tangent: tris.tangents[v].to_array(),
+            color: unorm16(tris.colors.get(v).copied().unwrap_or(Vec3::ONE)),
         })
         .collect();
     let mut order: Vec<usize> = (0..tris.indices.len()).collect();

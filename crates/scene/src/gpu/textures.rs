@@ -4,7 +4,7 @@
 use crate::{Filter, Scene, Texture, TextureId, Wrap};
 
 /// The layout of a material's textures (albedo, alpha mask, sampler, normal map,
-/// metallic-roughness), visible to fragment shaders: [`super::GpuScene::material_layout`].
+/// metallic-roughness, occlusion, emissive), visible to fragment shaders: [`super::GpuScene::material_layout`].
 pub(super) fn material_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     let tex_entry = |binding| wgpu::BindGroupLayoutEntry {
         binding,
@@ -29,6 +29,8 @@ pub(super) fn material_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
             },
             tex_entry(3),
             tex_entry(4),
+            tex_entry(5),
+            tex_entry(6),
         ],
     })
 }
@@ -78,7 +80,7 @@ impl GpuTextures {
     }
 
     /// One bind group per material (albedo, alpha mask, sampler, normal map,
-    /// metallic-roughness) in `layout`.
+    /// metallic-roughness, occlusion, emissive) in `layout`.
     pub(super) fn groups(
         &self,
         device: &wgpu::Device,
@@ -92,13 +94,20 @@ impl GpuTextures {
             .map(|m| {
                 // One sampler per material: its base-colour texture's (else its first
                 // texture's); the loaders warn where a material's textures differ.
-                let first = m.albedo_texture.or(m.metallic_roughness_texture).or(m.normal_texture);
+                let first = m
+                    .albedo_texture
+                    .or(m.metallic_roughness_texture)
+                    .or(m.normal_texture)
+                    .or(m.occlusion_texture)
+                    .or(m.emissive_texture);
                 let entries = [
                     (0, R::TextureView(self.view(m.albedo_texture))),
                     (1, R::TextureView(self.view(m.alpha_mask.map(|a| a.texture)))),
                     (2, R::Sampler(self.sampler_of(first))),
                     (3, R::TextureView(self.view(m.normal_texture))),
                     (4, R::TextureView(self.view(m.metallic_roughness_texture))),
+                    (5, R::TextureView(self.view(m.occlusion_texture))),
+                    (6, R::TextureView(self.view(m.emissive_texture))),
                 ];
                 gpu_harness::bind_entries(device, "material", layout, &entries)
             })

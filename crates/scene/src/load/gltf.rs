@@ -11,7 +11,14 @@
 //! - transparency = `KHR_materials_transmission` factor if present, else `1 - c.a` for
 //!   `alphaMode: BLEND`; IOR from `KHR_materials_ior` (default 1.5);
 //! - `alphaMode: MASK` = alpha test on the base-colour texture's alpha with `alphaCutoff`;
-//! - emission = `emissiveFactor * KHR_materials_emissive_strength`;
+//! - emission = `emissiveFactor * KHR_materials_emissive_strength`, times the emissive
+//!   texture (sRGB, decoded to linear) where there is one;
+//! - occlusion texture (linear, red channel) with its `strength`: scales the ambient light
+//!   (sky, indirect) by `1 + strength (ao - 1)` (see [`crate::material`]);
+//! - `COLOR_0` (float, or normalised unsigned byte or short; RGB or RGBA, linear) multiplies
+//!   the base colour ([`Mesh::colors`]); its alpha is not read: alpha testing and
+//!   transparency are per material here (a warning names a file whose vertex alpha is below
+//!   1 on a `MASK` or `BLEND` material);
 //! - normal texture = tangent-space normal map (linear) with its `scale`, in the frame of the
 //!   primitive's `TANGENT`s, or of MikkTSpace tangents where it has none; the
 //!   metallic-roughness texture (linear) multiplies the factors (green: roughness, blue:
@@ -144,6 +151,7 @@ fn load_gltf_ctx(
     let mut stack: Vec<(gltf::Node, Mat4, usize)> =
         roots.into_iter().map(|n| (n, Mat4::IDENTITY, 0)).collect();
     let mut camera_set = false;
+    let mut vertex_alpha_warned = false;
     let mut lights = super::punctual::Punctual::default();
     while let Some((node, parent, depth)) = stack.pop() {
         let el = || format!("node {} \"{}\"", node.index(), node.name().unwrap_or(""));
@@ -212,11 +220,24 @@ fn load_gltf_ctx(
                 } as u64
                     / 3;
                 loader.ctx.add_instance(triangles).map_err(|k| err(pel(), k))?;
-                let (data, tangents) =
+                let (data, tangents, colors) =
                     loader.primitive(&prim, mapping).map_err(|k| err(pel(), k))?;
                 let (mut m, c) = Mesh::build(pel(), data, material).map_err(|k| err(pel(), k))?;
                 if let Some(t) = tangents {
                     m = m.with_tangents(t).map_err(|k| err(pel(), k))?;
+                }
+                if let Some(colors) = colors {
+                    let blended = prim.material().alpha_mode() != gltf::material::AlphaMode::Opaque;
+                    if blended && !vertex_alpha_warned && colors.iter().any(|c| c.w < 1.0) {
+                        vertex_alpha_warned = true;
+                        let kind = crate::LoadWarningKind::Unsupported {
+                            feature: "vertex colour alpha (COLOR_0's alpha)",
+                            instead: "alpha testing and transparency read the material alone",
+                        };
+                        loader.ctx.warn(file, pel(), kind)?;
+                    }
+                    let rgb = colors.iter().map(|c| c.truncate()).collect();
+                    m = m.with_colors(rgb).map_err(|k| err(pel(), k))?;
                 }
                 m.name = mesh.name().map_or_else(
                     || format!("mesh_{}_{}", mesh.index(), prim.index()),
@@ -443,6 +464,18 @@ impl Loader<'_> {
             Some(info) => Some(self.texture(info.texture(), ColorSpace::Linear, &user)?),
             None => None,
         };
+        let (occlusion_texture, occlusion_strength) = match m.occlusion_texture() {
+            Some(o) => {
+                let strength =
+                    if o.strength().is_finite() { o.strength().clamp(0.0, 1.0) } else { 1.0 };
+                (Some(self.texture(o.texture(), ColorSpace::Linear, &user)?), strength)
+            }
+            None => (None, 1.0),
+        };
+        let emissive_texture = match m.emissive_texture() {
+            Some(info) => Some(self.texture(info.texture(), ColorSpace::Srgb, &user)?),
+            None => None,
+        };
         let mut transparency = match m.transmission() {
             Some(t) => t.transmission_factor().clamp(0.0, 1.0),
             None if m.alpha_mode() == gltf::material::AlphaMode::Blend => 1.0 - c[3],
@@ -476,6 +509,9 @@ impl Loader<'_> {
             metallic_roughness_texture,
             normal_texture,
             normal_scale,
+            occlusion_texture,
+            occlusion_strength,
+            emissive_texture,
             transparency,
             ior,
             alpha_mask,
@@ -488,12 +524,13 @@ impl Loader<'_> {
         Ok(self.scene.add_material(mat))
     }
 
-    /// The primitive's vertex data and its `TANGENT`s, if it has them.
+    /// The primitive's vertex data, its `TANGENT`s and its `COLOR_0` (RGBA), if it has them.
+    #[allow(clippy::type_complexity)] // the three parts of a primitive, named where used
     fn primitive(
         &self,
         prim: &gltf::Primitive,
         mapping: UvMapping,
-    ) -> Result<(MeshData, Option<Vec<Vec4>>), LoadErrorKind> {
+    ) -> Result<(MeshData, Option<Vec<Vec4>>, Option<Vec<Vec4>>), LoadErrorKind> {
         let pos = prim
             .get(&gltf::Semantic::Positions)
             .ok_or_else(|| LoadErrorKind::Inconsistent("no POSITION attribute".into()))?;
@@ -541,7 +578,11 @@ impl Loader<'_> {
             Some(_) => return Err(LoadErrorKind::Inconsistent("TANGENT is not VEC4".into())),
             None => None,
         };
-        Ok((MeshData { positions, normals, uvs, indices }, tangents))
+        let colors = match prim.get(&gltf::Semantic::Colors(0)) {
+            Some(a) => Some(colors(&a, &read(&a, self.buffers, "COLOR_0")?)?),
+            None => None,
+        };
+        Ok((MeshData { positions, normals, uvs, indices }, tangents, colors))
     }
 }
 
@@ -565,7 +606,8 @@ fn sampling(s: &gltf::texture::Sampler) -> ([Wrap; 2], Filter) {
 /// How a material's textures map onto its primitives: the texture coordinate set they read
 /// and `KHR_texture_transform`'s affine map (`offset`, then `rotation` counter-clockwise,
 /// then `scale`, as the extension composes them: `T R S`), both taken from the base-colour
-/// texture, else the metallic-roughness one, else the normal map's set. Baked into each
+/// texture, else the metallic-roughness one, else the set of the normal map, the occlusion
+/// texture or the emissive texture (the first the material has). Baked into each
 /// primitive's coordinates, so every renderer reads one set of coordinates.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct UvMapping {
@@ -580,7 +622,12 @@ impl UvMapping {
         let pbr = m.pbr_metallic_roughness();
         let info = pbr.base_color_texture().or_else(|| pbr.metallic_roughness_texture());
         let Some(info) = info else {
-            let set = m.normal_texture().map_or(0, |n| n.tex_coord());
+            let set = m
+                .normal_texture()
+                .map(|n| n.tex_coord())
+                .or_else(|| m.occlusion_texture().map(|o| o.tex_coord()))
+                .or_else(|| m.emissive_texture().map(|e| e.tex_coord()))
+                .unwrap_or(0);
             return Self { set: set as usize, ..Self::IDENTITY };
         };
         let Some(t) = info.texture_transform() else {
@@ -597,6 +644,31 @@ impl UvMapping {
         let transform = glam::Affine2::from_mat2_translation(rs, glam::Vec2::from(t.offset()));
         let transform = if transform.is_finite() { transform } else { glam::Affine2::IDENTITY };
         Self { set: t.tex_coord().unwrap_or(info.tex_coord()) as usize, transform }
+    }
+}
+
+/// `COLOR_0`'s components as RGBA (alpha 1 for a VEC3 accessor): float, or normalised
+/// unsigned byte or short, as glTF allows.
+fn colors(a: &gltf::Accessor, v: &[f64]) -> Result<Vec<Vec4>, LoadErrorKind> {
+    let ok_type = match a.data_type() {
+        DataType::F32 => true,
+        DataType::U8 | DataType::U16 => a.normalized(),
+        _ => false,
+    };
+    if !ok_type {
+        return Err(LoadErrorKind::Inconsistent(
+            "COLOR_0 is neither float nor normalised unsigned byte or short".into(),
+        ));
+    }
+    let c = |x: f64| x as f32;
+    match a.dimensions() {
+        Dimensions::Vec3 => {
+            Ok(v.chunks_exact(3).map(|p| Vec4::new(c(p[0]), c(p[1]), c(p[2]), 1.0)).collect())
+        }
+        Dimensions::Vec4 => {
+            Ok(v.chunks_exact(4).map(|p| Vec4::new(c(p[0]), c(p[1]), c(p[2]), c(p[3]))).collect())
+        }
+        _ => Err(LoadErrorKind::Inconsistent("COLOR_0 is neither VEC3 nor VEC4".into())),
     }
 }
 

@@ -55,14 +55,11 @@ const NOT_HONOURED: &[NotHonoured] = &[
     core("morph targets", "meshes are drawn in their base shape", morph_targets),
     core("animations", "the nodes' static transforms are drawn", animations),
     core("primitives other than TRIANGLES", "points, lines, strips and fans are skipped", modes),
-    core("vertex colours (COLOR_0)", "not multiplied into the base colour", colors),
     core(
         "different texture coordinates or transforms within one material",
         "all its textures are read with its base-colour texture's (or first texture's)",
         mixed_mappings,
     ),
-    core("occlusion textures", "no baked ambient occlusion", occlusion_textures),
-    core("emissive textures", "the emissive factor alone, uniform over the surface", emissive),
     ext("KHR_materials_clearcoat", "no clear-coat layer"),
     ext("KHR_materials_sheen", "no sheen"),
     ext("KHR_materials_volume", "transmissive materials are thin-walled (no absorption)"),
@@ -149,23 +146,18 @@ fn modes(r: &json::Root) -> Option<String> {
     primitive(r, |p| !matches!(p.mode, Checked::Valid(json::mesh::Mode::Triangles)))
 }
 
-fn colors(r: &json::Root) -> Option<String> {
-    primitive(r, |p| {
-        p.attributes.keys().any(|k| matches!(k, Checked::Valid(json::mesh::Semantic::Colors(_))))
-    })
-}
-
 /// The first material for which `f` holds, as `material i "name"`.
 fn material(r: &json::Root, f: impl Fn(&json::Material) -> bool) -> Option<String> {
     let (i, m) = r.materials.iter().enumerate().find(|(_, m)| f(m))?;
     Some(named("material", i, &m.name))
 }
 
-/// The first material whose applied textures (base colour, metallic-roughness, normal) do
-/// not share one texture coordinate set, or whose base-colour and metallic-roughness
+/// The first material whose applied textures (base colour, metallic-roughness, normal,
+/// occlusion, emissive) do not share one texture coordinate set, or whose base-colour and metallic-roughness
 /// textures differ in `KHR_texture_transform`: the loader bakes one mapping per material into
 /// its primitives' coordinates. (The `gltf` crate does not parse the extension on normal
-/// textures; a normal map takes its material's mapping.)
+/// and occlusion textures; they take their material's mapping, as an emissive texture
+/// does.)
 fn mixed_mappings(r: &json::Root) -> Option<String> {
     material(r, |m| {
         let pbr = &m.pbr_metallic_roughness;
@@ -176,20 +168,16 @@ fn mixed_mappings(r: &json::Root) -> Option<String> {
             (set, tt.map(|x| (x.offset.0, x.rotation.0, x.scale.0)))
         };
         let mappings: Vec<_> = info.into_iter().flatten().map(mapping).collect();
-        let sets =
-            mappings.iter().map(|m| m.0).chain(m.normal_texture.as_ref().map(|n| n.tex_coord));
+        let sets = mappings
+            .iter()
+            .map(|m| m.0)
+            .chain(m.normal_texture.as_ref().map(|n| n.tex_coord))
+            .chain(m.occlusion_texture.as_ref().map(|o| o.tex_coord))
+            .chain(m.emissive_texture.as_ref().map(|e| e.tex_coord));
         let mut sets = sets.peekable();
         let first = sets.peek().copied();
         sets.any(|s| Some(s) != first) || mappings.windows(2).any(|w| w[0].1 != w[1].1)
     })
-}
-
-fn occlusion_textures(r: &json::Root) -> Option<String> {
-    material(r, |m| m.occlusion_texture.is_some())
-}
-
-fn emissive(r: &json::Root) -> Option<String> {
-    material(r, |m| m.emissive_texture.is_some())
 }
 
 #[cfg(test)]

@@ -5,6 +5,7 @@
 pub mod closed_room;
 pub mod cube;
 pub mod lit;
+pub mod surface_attributes;
 pub mod write_gltf;
 
 pub use cube::base64;
