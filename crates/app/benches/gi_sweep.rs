@@ -495,13 +495,7 @@ fn traced_shading_race(
             let settings = Settings { traced_shading: shading, ..Settings::preset(preset, w, h) };
             let depth = settings.trace_depth;
             let mut r = renderer(&scene, settings);
-            r.set_camera(camera).expect("camera");
-            warm_up(&mut r);
-            r.set_component(Some(Component::Reflections));
-            r.set_camera(nudged(&camera, 1)).expect("camera");
-            let frame = render(&mut r);
-            let image = app::image_of(&frame.hdr);
-            let f = app::ledger::figures("all", &image, reference, 0..image.pixels.len(), 1.0);
+            let (frame, f) = component_frame(&mut r, camera, Component::Reflections, reference);
             let software = r.is_software();
             sweep.entry(
                 Entry::new(
@@ -542,15 +536,9 @@ fn emitter_lights_race(
         let settings =
             Settings { emitter_lights: budget, ..Settings::preset(Preset::Default, w, h) };
         let mut r = renderer(&scene, settings);
-        r.set_camera(camera).expect("camera");
         let lights = r.lights().iter().filter(|l| l.emitter.is_some()).count();
         let left_out = r.emitter_power_left_out();
-        warm_up(&mut r);
-        r.set_component(Some(Component::AreaLights));
-        r.set_camera(nudged(&camera, 1)).expect("camera");
-        let frame = render(&mut r);
-        let image = app::image_of(&frame.hdr);
-        let f = app::ledger::figures("all", &image, reference, 0..image.pixels.len(), 1.0);
+        let (frame, f) = component_frame(&mut r, camera, Component::AreaLights, reference);
         let software = r.is_software();
         sweep.entry(
             Entry::new(
@@ -572,6 +560,24 @@ fn emitter_lights_race(
             )),
         );
     }
+}
+
+/// `component` of the renderer's view from `camera` after the warm-up, in a frame where
+/// every per-frame pass ran (the camera nudged 1 mm), and its figures against `reference`.
+fn component_frame(
+    r: &mut Renderer,
+    camera: scene::Camera,
+    component: Component,
+    reference: &ReferenceRender,
+) -> (Frame, app::ledger::Figures) {
+    r.set_camera(camera).expect("camera");
+    warm_up(r);
+    r.set_component(Some(component));
+    r.set_camera(nudged(&camera, 1)).expect("camera");
+    let frame = render(r);
+    let image = app::image_of(&frame.hdr);
+    let f = app::ledger::figures("all", &image, reference, 0..image.pixels.len(), 1.0);
+    (frame, f)
 }
 
 fn timing_note(software: bool, what: &str) -> String {

@@ -4,8 +4,11 @@
 //! What each pixel holds ([`GBUFFER_FORMATS`], in attachment order):
 //! - `base_color` (RGBA8): the material's base colour times the vertex colour and its
 //!   base-colour texture, metallic in `w` ([`crate::brdf`]);
-//! - `normal` (RGBA16F): the shading normal (the interpolated vertex normal), facing the viewer,
-//!   and in `w` the roughness, widened for specular anti-aliasing (below);
+//! - `normal` (RGBA16F): the shading normal (the interpolated vertex normal, the normal map
+//!   applied), facing the viewer, as long as the normal map's level is coherent
+//!   ([`crate::brdf::normal_coherence`], 1 without a map, at least 0.05: readers normalise it,
+//!   the lighting's diffuse term reads the length, [`crate::brdf::filtered_cosine`]), and in
+//!   `w` the roughness, widened for specular anti-aliasing (below);
 //! - `geometry` (RGBA16F): the geometry normal (of the triangle, from the position's screen
 //!   derivatives), facing the viewer, and in `w` the material's index (a float);
 //! - `depth` (R32F): the linear depth along the camera's forward axis,
