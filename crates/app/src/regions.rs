@@ -95,6 +95,36 @@ pub fn region_map(
     width: u32,
     height: u32,
 ) -> Result<RegionMap, EngineError> {
+    regions(scene, camera, width, height, Naming::MeshAndFacing)
+}
+
+/// [`region_map`] with one region per mesh, whatever side of it a pixel sees (a sphere is one
+/// region, not one per axis).
+pub fn mesh_region_map(
+    scene: &scene::Scene,
+    camera: &scene::Camera,
+    width: u32,
+    height: u32,
+) -> Result<RegionMap, EngineError> {
+    regions(scene, camera, width, height, Naming::Mesh)
+}
+
+/// How a pixel's region is named.
+#[derive(Clone, Copy, PartialEq)]
+enum Naming {
+    /// `<mesh> <facing>` (the module doc).
+    MeshAndFacing,
+    /// `<mesh>`.
+    Mesh,
+}
+
+fn regions(
+    scene: &scene::Scene,
+    camera: &scene::Camera,
+    width: u32,
+    height: u32,
+    naming: Naming,
+) -> Result<RegionMap, EngineError> {
     let tech = |e| EngineError::technique("reference", e);
     let world = reference::world_from_scene(scene, &SceneLighting::DEFAULT).map_err(tech)?;
     let mut cam_scene = scene.clone();
@@ -107,7 +137,7 @@ pub fn region_map(
         starts.push(n);
         n += m.indices.len() as u32;
     }
-    Ok(build(&world, &cam, scene, &starts, width, height))
+    Ok(build(&world, &cam, scene, &starts, (width, height), naming))
 }
 
 fn build(
@@ -115,8 +145,8 @@ fn build(
     cam: &reference::Camera,
     scene: &scene::Scene,
     starts: &[u32],
-    width: u32,
-    height: u32,
+    (width, height): (u32, u32),
+    naming: Naming,
 ) -> RegionMap {
     let mut names: Vec<String> = Vec::new();
     let mut raw = Vec::with_capacity((width * height) as usize);
@@ -131,7 +161,10 @@ fn build(
                     let mesh = starts.partition_point(|&s| s <= h.triangle).saturating_sub(1);
                     let n = if h.normal.dot(d) > 0.0 { -h.normal } else { h.normal };
                     let mesh_name = scene.meshes.get(mesh).map_or("?", |m| m.name.as_str());
-                    format!("{mesh_name} {}", facing_name(n))
+                    match naming {
+                        Naming::MeshAndFacing => format!("{mesh_name} {}", facing_name(n)),
+                        Naming::Mesh => mesh_name.to_string(),
+                    }
                 },
             );
             let id = match names.iter().position(|k| *k == name) {
